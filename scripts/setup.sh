@@ -1,0 +1,23 @@
+#!/usr/bin/env bash
+# Installs the Debian packages phos needs (only the missing ones) and builds it in Release mode.
+# Usage: scripts/setup.sh [build-dir]   (default: build)
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="${1:-$here/build}"
+
+packages=(build-essential cmake pkg-config libembree-dev libtbb-dev libopenexr-dev libpng-dev libstb-dev
+          libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev libtinyobjloader-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "phos: installing ${missing[*]}" >&2
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j"$(nproc)"

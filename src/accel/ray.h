@@ -1,0 +1,44 @@
+// Rays, surface hits and robust ray spawning shared by every integrator and the photon tracer.
+#pragma once
+
+#include "core/vec.h"
+#include "scene/medium.h"
+
+namespace phos::accel {
+
+struct Ray {
+    Vec3 origin;
+    Vec3 dir;  // need not be normalised; t is measured in units of |dir|
+    float tmin = 0.0f;
+    float tmax = kInf;
+};
+
+// Everything shading needs to know about the closest hit.
+struct SurfaceHit {
+    float t = kInf;
+    Vec3 p;        // world-space hit point
+    Vec3 ng;       // unit geometric normal, pointing to the shape's outside (after reverse_orientation)
+    Vec3 ns;       // unit shading normal (interpolated where the mesh has normals), same side as ng
+    Vec2 uv;       // surface parameterisation (mesh uv, or the primitive's own)
+    Vec3 dpdu;     // tangent along u (unit; arbitrary but consistent if the shape has none)
+    int shape = -1;       // index into Scene::shapes, or of the instanced object's shape
+    int instance = -1;    // index into Scene::instances, or -1 for top-level shapes
+    int primitive = -1;   // triangle index within a mesh, 0 for analytic shapes
+    int material = -1;
+    int area_light = -1;  // index into Scene::lights when the surface emits
+    scene::MediumInterface media;
+    float error = 0.0f;   // conservative bound on the position error of p, for spawning
+};
+
+// Offsets `p` off the surface along the geometric normal towards the side `dir` points to, far
+// enough that a ray from the result does not re-hit the same surface (no acne) and close enough not
+// to skip touching geometry (no leaks).
+Vec3 offset_origin(const SurfaceHit& hit, Vec3 dir);
+// A ray leaving the surface in direction `dir`.
+Ray spawn_ray(const SurfaceHit& hit, Vec3 dir);
+// A shadow ray from the surface towards point `target` (stops just short of it).
+Ray spawn_ray_to(const SurfaceHit& hit, Vec3 target);
+// A shadow ray between two surface points, offset at both ends.
+Ray spawn_ray_between(const SurfaceHit& from, const SurfaceHit& to);
+
+}  // namespace phos::accel

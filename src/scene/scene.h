@@ -1,0 +1,59 @@
+// The whole scene as plain data: what every loader produces and what the renderer consumes.
+// Tests build scenes by hand through this struct, without any file.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "scene/camera.h"
+#include "scene/light.h"
+#include "scene/material.h"
+#include "scene/medium.h"
+#include "scene/shape.h"
+#include "scene/texture.h"
+
+namespace phos::scene {
+
+// Render settings a scene file may carry (pbrt's Film/Sampler/Integrator); the CLI wins.
+struct RenderSettings {
+    std::optional<int> width, height;
+    std::optional<int> spp;
+    std::optional<int> max_depth;
+    std::optional<std::string> integrator;  // phos integrator name
+    std::optional<std::string> output;      // image filename
+    std::optional<float> sppm_radius;
+    std::optional<int> photons_per_iteration;
+};
+
+struct Scene {
+    std::optional<Camera> camera;  // absent: the renderer frames the bounding box
+    std::vector<Shape> shapes;
+    std::vector<Object> objects;
+    std::vector<Instance> instances;
+    std::vector<Material> materials;
+    std::vector<Light> lights;
+    std::vector<Texture> textures;
+    std::vector<Medium> media;
+    int camera_medium = -1;
+    Rgb background{0.0f};  // radiance of escaping camera / specular rays
+    Rgb ambient{0.0f};     // .scn `ambient`, used only with --ambient
+    RenderSettings settings;
+    std::string source;    // the file it was loaded from
+
+    // Adds an area light emitting radiance `L` from `shape` (appended); returns the light index.
+    int add_area_light(Shape shape, Rgb L, bool two_sided = false) {
+        Light light;
+        light.kind = Light::Kind::Area;
+        light.color = L;
+        light.two_sided = two_sided;
+        light.shape = int(shapes.size());
+        const int index = int(lights.size());
+        shape.area_light = index;
+        shapes.push_back(std::move(shape));
+        lights.push_back(light);
+        return index;
+    }
+};
+
+}  // namespace phos::scene

@@ -1,0 +1,62 @@
+// Shapes as plain data: triangle meshes and analytic primitives, each with a material, an optional
+// area light, the media on its two sides and an object-to-world transform.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "core/vec.h"
+#include "scene/medium.h"
+
+namespace phos::scene {
+
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;   // empty, or one per position (shading normals)
+    std::vector<Vec2> uvs;       // empty, or one per position
+    std::vector<uint32_t> indices;  // 3 per triangle, counter-clockwise seen from the front
+    size_t triangle_count() const { return indices.size() / 3; }
+};
+
+struct Shape {
+    enum class Kind {
+        Mesh,      // `mesh`
+        Sphere,    // centre, radius
+        Box,       // axis-aligned box [box_min, box_max] in object space
+        Disk,      // centre, normal, radius (inner_radius for an annulus)
+        Cylinder,  // centre of the axis segment, unit `axis`, radius, height; caps if `capped`
+        Cone,      // centre of the axis segment, unit `axis` towards the apex, base radius, height
+    };
+    Kind kind = Kind::Mesh;
+    TriangleMesh mesh;
+    Vec3 center{0.0f};
+    float radius = 1.0f;
+    float inner_radius = 0.0f;
+    Vec3 normal{0, 1, 0};
+    Vec3 axis{0, 1, 0};
+    float height = 1.0f;
+    bool capped = true;
+    Vec3 box_min{0.0f}, box_max{1.0f};
+
+    int material = 0;
+    int area_light = -1;             // index into Scene::lights, or -1
+    bool reverse_orientation = false;  // flip the outward normal (pbrt ReverseOrientation)
+    MediumInterface media;
+    Transform to_world;              // object space to world space
+    std::string origin;              // "file:line" where it was defined, for messages
+};
+
+// A named group of shapes placed several times (pbrt ObjectBegin/ObjectInstance).
+struct Object {
+    std::string name;
+    std::vector<Shape> shapes;
+};
+
+struct Instance {
+    int object = 0;
+    Transform to_world;
+};
+
+}  // namespace phos::scene

@@ -1,0 +1,76 @@
+// Runtime lights built from scene::Light: sample_Li for direct lighting (next-event estimation),
+// pdf_Li and Le for MIS when a BSDF-sampled ray hits an emitter, sample_Le and power() for photon
+// emission. Area lights sample their shape (mesh triangles by area, disk, sphere...) in world space.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "accel/embree_scene.h"
+#include "accel/ray.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace phos::shading {
+
+struct LightLiSample {
+    Rgb L;            // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
+    Vec3 wi;          // unit direction from the reference point towards the light
+    float distance = kInf;  // to the sampled point on the light (kInf for directional / infinite)
+    Vec3 p_light;     // the sampled point on the light (for shadow rays)
+    Vec3 n_light;     // its normal (area lights)
+    float pdf = 0;    // solid-angle pdf (1 for delta lights)
+    bool delta = false;
+};
+
+struct LightLeSample {
+    accel::Ray ray;   // leaves the light (unit direction)
+    Vec3 n;           // surface normal at the origin (area lights), else the direction
+    Rgb Le;           // emitted radiance (area) or intensity (point/spot) along the ray
+    float pdf_pos = 1, pdf_dir = 1;
+    // Flux carried by this one sample: Le * |cos| / (pdf_pos * pdf_dir). Averaging over N samples
+    // gives the light's power; a photon's power is weight / N (times 1/P(choose light)).
+    Rgb weight;
+};
+
+struct LightOptions {
+    bool legacy_attenuation = false;  // honour .scn (ca, la, qa) in sample_Li
+};
+
+class Light {
+public:
+    virtual ~Light() = default;
+    virtual LightLiSample sample_Li(Vec3 ref, Vec2 u) const = 0;
+    // Solid-angle pdf that sample_Li(ref) picks `p_light` (with normal n_light) in direction wi.
+    virtual float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const = 0;
+    // Radiance leaving an emitting surface point with normal n towards wo (area lights), or arriving
+    // along an escaped ray's direction -wo (infinite lights); 0 for delta lights.
+    virtual Rgb Le(Vec3 n, Vec3 wo) const = 0;
+    virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const = 0;
+    virtual Rgb power() const = 0;
+    virtual bool is_delta() const = 0;
+    virtual bool is_infinite() const { return false; }
+};
+
+// All lights of a scene, with a power-proportional distribution for choosing one.
+class LightSet {
+public:
+    LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds, const LightOptions& options = {});
+    ~LightSet();
+    size_t size() const { return lights_.size(); }
+    const Light& operator[](size_t i) const { return *lights_[i]; }
+    // Picks a light with probability proportional to its power (average over channels).
+    // Returns the index and sets `pmf`. Requires size() > 0.
+    size_t choose(float u, float& pmf) const;
+    float pmf(size_t i) const;
+    Rgb total_power() const;
+    // Indices of infinite lights (seen by escaping rays).
+    const std::vector<size_t>& infinite_lights() const { return infinite_; }
+
+private:
+    std::vector<std::unique_ptr<Light>> lights_;
+    std::vector<float> cdf_;
+    std::vector<size_t> infinite_;
+};
+
+}  // namespace phos::shading
