@@ -1,0 +1,57 @@
+// Render statistics reported by `phos render -v`: rays traced by kind and wall time per phase.
+// Counters are atomics bumped once per tile or task (never per ray), so they cost nothing.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <mutex>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace phos {
+
+struct RayCounts {
+    uint64_t camera = 0, shadow = 0, bounce = 0, photon = 0;
+    RayCounts& operator+=(const RayCounts& o) {
+        camera += o.camera, shadow += o.shadow, bounce += o.bounce, photon += o.photon;
+        return *this;
+    }
+};
+
+class Stats {
+public:
+    void add_rays(const RayCounts& c);
+    RayCounts rays() const;
+    // Records `seconds` spent in `phase` (phases keep their first-seen order).
+    void add_time(const std::string& phase, double seconds);
+    // Free-form "name: value" lines (photon counts, bytes per photon...).
+    void add_value(const std::string& name, const std::string& value);
+    std::string report() const;
+
+private:
+    std::atomic<uint64_t> camera_{0}, shadow_{0}, bounce_{0}, photon_{0};
+    mutable std::mutex mutex_;
+    std::vector<std::pair<std::string, double>> times_;
+    std::vector<std::pair<std::string, std::string>> values_;
+};
+
+// Measures the lifetime of a scope into `stats` under `phase`.
+class ScopedTimer {
+public:
+    ScopedTimer(Stats& stats, std::string phase)
+        : stats_(stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()) {}
+    ~ScopedTimer() {
+        stats_.add_time(phase_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+    }
+    ScopedTimer(const ScopedTimer&) = delete;
+    ScopedTimer& operator=(const ScopedTimer&) = delete;
+
+private:
+    Stats& stats_;
+    std::string phase_;
+    std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace phos
