@@ -1,0 +1,19 @@
+// The front door for scene files: picks the loader by extension (.scn, .pbrt).
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace phos::io {
+
+struct LoadOptions {
+    bool real = false;                // .scn -real: scale lobes so kd+ks+kt <= 1
+    bool legacy_attenuation = false;  // .scn: keep (ca, la, qa) attenuation without warning
+    bool strict = false;              // pbrt: unused parameters are errors
+};
+
+// Throws ParseError / InputError on malformed or missing files.
+scene::Scene load_scene(const std::string& path, const LoadOptions& options = {});
+
+}  // namespace phos::io
