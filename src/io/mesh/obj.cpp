@@ -1,0 +1,147 @@
+// Wavefront OBJ reader (through tinyobjloader) and writer. Polygons are triangulated; OBJ's separate
+// position/normal/uv indices are merged into the single index per vertex that TriangleMesh uses.
+#define TINYOBJLOADER_IMPLEMENTATION
+#include <tiny_obj_loader.h>
+
+#include <fstream>
+#include <map>
+#include <regex>
+#include <sstream>
+#include <tuple>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "io/mesh/mesh_io.h"
+
+namespace phos::io {
+namespace {
+
+// tinyobjloader reports problems as free text, sometimes with "line N" in it; recover that number
+// so the ParseError points at the offending line.
+int line_in_message(const std::string& msg) {
+    static const std::regex re(R"(line:?\s*(\d+))");
+    std::smatch m;
+    if (std::regex_search(msg, m, re)) return std::stoi(m[1].str());
+    return 0;
+}
+
+std::string trim(std::string s) {
+    while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
+    return s;
+}
+
+}  // namespace
+
+LoadedMesh read_obj(const std::string& path) {
+    {
+        std::ifstream probe(path);
+        if (!probe) throw ParseError(path, 0, 0, "cannot open OBJ file");
+    }
+    tinyobj::ObjReaderConfig config;
+    config.triangulate = true;
+    config.vertex_color = false;
+    tinyobj::ObjReader reader;
+    const bool ok = reader.ParseFromFile(path, config);
+    // Warnings come one per line; report each. tinyobjloader calls an out-of-range face index a
+    // warning, but the face is unusable, so that one is an error here.
+    std::istringstream warnings(reader.Warning());
+    for (std::string w; std::getline(warnings, w);) {
+        w = trim(w);
+        if (w.empty()) continue;
+        if (w.find("out of bounds") != std::string::npos) throw ParseError(path, line_in_message(w), 0, w);
+        log::warn(path + ": " + w);
+    }
+    if (!ok || !reader.Error().empty()) {
+        const std::string msg = trim(reader.Error());
+        throw ParseError(path, line_in_message(msg), 0, msg.empty() ? "malformed OBJ file" : msg);
+    }
+
+    const tinyobj::attrib_t& attrib = reader.GetAttrib();
+    LoadedMesh out;
+    for (const tinyobj::material_t& m : reader.GetMaterials()) out.material_names.push_back(m.name);
+
+    // A single-index mesh can only carry normals/uvs if every corner has them.
+    bool all_normals = true, all_uvs = true;
+    size_t corners = 0;
+    for (const tinyobj::shape_t& s : reader.GetShapes())
+        for (const tinyobj::index_t& i : s.mesh.indices) {
+            all_normals &= i.normal_index >= 0;
+            all_uvs &= i.texcoord_index >= 0;
+            ++corners;
+        }
+    if (corners == 0) throw ParseError(path, 0, 0, "OBJ file has no faces");
+    if (!all_normals && !attrib.normals.empty())
+        log::warn(path + ": some faces have no normals; all vertex normals ignored");
+    if (!all_uvs && !attrib.texcoords.empty())
+        log::warn(path + ": some faces have no texture coordinates; all uvs ignored");
+
+    std::map<std::tuple<int, int, int>, uint32_t> remap;
+    scene::TriangleMesh& mesh = out.mesh;
+    const size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3,
+                 nt = attrib.texcoords.size() / 2;
+    bool any_material = false;
+    for (const tinyobj::shape_t& s : reader.GetShapes()) {
+        const auto& idx = s.mesh.indices;
+        for (size_t f = 0; f < s.mesh.num_face_vertices.size(); ++f) {
+            if (s.mesh.num_face_vertices[f] != 3)
+                throw ParseError(path, 0, 0, "face could not be triangulated in shape '" + s.name + "'");
+            for (int k = 0; k < 3; ++k) {
+                const tinyobj::index_t& i = idx[3 * f + size_t(k)];
+                const int vn = all_normals ? i.normal_index : -1;
+                const int vt = all_uvs ? i.texcoord_index : -1;
+                if (i.vertex_index < 0 || size_t(i.vertex_index) >= nv || (vn >= 0 && size_t(vn) >= nn) ||
+                    (vt >= 0 && size_t(vt) >= nt))
+                    throw ParseError(path, 0, 0, "index out of range in shape '" + s.name + "'");
+                const auto key = std::make_tuple(i.vertex_index, vn, vt);
+                auto [it, inserted] = remap.try_emplace(key, uint32_t(mesh.positions.size()));
+                if (inserted) {
+                    const size_t v = size_t(i.vertex_index);
+                    mesh.positions.push_back(
+                        {attrib.vertices[3 * v], attrib.vertices[3 * v + 1], attrib.vertices[3 * v + 2]});
+                    if (all_normals)
+                        mesh.normals.push_back({attrib.normals[3 * size_t(vn)],
+                                                attrib.normals[3 * size_t(vn) + 1],
+                                                attrib.normals[3 * size_t(vn) + 2]});
+                    if (all_uvs)
+                        mesh.uvs.push_back(
+                            {attrib.texcoords[2 * size_t(vt)], attrib.texcoords[2 * size_t(vt) + 1]});
+                }
+                mesh.indices.push_back(it->second);
+            }
+            int m = f < s.mesh.material_ids.size() ? s.mesh.material_ids[f] : -1;
+            if (m >= int(out.material_names.size())) m = -1;
+            any_material |= m >= 0;
+            out.triangle_materials.push_back(m);
+        }
+    }
+    if (!any_material) out.triangle_materials.clear();
+    return out;
+}
+
+void write_obj(const std::string& path, const scene::TriangleMesh& mesh) {
+    std::ofstream out(path);
+    if (!out) throw InputError("cannot write OBJ file '" + path + "'");
+    const bool normals = !mesh.normals.empty() && mesh.normals.size() == mesh.positions.size();
+    const bool uvs = !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size();
+    out.precision(9);  // round-trips float exactly
+    out << "# written by phos\n";
+    for (const Vec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    if (normals)
+        for (const Vec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
+    if (uvs)
+        for (const Vec2& t : mesh.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
+    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
+        out << 'f';
+        for (int k = 0; k < 3; ++k) {
+            const uint32_t i = mesh.indices[3 * t + size_t(k)] + 1;
+            out << ' ' << i;
+            if (uvs || normals) out << '/';
+            if (uvs) out << i;
+            if (normals) out << '/' << i;
+        }
+        out << '\n';
+    }
+    if (!out) throw InputError("error writing OBJ file '" + path + "'");
+}
+
+}  // namespace phos::io
