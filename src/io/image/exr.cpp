@@ -1,0 +1,77 @@
+// OpenEXR: written as 32-bit float R, G, B (ZIP compressed, lossless); read from any scanline or
+// tiled file holding R/G/B (missing ones read as 0) or only Y (grey), half or float, through the
+// general FrameBuffer API, which converts to float and handles a data window not at the origin.
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+
+#include <exception>
+#include <string>
+
+#include "core/error.h"
+#include "io/image/formats.h"
+
+namespace phos::io::detail {
+
+static_assert(sizeof(Rgb) == 3 * sizeof(float), "Rgb must be three packed floats for the EXR frame buffer");
+
+void write_exr(const std::string& path, const Image& image) {
+    try {
+        Imf::Header header(image.width, image.height);
+        header.compression() = Imf::ZIP_COMPRESSION;
+        for (const char* name : {"R", "G", "B"}) header.channels().insert(name, Imf::Channel(Imf::FLOAT));
+        Imf::OutputFile file(path.c_str(), header);
+        Imf::FrameBuffer fb;
+        // OpenEXR only reads through these pointers when writing.
+        char* base = reinterpret_cast<char*>(const_cast<Rgb*>(image.pixels.data()));
+        const size_t xs = sizeof(Rgb), ys = sizeof(Rgb) * size_t(image.width);
+        fb.insert("R", Imf::Slice(Imf::FLOAT, base, xs, ys));
+        fb.insert("G", Imf::Slice(Imf::FLOAT, base + sizeof(float), xs, ys));
+        fb.insert("B", Imf::Slice(Imf::FLOAT, base + 2 * sizeof(float), xs, ys));
+        file.setFrameBuffer(fb);
+        file.writePixels(image.height);
+    } catch (const std::exception& e) {
+        throw InputError(std::string("OpenEXR: ") + e.what());
+    }
+}
+
+Image read_exr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imath::Box2i dw = file.header().dataWindow();
+        const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
+        if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
+            throw_read_error(path, "unsupported EXR data window size");
+        const Imf::ChannelList& channels = file.header().channels();
+        const bool has_rgb =
+            channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
+        const bool has_y = channels.findChannel("Y") != nullptr;
+        if (!has_rgb && !has_y) throw_read_error(path, "EXR has no R, G, B or Y channel");
+
+        Image image(static_cast<int>(w), static_cast<int>(h));
+        char* base = reinterpret_cast<char*>(image.pixels.data());
+        const size_t xs = sizeof(Rgb), ys = sizeof(Rgb) * size_t(w);
+        Imf::FrameBuffer fb;
+        // Slice::Make offsets the pointer by the data window origin so pixel (min.x, min.y) lands at
+        // our (0, 0); absent channels are filled with 0.
+        const char* names[3] = {"R", "G", "B"};
+        for (int c = 0; c < 3; ++c) {
+            const char* name = has_rgb ? names[c] : "Y";
+            if (!has_rgb && c > 0) continue;  // grey: read Y into R, copy below
+            fb.insert(name, Imf::Slice::Make(Imf::FLOAT, base + size_t(c) * sizeof(float), dw, xs, ys));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(dw.min.y, dw.max.y);
+        if (!has_rgb)
+            for (Rgb& p : image.pixels) p = Rgb(p.r);
+        return image;
+    } catch (const InputError&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw_read_error(path, std::string("OpenEXR: ") + e.what());
+    }
+}
+
+}  // namespace phos::io::detail

@@ -1,0 +1,34 @@
+// Per-format readers and writers behind io/image_io.h (one .cpp per format). Internal to io/image,
+// but tests use it to reach format-specific options such as greyscale PFM.
+#pragma once
+
+#include <cstdio>
+#include <string>
+
+#include "core/image.h"
+#include "io/image/image_io.h"
+
+namespace phos::io::detail {
+
+// Writers write straight to `path` (the caller, write_image, hands them a temporary name) and
+// throw InputError (or any std::exception) on failure.
+void write_exr(const std::string& path, const Image& image);
+// `greyscale` writes a one-channel "Pf" file holding the channel average.
+void write_pfm(const std::string& path, const Image& image, bool greyscale = false);
+void write_png(const std::string& path, const Image& image, const ImageWriteOptions& options);
+void write_bmp(const std::string& path, const Image& image, const ImageWriteOptions& options);
+
+// Readers throw InputError mentioning `path`.
+Image read_exr(const std::string& path);
+Image read_pfm(const std::string& path);
+// PNG, JPEG, TGA, BMP (8 or 16 bit, decoded from sRGB when `srgb`) and Radiance HDR (linear).
+Image read_stb(const std::string& path, bool srgb);
+
+// stb_image decodes a truncated uncompressed BMP without complaint (missing rows read as 0); this
+// returns a reason when the BMP in `f` is shorter than its header promises, else "". Keeps `f`'s position.
+std::string bmp_truncation(std::FILE* f);
+
+// "cannot read 'path': reason" — the one wording all readers use.
+[[noreturn]] void throw_read_error(const std::string& path, const std::string& reason);
+
+}  // namespace phos::io::detail

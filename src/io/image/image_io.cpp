@@ -1,0 +1,75 @@
+// Front door of io/image: picks the format from the file extension and routes writes through
+// atomic_write so a failed write never leaves a partial file.
+#include "io/image/image_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/error.h"
+#include "io/image/atomic_write.h"
+#include "io/image/formats.h"
+
+namespace phos::io {
+namespace {
+
+std::string lower_extension(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    return ext;
+}
+
+}  // namespace
+
+namespace detail {
+
+void throw_read_error(const std::string& path, const std::string& reason) {
+    throw InputError("cannot read '" + path + "': " + reason);
+}
+
+}  // namespace detail
+
+bool is_writable_image_path(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    return ext == ".exr" || ext == ".pfm" || ext == ".png" || ext == ".bmp";
+}
+
+void write_image(const std::string& path, const Image& image, const ImageWriteOptions& options) {
+    const std::string ext = lower_extension(path);
+    if (!is_writable_image_path(path))
+        throw InputError("cannot write '" + path + "': unknown image format '" + ext +
+                         "' (expected .exr, .pfm, .png or .bmp)");
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != size_t(image.width) * size_t(image.height))
+        throw InputError("cannot write '" + path + "': image is empty or its size is inconsistent");
+    atomic_write(path, [&](const std::string& temp) {
+        if (ext == ".exr")
+            detail::write_exr(temp, image);
+        else if (ext == ".pfm")
+            detail::write_pfm(temp, image);
+        else if (ext == ".png")
+            detail::write_png(temp, image, options);
+        else
+            detail::write_bmp(temp, image, options);
+    });
+}
+
+Image read_image(const std::string& path, bool srgb) {
+    const std::string ext = lower_extension(path);
+    const bool known = ext == ".exr" || ext == ".pfm" || ext == ".png" || ext == ".jpg" || ext == ".jpeg" ||
+                       ext == ".tga" || ext == ".bmp" || ext == ".hdr";
+    if (!known)
+        detail::throw_read_error(path, "unknown image format '" + ext +
+                                           "' (expected .exr, .pfm, .png, .jpg, .jpeg, .tga, .bmp or .hdr)");
+    std::error_code ec;
+    if (!std::filesystem::is_regular_file(path, ec)) {
+        if (std::filesystem::exists(path, ec)) detail::throw_read_error(path, "not a regular file");
+        detail::throw_read_error(path, "no such file");
+    }
+    if (ext == ".exr") return detail::read_exr(path);
+    if (ext == ".pfm") return detail::read_pfm(path);
+    return detail::read_stb(path, srgb);
+}
+
+}  // namespace phos::io
