@@ -2,6 +2,24 @@
 // lobes (Lambert, modified-Phong glossy or ideal mirror, smooth or frosted dielectric, Lambertian
 // transmission). eval/pdf cover the non-delta lobes; sample covers all of them. Directions are
 // world-space unit vectors pointing away from the surface.
+//
+// Conventions (precise):
+// - Sides. Reflection lobes (Lambert, Phong, mirror) are two-sided: they reflect on whichever side
+//   of the surface wo is. The dielectric is oriented: wo on the side ng points to is outside, and
+//   refraction goes from index 1 to `ior` (eta = ior) when entering, 1/ior when leaving.
+// - Light leaks. A pair (wo, wi) on the same side of the GEOMETRIC normal ng only gets reflection,
+//   a pair on opposite sides only transmission; eval and pdf are 0 otherwise and sample rejects
+//   such directions (returns nullopt), so sample's density is exactly pdf().
+// - Lobe selection. sample() picks one lobe with probability proportional to its average-channel
+//   albedo estimate at wo (the LobeAlbedos below, per lobe), samples wi from it, and for a
+//   non-delta wi returns f = eval(wo, wi) (all non-delta lobes) and pdf = pdf(wo, wi) = the sum of
+//   selection probability x lobe pdf over the non-delta lobes. Below-surface Phong samples are
+//   rejected without renormalising, so pdf() integrates to < 1 there.
+// - Delta lobes (mirror, smooth or thin dielectric): pdf = selection probability x branch
+//   probability (F or 1-F for the dielectric), f = coefficient / |cos(wi, ns)|, so that
+//   weight = f |cos| / pdf = coefficient / pdf. For the exact-Fresnel dielectric the branch is
+//   chosen with its own probability, so weight = kt / selection (x 1/eta^2 when refracting in
+//   Radiance mode). Delta lobes never appear in eval() or pdf().
 #pragma once
 
 #include <cstdint>
@@ -11,6 +29,7 @@
 #include "core/frame.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "shading/microfacet.h"
 
 namespace phos::shading {
 
@@ -28,22 +47,29 @@ enum class TransportMode { Radiance, Importance };
 
 struct BsdfSample {
     Vec3 wi;
-    Rgb f;            // BSDF value (for delta lobes: the delta's coefficient divided by |cos|)
-    float pdf = 0;    // solid-angle pdf of choosing wi, including the lobe-selection probability
+    Rgb f;               // BSDF value (for delta lobes: the delta's coefficient divided by |cos|)
+    float pdf = 0;       // solid-angle pdf of choosing wi, including the lobe-selection probability
     uint32_t flags = 0;  // the sampled lobe's LobeFlags
-    float eta = 1;    // relative index of refraction crossed (1 unless refracted)
-    // Throughput multiplier f * |cos(wi, ns)| / pdf.
+    float eta = 1;       // relative index of refraction crossed (1 unless refracted)
+    // Throughput multiplier f * |cos(wi, ns)| / pdf (for delta lobes: coefficient / pdf).
     Rgb weight;
     bool is_specular() const { return flags & kSpecular; }
 };
 
 struct BsdfOptions {
     bool schlick = false;  // Schlick's approximation instead of exact dielectric Fresnel
+    // Microfacet distribution of the frosted dielectric; alpha = sqrt(2 / (n + 2)) from its
+    // Phong exponent n (Material::transmission_shininess).
+    MicrofacetModel microfacet = MicrofacetModel::GGX;
 };
 
 class Bsdf {
 public:
-    // Builds the BSDF of `material` at `hit` (textures looked up in `scene`).
+    // Builds the BSDF of `material` at `hit` (textures looked up in `scene`). The shading frame is
+    // ns with dpdu made orthogonal to it (Gram-Schmidt) when dpdu is usable. A material with no
+    // non-black lobe gets a black Lambert lobe, so it is opaque (flags() != 0); only
+    // `interface_only` materials have flags() == 0 and scatter nothing. A thin dielectric is always
+    // smooth, as is a dielectric with ior == 1 (there is nothing to bend light).
     Bsdf(const scene::Material& material, const accel::SurfaceHit& hit, const scene::Scene& scene,
          const BsdfOptions& options = {});
 
@@ -53,20 +79,35 @@ public:
     std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u,
                                      TransportMode mode = TransportMode::Radiance) const;
 
-    // Union of the LobeFlags of all lobes present.
+    // Union of the LobeFlags of all lobes present. Lambert: kDiffuse|kReflection; Phong: kGlossy|
+    // kReflection; mirror: kSpecular|kReflection; smooth dielectric: kSpecular|kReflection|
+    // kTransmission; frosted: kGlossy|kReflection|kTransmission; Lambertian transmission:
+    // kDiffuse|kTransmission. A BsdfSample's flags name the branch taken (reflection or
+    // transmission, not both).
     uint32_t flags() const { return flags_; }
     bool has_non_specular() const { return flags_ & (kDiffuse | kGlossy); }
     bool is_purely_specular() const { return flags_ != 0 && !has_non_specular(); }
     // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses.
     Rgb diffuse_albedo() const { return kd_; }
     // Directional albedo of each lobe kind for wo (probabilities for the photon tracer's Russian
-    // roulette): diffuse reflection+transmission, glossy, specular reflection, specular/frosted
-    // transmission. Each is an RGB reflectance <= 1 for a physical material.
+    // roulette): diffuse = kd + kdt (Lambert reflection and transmission), glossy = Phong ks
+    // (x conductor Fresnel at wo), specular = mirror reflectance at wo (ks, x conductor Fresnel),
+    // transmission = kt of the dielectric, smooth or frosted (its Fresnel reflection included:
+    // sample splits kt between reflection and refraction itself). Each is an RGB reflectance <= 1
+    // for a physical material; 0 for absent lobes.
     struct LobeAlbedos {
         Rgb diffuse, glossy, specular, transmission;
     };
     LobeAlbedos lobe_albedos(Vec3 wo) const;
-    // Samples only the lobes whose flags intersect `lobe_mask` (used after Russian roulette).
+    // Samples only the lobes of the kinds in `lobe_mask` (used after Russian roulette). The mask is
+    // read as a set of LobeAlbedos kinds written with LobeFlags bits: kDiffuse = Lambert reflection
+    // and Lambertian transmission, kGlossy = Phong, kSpecular = mirror, kTransmission = the whole
+    // dielectric (smooth or frosted, its reflection and refraction); kReflection is ignored. So
+    // flags() (or ~0u) selects every lobe and sample() == sample_lobes(~0u, ...). Lobes are
+    // selected among the masked ones only (probabilities renormalised over the mask), and f, pdf
+    // and weight are those of the masked lobes alone: for a single-lobe mask the weight is that
+    // lobe's own f |cos| / pdf (e.g. kd for Lambert, kt for exact-Fresnel glass), which the
+    // photon tracer divides by its Russian-roulette probability.
     std::optional<BsdfSample> sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
                                            TransportMode mode = TransportMode::Radiance) const;
     const Frame& frame() const { return frame_; }
@@ -82,6 +123,13 @@ private:
     Rgb cond_eta_, cond_k_;
     float ior_ = 1;
     bool schlick_ = false;
+    uint32_t lobes_ = 0;  // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
+    MicrofacetDistribution dist_;
+
+    Rgb specular_reflectance(float cos_o) const;
+    void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
+    Rgb eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const;
+    float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;
 };
 
 }  // namespace phos::shading

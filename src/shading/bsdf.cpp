@@ -1,0 +1,291 @@
+// Bsdf: builds the lobes of a scene::Material at a hit and implements eval / pdf / sample over them
+// (lobe selection, shading frame, side and light-leak rules). The dielectric lobe's own maths is in
+// dielectric.cpp; the conventions are documented in bsdf.h.
+#include "shading/bsdf.h"
+
+#include <cmath>
+
+#include "core/warp.h"
+#include "shading/dielectric.h"
+#include "shading/fresnel.h"
+#include "shading/texture_eval.h"
+
+namespace phos::shading {
+namespace {
+
+enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kNumLobes };
+// The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to.
+constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse};
+
+bool usable(Vec3 v) { return is_finite(v) && length_squared(v) > 1e-20f; }
+
+// +1 when w is on the side ng points to, -1 on the other, 0 exactly in the tangent plane.
+float side_of(Vec3 w, Vec3 ng) {
+    const float d = dot(w, ng);
+    return d > 0 ? 1.0f : (d < 0 ? -1.0f : 0.0f);
+}
+
+// Modified Phong: f = ks (n+2)/(2 pi) cos^n(alpha) (without Fresnel), alpha from the mirror
+// direction of wo. Local frame, wi.z > 0 checked by the caller.
+float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z)); }
+
+}  // namespace
+
+Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
+           const BsdfOptions& options) {
+    const Vec3 ng = usable(hit.ng) ? normalize(hit.ng) : Vec3(0, 0, 1);
+    Vec3 n = usable(hit.ns) ? normalize(hit.ns) : ng;
+    if (dot(n, ng) < 0) n = -n;  // ns is specified on ng's side; guard against loaders that flip
+    ng_ = ng;
+    frame_ = Frame(n);
+    if (usable(hit.dpdu)) {
+        const Vec3 s = hit.dpdu - n * dot(n, hit.dpdu);
+        if (length_squared(s) > 1e-12f * length_squared(hit.dpdu)) {
+            const Vec3 su = normalize(s);
+            frame_ = Frame(su, cross(n, su), n);
+        }
+    }
+    if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
+
+    kd_ = m.diffuse;
+    if (m.diffuse_texture >= 0) kd_ *= eval_texture(scene, m.diffuse_texture, hit.uv);
+    ks_ = m.specular;
+    kt_ = m.transmission;
+    kdt_ = m.diffuse_transmission;
+    shininess_ = std::max(m.shininess, 0.0f);
+    t_shininess_ = std::max(m.transmission_shininess, 0.0f);
+    mirror_ = m.shininess >= scene::Material::kMirrorShininess;
+    thin_ = m.thin;
+    ior_ = m.ior > 0 ? m.ior : 1.0f;
+    sharp_glass_ = thin_ || ior_ == 1 || t_shininess_ >= scene::Material::kMirrorShininess;
+    conductor_ = m.conductor;
+    cond_eta_ = m.conductor_eta;
+    cond_k_ = m.conductor_k;
+    schlick_ = options.schlick;
+    dist_ =
+        MicrofacetDistribution(options.microfacet, MicrofacetDistribution::alpha_from_phong(t_shininess_));
+
+    if (!m.diffuse.is_black()) lobes_ |= 1u << kLambert;
+    if (!ks_.is_black()) lobes_ |= 1u << (mirror_ ? kMirror : kPhong);
+    if (!kt_.is_black()) lobes_ |= 1u << kDielectric;
+    if (!kdt_.is_black()) lobes_ |= 1u << kDiffTrans;
+    if (lobes_ == 0) lobes_ = 1u << kLambert;  // black body: opaque, absorbs everything
+
+    if (lobes_ & (1u << kLambert)) flags_ |= kDiffuse | kReflection;
+    if (lobes_ & (1u << kPhong)) flags_ |= kGlossy | kReflection;
+    if (lobes_ & (1u << kMirror)) flags_ |= kSpecular | kReflection;
+    if (lobes_ & (1u << kDielectric))
+        flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
+    if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
+}
+
+Rgb Bsdf::specular_reflectance(float cos_o) const {
+    return conductor_ ? ks_ * fresnel_conductor(cos_o, cond_eta_, cond_k_) : ks_;
+}
+
+void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) const {
+    const float cos_o = std::fabs(wo_local.z);
+    for (int i = 0; i < kNumLobes; ++i) {
+        w[i] = 0;
+        if (!(lobes_ & (1u << i)) || !(mask & kKind[i])) continue;
+        switch (i) {
+            case kLambert:
+                w[i] = kd_.average();
+                break;
+            case kPhong:
+            case kMirror:
+                w[i] = specular_reflectance(cos_o).average();
+                break;
+            case kDielectric:
+                w[i] = kt_.average();
+                break;
+            case kDiffTrans:
+                w[i] = kdt_.average();
+                break;
+        }
+        w[i] = std::max(w[i], 0.0f);
+    }
+}
+
+Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
+    LobeAlbedos a;
+    const float cos_o = std::fabs(dot(wo, frame_.n));
+    if (lobes_ & (1u << kLambert)) a.diffuse += kd_;
+    if (lobes_ & (1u << kDiffTrans)) a.diffuse += kdt_;
+    if (lobes_ & (1u << kPhong)) a.glossy = specular_reflectance(cos_o);
+    if (lobes_ & (1u << kMirror)) a.specular = specular_reflectance(cos_o);
+    if (lobes_ & (1u << kDielectric)) a.transmission = kt_;
+    return a;
+}
+
+Rgb Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const {
+    const float s = side_of(wo, ng_);
+    if (s == 0 || lobes_ == 0) return Rgb(0.0f);
+    Vec3 wo_l = frame_.to_local(wo), wi_l = frame_.to_local(wi);
+    wo_l.z *= s;
+    wi_l.z *= s;
+    const float gi = dot(wi, ng_) * s;
+    const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
+    if (!refl && !trans) return Rgb(0.0f);
+    const auto has = [&](int lobe) { return (lobes_ & (1u << lobe)) && (mask & kKind[lobe]); };
+
+    Rgb f(0.0f);
+    if (refl && has(kLambert)) f += kd_ * kInvPi;
+    if (refl && has(kPhong)) {
+        const float ca = phong_cos_alpha(wo_l, wi_l);
+        if (ca > 0) {
+            Rgb spec = ks_;
+            if (conductor_) {
+                const Vec3 h = wo_l + wi_l;
+                const float cos_h = length_squared(h) > 0 ? dot(wo_l, normalize(h)) : 1.0f;
+                spec = specular_reflectance(cos_h);
+            }
+            f += spec * ((shininess_ + 2) * (0.5f * kInvPi) * std::pow(ca, shininess_));
+        }
+    }
+    if (trans && has(kDiffTrans)) f += kdt_ * kInvPi;
+    if (has(kDielectric) && !sharp_glass_) {
+        const float eta = s > 0 ? ior_ : 1 / ior_;
+        f += kt_ * dielectric::rough_eval(dist_, wo_l, wi_l, eta, schlick_, mode);
+    }
+    return f;
+}
+
+float Bsdf::pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const {
+    const float s = side_of(wo, ng_);
+    if (s == 0 || lobes_ == 0) return 0;
+    Vec3 wo_l = frame_.to_local(wo), wi_l = frame_.to_local(wi);
+    wo_l.z *= s;
+    wi_l.z *= s;
+    const float gi = dot(wi, ng_) * s;
+    const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
+    if (!refl && !trans) return 0;
+    float w[kNumLobes];
+    selection_weights(wo_l, mask, w);
+    float total = 0;
+    for (float x : w) total += x;
+    if (!(total > 0)) return 0;
+
+    float pdf = 0;
+    if (refl && w[kLambert] > 0) pdf += w[kLambert] * warp::cosine_hemisphere_pdf(wi_l.z);
+    if (refl && w[kPhong] > 0)
+        pdf += w[kPhong] * warp::power_cosine_pdf(phong_cos_alpha(wo_l, wi_l), shininess_);
+    if (trans && w[kDiffTrans] > 0) pdf += w[kDiffTrans] * warp::cosine_hemisphere_pdf(-wi_l.z);
+    if (w[kDielectric] > 0 && !sharp_glass_) {
+        const float eta = s > 0 ? ior_ : 1 / ior_;
+        pdf += w[kDielectric] * dielectric::rough_pdf(dist_, wo_l, wi_l, eta, schlick_);
+    }
+    return pdf / total;
+}
+
+Rgb Bsdf::eval(Vec3 wo, Vec3 wi, TransportMode mode) const { return eval_masked(wo, wi, ~0u, mode); }
+
+float Bsdf::pdf(Vec3 wo, Vec3 wi) const { return pdf_masked(wo, wi, ~0u); }
+
+std::optional<BsdfSample> Bsdf::sample(Vec3 wo, float u_lobe, Vec2 u, TransportMode mode) const {
+    return sample_lobes(~0u, wo, u_lobe, u, mode);
+}
+
+std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
+                                             TransportMode mode) const {
+    const float s = side_of(wo, ng_);
+    if (s == 0 || lobes_ == 0) return std::nullopt;
+    Vec3 wo_l = frame_.to_local(wo);
+    wo_l.z *= s;
+    float w[kNumLobes];
+    selection_weights(wo_l, lobe_mask, w);
+    float total = 0;
+    for (float x : w) total += x;
+    if (!(total > 0)) return std::nullopt;
+
+    // Pick the lobe and rescale u_lobe to [0, 1) within its interval, for reuse below.
+    int lobe = -1;
+    float target = u_lobe * total, acc = 0;
+    for (int i = 0; i < kNumLobes; ++i) {
+        if (w[i] <= 0) continue;
+        lobe = i;
+        if (target < acc + w[i]) break;
+        acc += w[i];
+    }
+    const float sel = w[lobe] / total;
+    const float u_re = std::clamp((target - acc) / w[lobe], 0.0f, 0x1.fffffep-1f);
+
+    BsdfSample bs;
+    Vec3 wi_l;
+    bool delta = false, transmitted = false;
+    Rgb coefficient_over_prob;  // delta lobes: coefficient / branch probability
+    float branch_prob = 1;
+    switch (lobe) {
+        case kLambert:
+            wi_l = warp::cosine_hemisphere(u);
+            bs.flags = kDiffuse | kReflection;
+            break;
+        case kDiffTrans:
+            wi_l = warp::cosine_hemisphere(u);
+            wi_l.z = -wi_l.z;
+            transmitted = true;
+            bs.flags = kDiffuse | kTransmission;
+            break;
+        case kPhong: {
+            const Vec3 r(-wo_l.x, -wo_l.y, wo_l.z);
+            wi_l = Frame(r).to_world(warp::power_cosine(u, shininess_));
+            if (wi_l.z <= 0) return std::nullopt;  // below the surface: lost, pdf not renormalised
+            bs.flags = kGlossy | kReflection;
+            break;
+        }
+        case kMirror:
+            wi_l = Vec3(-wo_l.x, -wo_l.y, wo_l.z);
+            coefficient_over_prob = specular_reflectance(std::fabs(wo_l.z));
+            delta = true;
+            bs.flags = kSpecular | kReflection;
+            break;
+        case kDielectric: {
+            const float eta = s > 0 ? ior_ : 1 / ior_;
+            if (sharp_glass_) {
+                const auto ds = dielectric::sample_smooth(wo_l, eta, thin_, schlick_, u_re, mode);
+                if (!ds) return std::nullopt;
+                wi_l = ds->wi;
+                transmitted = ds->transmitted;
+                branch_prob = ds->prob;
+                coefficient_over_prob = kt_ * (ds->coefficient / ds->prob);
+                bs.eta = ds->eta;
+                delta = true;
+                bs.flags = kSpecular | (transmitted ? kTransmission : kReflection);
+            } else {
+                const auto wi = dielectric::rough_sample(dist_, wo_l, eta, schlick_, u_re, u);
+                if (!wi) return std::nullopt;
+                wi_l = *wi;
+                transmitted = wi_l.z < 0;
+                if (transmitted) bs.eta = eta;
+                bs.flags = kGlossy | (transmitted ? kTransmission : kReflection);
+            }
+            break;
+        }
+        default:
+            return std::nullopt;
+    }
+
+    Vec3 wi_world = wi_l;
+    wi_world.z *= s;
+    bs.wi = frame_.to_world(wi_world);
+    // Light-leak rule: the sampled branch must agree with the geometric normal.
+    const float gi = dot(bs.wi, ng_) * s;
+    if (transmitted ? !(gi < 0) : !(gi > 0)) return std::nullopt;
+    const float abs_cos = std::fabs(wi_l.z);
+    if (!(abs_cos > 0)) return std::nullopt;
+
+    if (delta) {
+        bs.pdf = sel * branch_prob;
+        if (!(bs.pdf > 0)) return std::nullopt;
+        bs.weight = coefficient_over_prob / sel;
+        bs.f = coefficient_over_prob * (branch_prob / abs_cos);
+        return bs;
+    }
+    bs.f = eval_masked(wo, bs.wi, lobe_mask, mode);
+    bs.pdf = pdf_masked(wo, bs.wi, lobe_mask);
+    if (!(bs.pdf > 0) || bs.f.is_black()) return std::nullopt;
+    bs.weight = bs.f * (abs_cos / bs.pdf);
+    return bs;
+}
+
+}  // namespace phos::shading
