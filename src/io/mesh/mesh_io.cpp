@@ -1,0 +1,30 @@
+// Mesh-file dispatch: picks the reader from the file extension (case-insensitive).
+#include "io/mesh/mesh_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace phos::io {
+
+LoadedMesh read_mesh(const std::string& path) {
+    std::string ext = std::filesystem::path(path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".off") {
+        LoadedMesh m;
+        m.mesh = read_off(path);
+        return m;
+    }
+    if (ext == ".ply") {
+        LoadedMesh m;
+        m.mesh = read_ply(path);
+        return m;
+    }
+    if (ext == ".obj") return read_obj(path);
+    throw ParseError(path, 0, 0, "unknown mesh format '" + ext + "' (phos reads .off, .ply and .obj meshes)");
+}
+
+}  // namespace phos::io

@@ -1,0 +1,23 @@
+// Loader for Princeton's `.scn` scene format (see docs/formats/scn.md): reads a file and the files it
+// includes into a scene::Scene, with phos's physically based reading of every number.
+#pragma once
+
+#include <string>
+
+#include "scene/scene.h"
+
+namespace phos::io {
+
+struct ScnOptions {
+    // Scale each material's lobes so kd + ks + kt <= 1 per channel (the seed's `-real` flag).
+    bool real = false;
+    // Keep non-physical light attenuation constants silently (they are stored in Light::attenuation
+    // either way; without this flag each light with constants other than 0 0 1 gets a warning).
+    bool legacy_attenuation = false;
+};
+
+// Reads `path` (and its includes, meshes and textures). Throws ParseError (file:line:col of the
+// offending token, in the file that contains it) on any malformed input.
+scene::Scene load_scn(const std::string& path, const ScnOptions& options = {});
+
+}  // namespace phos::io
