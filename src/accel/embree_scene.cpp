@@ -1,0 +1,527 @@
+// EmbreeScene: turns a scene::Scene into Embree 3 geometry (triangles, user-geometry analytic
+// shapes, instances of per-object scenes) and converts Embree hits into SurfaceHit records.
+#include "accel/embree_scene.h"
+
+#include <embree3/rtcore.h>
+
+#include <algorithm>
+#include <cmath>
+#include <deque>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "accel/analytic.h"
+#include "core/error.h"
+#include "core/frame.h"
+#include "core/log.h"
+
+namespace phos::accel {
+
+using detail::Affine;
+using detail::Analytic;
+using detail::CanonicalHit;
+using detail::D3;
+
+namespace {
+
+// Unit roundoff of float; error bounds below are small multiples of it times coordinate magnitudes.
+constexpr double kUlp = 0x1p-24;
+
+struct MeshGeom {
+    const float* vertices = nullptr;  // Embree's vertex buffer, 3 floats per vertex, geometry space
+    const uint32_t* indices = nullptr;
+    std::vector<Vec3> normals;  // unit per-vertex shading normals in geometry space, or empty
+    const std::vector<Vec2>* uvs = nullptr;
+    bool flip = false;  // reverse_orientation XOR transform swaps handedness
+    const scene::Shape* source = nullptr;
+    int shape = -1;
+    D3 vertex(uint32_t i) const { return {vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2]}; }
+};
+
+// What an Embree geomID stands for.
+struct Geom {
+    enum Kind { Mesh, Analytic, Instance } kind = Mesh;
+    int index = 0;  // into Impl::meshes / analytics / instances
+};
+
+struct InstanceData {
+    int instance = -1, object = -1;
+    Affine to_world, to_object;
+    double norm = 1;        // ||M||, scales object-space error bounds to world
+    double error_term = 0;  // extra error from Embree transforming rays into object space in float
+};
+
+// The intersect context extended with the exact canonical hit of the last accepted analytic
+// intersection (Embree passes our context through to the callbacks unchanged).
+struct QueryContext {
+    RTCIntersectContext ctx;
+    CanonicalHit hit;
+};
+
+double max_abs(D3 v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+D3 normalized(D3 v) {
+    const double l = std::sqrt(detail::dot(v, v));
+    return l > 0 ? v * (1.0 / l) : v;
+}
+
+void analytic_bounds_cb(const RTCBoundsFunctionArguments* args) {
+    const auto& a = *static_cast<const Analytic*>(args->geometryUserPtr);
+    D3 lo, hi;
+    detail::analytic_bounds(a, lo, hi);
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = std::nextafter(float(lo.x), -kInf), b->upper_x = std::nextafter(float(hi.x), kInf);
+    b->lower_y = std::nextafter(float(lo.y), -kInf), b->upper_y = std::nextafter(float(hi.y), kInf);
+    b->lower_z = std::nextafter(float(lo.z), -kInf), b->upper_z = std::nextafter(float(hi.z), kInf);
+}
+
+// Transforms ray i into canonical space and intersects it; N is 1 for rtcIntersect1 but the
+// packet layout is honoured anyway.
+bool analytic_hit(const Analytic& a, RTCRayN* ray, unsigned N, unsigned i, CanonicalHit& h) {
+    const D3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+    const D3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    return detail::intersect_canonical(a, a.to_canon.point(o), a.to_canon.vector(d), RTCRayN_tnear(ray, N, i),
+                                       RTCRayN_tfar(ray, N, i), h);
+}
+
+void analytic_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+    const auto& a = *static_cast<const Analytic*>(args->geometryUserPtr);
+    auto* qc = reinterpret_cast<QueryContext*>(args->context);
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        CanonicalHit h;
+        if (!analytic_hit(a, ray, args->N, i, h)) continue;
+        RTCRayN_tfar(ray, args->N, i) = float(h.t);
+        // Embree wants some Ng; ours is recomputed exactly from the canonical hit afterwards.
+        RTCHitN_Ng_x(hit, args->N, i) = -RTCRayN_dir_x(ray, args->N, i);
+        RTCHitN_Ng_y(hit, args->N, i) = -RTCRayN_dir_y(ray, args->N, i);
+        RTCHitN_Ng_z(hit, args->N, i) = -RTCRayN_dir_z(ray, args->N, i);
+        RTCHitN_u(hit, args->N, i) = 0;
+        RTCHitN_v(hit, args->N, i) = 0;
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+        // Each accepted hit is closer than all earlier ones, so the last one stored is the final
+        // closest hit whenever that is an analytic shape.
+        qc->hit = h;
+    }
+}
+
+void analytic_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+    const auto& a = *static_cast<const Analytic*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        CanonicalHit h;
+        if (analytic_hit(a, args->ray, args->N, i, h)) RTCRayN_tfar(args->ray, args->N, i) = -kInf;
+    }
+}
+
+std::string where(const scene::Shape& s) { return s.origin.empty() ? std::string("shape") : s.origin; }
+
+}  // namespace
+
+struct EmbreeScene::Impl {
+    RTCDevice device = nullptr;
+    RTCScene top = nullptr;
+    std::vector<RTCScene> object_scenes;
+    std::deque<MeshGeom> meshes;  // deques: Embree keeps pointers to the Analytic records
+    std::deque<Analytic> analytics;
+    std::vector<InstanceData> instances;
+    std::vector<Geom> top_geoms;                  // by geomID in `top`
+    std::vector<std::vector<Geom>> object_geoms;  // by object, by geomID in its scene
+    Bounds bounds;
+    std::mutex error_mutex;
+    std::string error;
+
+    ~Impl() {
+        if (top) rtcReleaseScene(top);
+        for (RTCScene s : object_scenes)
+            if (s) rtcReleaseScene(s);
+        if (device) rtcReleaseDevice(device);
+    }
+
+    static void on_error(void* user, RTCError code, const char* str) {
+        // Never throw through Embree's C frames: remember the message, the constructor throws.
+        auto* self = static_cast<Impl*>(user);
+        const std::string msg = "Embree error " + std::to_string(int(code)) + ": " + (str ? str : "");
+        log::warn(msg);
+        std::lock_guard<std::mutex> lock(self->error_mutex);
+        if (self->error.empty()) self->error = msg;
+    }
+
+    void check() {
+        std::lock_guard<std::mutex> lock(error_mutex);
+        if (!error.empty()) throw InputError(error);
+    }
+
+    RTCScene new_scene() {
+        RTCScene s = rtcNewScene(device);
+        rtcSetSceneFlags(s, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(s, RTC_BUILD_QUALITY_HIGH);
+        return s;
+    }
+
+    static void attach(RTCScene s, RTCGeometry g, std::vector<Geom>& ids, Geom what) {
+        rtcCommitGeometry(g);
+        const unsigned id = rtcAttachGeometry(s, g);
+        rtcReleaseGeometry(g);
+        if (ids.size() <= id) ids.resize(id + 1);
+        ids[id] = what;
+    }
+
+    // Adds a triangle mesh whose object-space vertices are `pos` and triangles `idx`.
+    void add_triangles(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index,
+                       const std::vector<Vec3>& pos, const std::vector<uint32_t>& idx) {
+        const size_t nv = pos.size(), nt = idx.size() / 3;
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+        auto* vb = static_cast<float*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), nv));
+        auto* ib = static_cast<uint32_t*>(
+            rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), nt));
+        if (!vb || !ib) {
+            rtcReleaseGeometry(g);
+            check();
+            throw InputError(where(shape) + ": cannot allocate mesh buffers");
+        }
+        const Affine m = Affine::from(shape.to_world);
+        for (size_t i = 0; i < nv; ++i) {
+            const Vec3 w = m.point(D3(pos[i])).to_float();
+            vb[3 * i] = w.x, vb[3 * i + 1] = w.y, vb[3 * i + 2] = w.z;
+        }
+        std::copy(idx.begin(), idx.begin() + std::ptrdiff_t(3 * nt), ib);
+
+        MeshGeom mg;
+        mg.vertices = vb;
+        mg.indices = ib;
+        mg.flip = shape.reverse_orientation != shape.to_world.swaps_handedness();
+        mg.source = &shape;
+        mg.shape = index;
+        if (shape.kind == scene::Shape::Kind::Mesh) {
+            const auto& mesh = shape.mesh;
+            if (!mesh.normals.empty() && mesh.normals.size() != nv)
+                log::warn(where(shape) + ": normal count differs from vertex count; normals ignored");
+            else if (!mesh.normals.empty()) {
+                // pbrt-v4: normals go through the normal transform and flip with ReverseOrientation.
+                mg.normals.resize(nv);
+                for (size_t i = 0; i < nv; ++i) {
+                    Vec3 n = shape.to_world.normal(mesh.normals[i]);
+                    const float l = length(n);
+                    n = l > 0 && std::isfinite(l) ? n / l : Vec3(0.0f);
+                    mg.normals[i] = shape.reverse_orientation ? -n : n;
+                }
+            }
+            if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
+                log::warn(where(shape) + ": uv count differs from vertex count; uvs ignored");
+            else if (!mesh.uvs.empty())
+                mg.uvs = &mesh.uvs;
+        }
+        meshes.push_back(std::move(mg));
+        attach(s, g, ids, {Geom::Mesh, int(meshes.size() - 1)});
+    }
+
+    void add_mesh(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        const auto& mesh = shape.mesh;
+        if (mesh.indices.size() % 3 != 0)
+            throw InputError(where(shape) + ": mesh index count is not a multiple of 3");
+        if (mesh.positions.empty() || mesh.indices.empty()) {
+            log::warn(where(shape) + ": empty mesh ignored");
+            return;
+        }
+        for (uint32_t i : mesh.indices)
+            if (i >= mesh.positions.size())
+                throw InputError(where(shape) + ": mesh vertex index " + std::to_string(i) +
+                                 " out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
+        for (const Vec3& p : mesh.positions)
+            if (!is_finite(p)) throw InputError(where(shape) + ": mesh has a non-finite vertex");
+        add_triangles(s, ids, shape, index, mesh.positions, mesh.indices);
+    }
+
+    // A box is 12 triangles, counter-clockwise seen from outside, so its normals point out.
+    void add_box(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        const Vec3 lo = min(shape.box_min, shape.box_max), hi = max(shape.box_min, shape.box_max);
+        if (!is_finite(lo) || !is_finite(hi)) throw InputError(where(shape) + ": box with non-finite corner");
+        std::vector<Vec3> pos(8);
+        for (int c = 0; c < 8; ++c)
+            pos[size_t(c)] = {c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z};
+        std::vector<uint32_t> idx;
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, c = (a + 2) % 3;
+            for (int side = 0; side < 2; ++side) {
+                // Corners of the face in the (b, c) plane, walked so that e_b x e_c = +e_a.
+                uint32_t q[4];
+                const int bc[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+                for (int k = 0; k < 4; ++k) q[k] = uint32_t((side << a) | (bc[k][0] << b) | (bc[k][1] << c));
+                if (side == 0) std::swap(q[1], q[3]);  // outward is -e_a: walk the other way
+                idx.insert(idx.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+            }
+        }
+        add_triangles(s, ids, shape, index, pos, idx);
+    }
+
+    void add_analytic(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        Analytic a;
+        const char* why = "";
+        if (!detail::make_analytic(shape, index, a, why)) {
+            log::warn(where(shape) + ": degenerate shape ignored (" + why + ")");
+            return;
+        }
+        analytics.push_back(a);
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, 1);
+        rtcSetGeometryUserData(g, &analytics.back());
+        rtcSetGeometryBoundsFunction(g, analytic_bounds_cb, nullptr);
+        rtcSetGeometryIntersectFunction(g, analytic_intersect_cb);
+        rtcSetGeometryOccludedFunction(g, analytic_occluded_cb);
+        attach(s, g, ids, {Geom::Analytic, int(analytics.size() - 1)});
+    }
+
+    void add_shape(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        using Kind = scene::Shape::Kind;
+        switch (shape.kind) {
+            case Kind::Mesh:
+                add_mesh(s, ids, shape, index);
+                break;
+            case Kind::Box:
+                add_box(s, ids, shape, index);
+                break;
+            default:
+                add_analytic(s, ids, shape, index);
+                break;
+        }
+    }
+
+    void add_instance(const scene::Scene& sc, int i) {
+        const scene::Instance& inst = sc.instances[size_t(i)];
+        if (inst.object < 0 || size_t(inst.object) >= sc.objects.size())
+            throw InputError("instance " + std::to_string(i) + " refers to object " +
+                             std::to_string(inst.object) + " which does not exist");
+        RTCScene obj = object_scenes[size_t(inst.object)];
+        if (!obj) return;  // an object with no usable geometry
+        const Mat4& mm = inst.to_world.matrix();
+        if (mm(3, 0) != 0 || mm(3, 1) != 0 || mm(3, 2) != 0 || mm(3, 3) != 1)
+            throw InputError("instance " + std::to_string(i) + ": transform is not affine");
+        InstanceData d;
+        d.instance = i;
+        d.object = inst.object;
+        d.to_world = Affine::from(inst.to_world);
+        if (!d.to_world.inverse(d.to_object))
+            throw InputError("instance " + std::to_string(i) + ": singular transform");
+        d.norm = d.to_world.norm();
+        // Embree maps the ray origin into object space in float: an error of about
+        // cond(M) * ulp * (|p| + |translation|) in world terms (the |p| part is added per hit).
+        const double cond = d.norm * d.to_object.norm();
+        const double tr = max_abs({d.to_world.m[0][3], d.to_world.m[1][3], d.to_world.m[2][3]});
+        d.error_term = 16 * kUlp * cond * tr;
+        instances.push_back(d);
+
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(g, obj);
+        rtcSetGeometryTransform(g, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, mm.m.data());
+        attach(top, g, top_geoms, {Geom::Instance, int(instances.size() - 1)});
+    }
+};
+
+EmbreeScene::EmbreeScene(const scene::Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+    Impl& im = *impl_;
+    im.device = rtcNewDevice(nullptr);
+    if (!im.device)
+        throw InputError("cannot create the Embree device (error " +
+                         std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+    rtcSetDeviceErrorFunction(im.device, &Impl::on_error, &im);
+
+    // One scene per object first: instances need their scenes committed.
+    im.object_scenes.assign(scene.objects.size(), nullptr);
+    im.object_geoms.resize(scene.objects.size());
+    for (size_t o = 0; o < scene.objects.size(); ++o) {
+        RTCScene s = im.new_scene();
+        const auto& shapes = scene.objects[o].shapes;
+        for (size_t i = 0; i < shapes.size(); ++i) im.add_shape(s, im.object_geoms[o], shapes[i], int(i));
+        if (im.object_geoms[o].empty()) {
+            rtcReleaseScene(s);
+            continue;
+        }
+        rtcCommitScene(s);
+        im.object_scenes[o] = s;
+    }
+    im.check();
+
+    im.top = im.new_scene();
+    for (size_t i = 0; i < scene.shapes.size(); ++i)
+        im.add_shape(im.top, im.top_geoms, scene.shapes[i], int(i));
+    for (size_t i = 0; i < scene.instances.size(); ++i) im.add_instance(scene, int(i));
+    rtcCommitScene(im.top);
+    im.check();
+
+    RTCBounds b;
+    rtcGetSceneBounds(im.top, &b);
+    if (b.lower_x <= b.upper_x && b.lower_y <= b.upper_y && b.lower_z <= b.upper_z) {
+        im.bounds.lo = {b.lower_x, b.lower_y, b.lower_z};
+        im.bounds.hi = {b.upper_x, b.upper_y, b.upper_z};
+    }
+}
+
+EmbreeScene::~EmbreeScene() = default;
+
+Bounds EmbreeScene::bounds() const { return impl_->bounds; }
+
+namespace {
+
+void init_ray(const Ray& ray, RTCRay& r) {
+    r.org_x = ray.origin.x, r.org_y = ray.origin.y, r.org_z = ray.origin.z;
+    r.dir_x = ray.dir.x, r.dir_y = ray.dir.y, r.dir_z = ray.dir.z;
+    r.tnear = std::max(ray.tmin, 0.0f);
+    r.tfar = ray.tmax;
+    r.time = 0;
+    r.mask = ~0u;
+    r.id = 0;
+    r.flags = 0;
+}
+
+bool usable(const Ray& ray) {
+    return is_finite(ray.origin) && is_finite(ray.dir) && length_squared(ray.dir) > 0 &&
+           !(ray.tmax <= std::max(ray.tmin, 0.0f));
+}
+
+// Local (geometry-space) surface data before the instance transform.
+struct Local {
+    D3 p, ng, ns, dpdu;
+    Vec2 uv;
+    double error = 0;
+};
+
+Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
+    const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
+    const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
+    const double b1 = u, b2 = v, b0 = 1.0 - b1 - b2;
+    Local L;
+    L.p = p0 * b0 + p1 * b1 + p2 * b2;
+    D3 n = normalized(detail::cross(p1 - p0, p2 - p0));  // counter-clockwise = front
+    if (m.flip) n = n * -1.0;
+    L.ng = L.ns = n;
+    if (!m.normals.empty()) {
+        const Vec3 ns = m.normals[i0] * float(b0) + m.normals[i1] * float(b1) + m.normals[i2] * float(b2);
+        if (length_squared(ns) > 0) {
+            L.ns = normalized(D3(ns));
+            // pbrt: with shading normals the geometric normal follows them.
+            if (detail::dot(L.ng, L.ns) < 0) L.ng = L.ng * -1.0;
+        }
+    }
+    D3 dpdu;
+    if (m.uvs) {
+        const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
+        L.uv = t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
+        const double du02 = double(t0.x) - t2.x, dv02 = double(t0.y) - t2.y;
+        const double du12 = double(t1.x) - t2.x, dv12 = double(t1.y) - t2.y;
+        const double det = du02 * dv12 - dv02 * du12;
+        if (std::fabs(det) > 1e-12) dpdu = ((p0 - p2) * dv12 - (p1 - p2) * dv02) * (1.0 / det);
+    } else {
+        L.uv = {float(b1), float(b2)};
+        dpdu = p1 - p0;
+    }
+    dpdu = normalized(dpdu);
+    if (!(std::fabs(detail::dot(dpdu, L.ng)) < 0.999)) {
+        const Frame f(L.ng.to_float());
+        dpdu = D3(f.s);
+    }
+    L.dpdu = dpdu;
+    const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
+    L.error = 16 * kUlp * mag;
+    return L;
+}
+
+Local analytic_local(const Analytic& a, const CanonicalHit& h) {
+    const detail::AnalyticSurface s = detail::analytic_surface(a, h);
+    Local L;
+    L.p = s.p;
+    L.ng = L.ns = s.n;
+    L.dpdu = s.dpdu;
+    L.uv = s.uv;
+    L.error = 32 * kUlp * std::max(max_abs(s.p), a.size);
+    return L;
+}
+
+Vec3 unit(D3 v) {
+    const Vec3 f = normalized(v).to_float();
+    return f / length(f);
+}
+
+}  // namespace
+
+bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
+    if (!usable(ray)) return false;
+    QueryContext qc;
+    rtcInitIntersectContext(&qc.ctx);
+    RTCRayHit rh;
+    init_ray(ray, rh.ray);
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(impl_->top, &qc.ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+
+    const Impl& im = *impl_;
+    const InstanceData* inst = nullptr;
+    const Geom* g;
+    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
+        inst = &im.instances[size_t(im.top_geoms[rh.hit.instID[0]].index)];
+        g = &im.object_geoms[size_t(inst->object)][rh.hit.geomID];
+    } else {
+        g = &im.top_geoms[rh.hit.geomID];
+    }
+
+    Local L;
+    const scene::Shape* shape;
+    int shape_index;
+    if (g->kind == Geom::Mesh) {
+        const MeshGeom& m = im.meshes[size_t(g->index)];
+        L = mesh_local(m, rh.hit.primID, rh.hit.u, rh.hit.v);
+        shape = m.source;
+        shape_index = m.shape;
+        hit.primitive = int(rh.hit.primID);
+    } else {
+        const Analytic& a = im.analytics[size_t(g->index)];
+        L = analytic_local(a, qc.hit);
+        shape = a.source;
+        shape_index = a.shape;
+        hit.primitive = 0;
+    }
+
+    if (inst) {
+        const D3 pw = inst->to_world.point(L.p);
+        const double cond = inst->norm * inst->to_object.norm();
+        L.error = L.error * inst->norm + inst->error_term + 16 * kUlp * cond * max_abs(pw);
+        L.p = pw;
+        // Normals by the inverse transpose; an instance transform never flips orientation (pbrt).
+        L.ng = inst->to_object.transpose_vector(L.ng);
+        L.ns = inst->to_object.transpose_vector(L.ns);
+        L.dpdu = inst->to_world.vector(L.dpdu);
+    }
+
+    hit.t = rh.ray.tfar;
+    hit.p = L.p.to_float();
+    hit.ng = unit(L.ng);
+    hit.ns = unit(L.ns);
+    hit.uv = L.uv;
+    hit.dpdu = unit(L.dpdu);
+    hit.shape = shape_index;
+    hit.instance = inst ? inst->instance : -1;
+    hit.material = shape->material;
+    hit.area_light = shape->area_light;
+    hit.media = shape->media;
+    // Also cover the rounding of p itself to float.
+    hit.error = float(L.error + 2 * kUlp * max_abs(L.p)) * 1.0001f;
+    return true;
+}
+
+bool EmbreeScene::occluded(const Ray& ray) const {
+    if (!usable(ray)) return false;
+    RTCIntersectContext ctx;
+    rtcInitIntersectContext(&ctx);
+    RTCRay r;
+    init_ray(ray, r);
+    rtcOccluded1(impl_->top, &ctx, &r);
+    return r.tfar < 0;  // Embree sets tfar to -inf on any hit
+}
+
+}  // namespace phos::accel
