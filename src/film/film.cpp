@@ -1,0 +1,108 @@
+// Film and layer accumulation (see film.h).
+#include "film/film.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace phos::film {
+
+Layer::Layer(int width, int height) {
+    if (width < 0 || height < 0) throw std::invalid_argument("film size must not be negative");
+    width_ = width;
+    height_ = height;
+    pixels_.resize(size_t(width) * size_t(height));
+}
+
+Layer::Layer(const Layer& other)
+    : width_(other.width_), height_(other.height_), pixels_(other.pixels_), rejected_(other.rejected()) {}
+
+Layer& Layer::operator=(const Layer& other) {
+    width_ = other.width_;
+    height_ = other.height_;
+    pixels_ = other.pixels_;
+    rejected_.store(other.rejected(), std::memory_order_relaxed);
+    return *this;
+}
+
+bool Layer::add(int x, int y, Rgb L, float weight) {
+    if (!inside(x, y)) return false;
+    if (!L.is_finite() || !std::isfinite(weight)) {
+        rejected_.fetch_add(1, std::memory_order_relaxed);
+        return false;
+    }
+    Pixel& p = pixels_[index(x, y)];
+    p.r += double(weight) * L.r;
+    p.g += double(weight) * L.g;
+    p.b += double(weight) * L.b;
+    p.w += weight;
+    return true;
+}
+
+void Layer::set(int x, int y, Rgb value) {
+    if (!inside(x, y)) return;
+    pixels_[index(x, y)] = Pixel{value.r, value.g, value.b, 1.0};
+}
+
+Rgb Layer::value(int x, int y) const {
+    const Pixel& p = pixels_[index(x, y)];
+    if (p.w == 0) return Rgb(0.0f);
+    return Rgb(float(p.r / p.w), float(p.g / p.w), float(p.b / p.w));
+}
+
+Image Layer::image() const {
+    Image img(width_, height_);
+    for (int y = 0; y < height_; ++y)
+        for (int x = 0; x < width_; ++x) img.at(x, y) = value(x, y);
+    return img;
+}
+
+void Layer::merge(const Layer& other, int x0, int y0) {
+    if (x0 < 0 || y0 < 0 || x0 + other.width_ > width_ || y0 + other.height_ > height_)
+        throw std::invalid_argument("film merge: the merged layer does not fit at the given offset");
+    for (int y = 0; y < other.height_; ++y)
+        for (int x = 0; x < other.width_; ++x) {
+            const Pixel& s = other.pixels_[other.index(x, y)];
+            Pixel& d = pixels_[index(x0 + x, y0 + y)];
+            d.r += s.r;
+            d.g += s.g;
+            d.b += s.b;
+            d.w += s.w;
+        }
+    rejected_.fetch_add(other.rejected(), std::memory_order_relaxed);
+}
+
+void Layer::clear() {
+    for (Pixel& p : pixels_) p = Pixel{};
+    rejected_.store(0, std::memory_order_relaxed);
+}
+
+Film::Film(int width, int height) : main_(width, height) {}
+
+Layer& Film::layer(const std::string& name) {
+    auto it = layers_.find(name);
+    if (it == layers_.end()) it = layers_.emplace(name, Layer(width(), height())).first;
+    return it->second;
+}
+
+const Layer* Film::find_layer(const std::string& name) const {
+    const auto it = layers_.find(name);
+    return it == layers_.end() ? nullptr : &it->second;
+}
+
+std::vector<std::string> Film::layer_names() const {
+    std::vector<std::string> names;
+    for (const auto& [name, layer] : layers_) names.push_back(name);
+    return names;
+}
+
+void Film::merge(const Film& other, int x0, int y0) {
+    main_.merge(other.main_, x0, y0);
+    for (const auto& [name, other_layer] : other.layers_) layer(name).merge(other_layer, x0, y0);
+}
+
+void Film::clear() {
+    main_.clear();
+    for (auto& [name, layer] : layers_) layer.clear();
+}
+
+}  // namespace phos::film
