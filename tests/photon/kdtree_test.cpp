@@ -1,0 +1,341 @@
+// Tests of the photon k-d tree: kNN and range queries against brute force on random, planar,
+// duplicate and Cornell-box photon sets, the edge cases (empty map, k > n, radius 0), the split
+// invariant, the filtered query, and bit-identical builds at 1 and 2 threads.
+#include "photon/kdtree.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstring>
+#include <set>
+
+#include "core/error.h"
+#include "core/rng.h"
+
+namespace phos::photon {
+namespace {
+
+Photon make_photon(Vec3 p, Vec3 n = Vec3(0, 1, 0)) { return Photon(p, Rgb(1.0f), Vec3(0, 0, 1), n); }
+
+std::vector<Photon> random_cube(int n, uint64_t seed) {
+    Sampler rng(seed);
+    std::vector<Photon> v;
+    for (int i = 0; i < n; ++i) v.push_back(make_photon(Vec3(rng.next(), rng.next(), rng.next())));
+    return v;
+}
+
+// Points on the faces of the unit box (floor, ceiling, three walls), a dense disc on the floor,
+// and a few exact duplicates: planar, axis-degenerate data as a Cornell box produces.
+std::vector<Photon> cornell_like(int n, uint64_t seed) {
+    Sampler rng(seed);
+    std::vector<Photon> v;
+    for (int i = 0; i < n; ++i) {
+        const Vec2 u = rng.next2();
+        const uint32_t face = rng.next_index(6);
+        Vec3 p, nrm;
+        switch (face) {
+            case 0:
+                p = {u.x, 0, u.y}, nrm = {0, 1, 0};
+                break;
+            case 1:
+                p = {u.x, 1, u.y}, nrm = {0, -1, 0};
+                break;
+            case 2:
+                p = {u.x, u.y, 1}, nrm = {0, 0, -1};
+                break;
+            case 3:
+                p = {0, u.x, u.y}, nrm = {1, 0, 0};
+                break;
+            case 4:
+                p = {1, u.x, u.y}, nrm = {-1, 0, 0};
+                break;
+            default:
+                p = {0.5f + 0.05f * u.x, 0, 0.5f + 0.05f * u.y}, nrm = {0, 1, 0};
+                break;
+        }
+        v.push_back(make_photon(p, nrm));
+    }
+    for (int i = 0; i < n / 50; ++i) v.push_back(v[rng.next_index(uint32_t(v.size()))]);
+    return v;
+}
+
+Vec3 random_query(Sampler& rng) { return Vec3(rng.next(), rng.next(), rng.next()) * 1.2f - Vec3(0.1f); }
+
+// Tree answer mapped to input indices, sorted by (dist2, index).
+std::vector<Neighbour> tree_knn(const PhotonKdTree& tree, Vec3 q, uint32_t k, float r2, KnnResult* res) {
+    std::vector<Neighbour> out(k);
+    *res = tree.knn(q, k, r2, out.data());
+    out.resize(res->count);
+    for (Neighbour& nb : out) nb.index = tree.input_index(nb.index);
+    std::sort(out.begin(), out.end(), [](const Neighbour& a, const Neighbour& b) {
+        return a.dist2 < b.dist2 || (a.dist2 == b.dist2 && a.index < b.index);
+    });
+    return out;
+}
+
+// The same distances, and the same photons except that photons tied at the k-th distance may be
+// swapped for one another.
+void expect_same_knn(const std::vector<Photon>& input, const PhotonKdTree& tree, Vec3 q, uint32_t k,
+                     float r2) {
+    KnnResult got_r;
+    const std::vector<Neighbour> got = tree_knn(tree, q, k, r2, &got_r);
+    std::vector<Neighbour> want(std::max<uint32_t>(k, 1));
+    const KnnResult want_r = knn_brute_force(input, q, k, r2, want.data());
+    want.resize(want_r.count);
+    ASSERT_EQ(got_r.count, want_r.count) << "k=" << k << " r2=" << r2;
+    EXPECT_EQ(got_r.max_dist2, want_r.max_dist2);
+    for (size_t i = 0; i < got.size(); ++i) {
+        ASSERT_EQ(got[i].dist2, want[i].dist2) << i;
+        if (got[i].dist2 < want_r.max_dist2) {
+            ASSERT_EQ(got[i].index, want[i].index) << i;
+        }
+    }
+}
+
+std::vector<uint32_t> tree_range(const PhotonKdTree& tree, Vec3 q, float r2) {
+    std::vector<uint32_t> v;
+    tree.for_each_in_radius(q, r2, [&](uint32_t i, float d2) {
+        EXPECT_EQ(d2, detail::dist2(tree.photon(i).position, q));
+        v.push_back(tree.input_index(i));
+    });
+    std::sort(v.begin(), v.end());
+    return v;
+}
+
+std::vector<uint32_t> brute_range(const std::vector<Photon>& input, Vec3 q, float r2) {
+    std::vector<uint32_t> v;
+    for (uint32_t i = 0; i < input.size(); ++i)
+        if (detail::dist2(input[i].position, q) <= r2) v.push_back(i);
+    return v;
+}
+
+KdTreeOptions with_index(uint32_t leaf) {
+    KdTreeOptions o;
+    o.leaf_size = leaf;
+    o.keep_input_index = true;
+    return o;
+}
+
+class KdTreeLeaf : public ::testing::TestWithParam<uint32_t> {};
+
+TEST_P(KdTreeLeaf, KnnMatchesBruteForceRandomCube) {
+    const auto input = random_cube(5000, 1);
+    const PhotonKdTree tree(input, with_index(GetParam()));
+    Sampler rng(2);
+    for (int i = 0; i < 300; ++i) {
+        const Vec3 q = random_query(rng);
+        for (uint32_t k : {1u, 7u, 50u, 200u})
+            for (float r2 : {kInf, 0.01f, 0.0004f}) expect_same_knn(input, tree, q, k, r2);
+    }
+}
+
+TEST_P(KdTreeLeaf, KnnMatchesBruteForceCornellBox) {
+    const auto input = cornell_like(8000, 3);
+    const PhotonKdTree tree(input, with_index(GetParam()));
+    Sampler rng(4);
+    for (int i = 0; i < 300; ++i) {
+        // Queries on the surfaces (where a renderer asks) and in the air.
+        Vec3 q = i % 2 ? input[rng.next_index(uint32_t(input.size()))].position : random_query(rng);
+        for (uint32_t k : {1u, 16u, 100u}) {
+            for (float r2 : {kInf, 0.0025f, 0.0f}) expect_same_knn(input, tree, q, k, r2);
+        }
+    }
+}
+
+TEST_P(KdTreeLeaf, RangeMatchesBruteForce) {
+    const auto input = cornell_like(6000, 5);
+    const PhotonKdTree tree(input, with_index(GetParam()));
+    Sampler rng(6);
+    size_t total = 0;
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 q = i % 2 ? input[rng.next_index(uint32_t(input.size()))].position : random_query(rng);
+        for (float r2 : {0.0f, 0.001f, 0.01f, 0.1f}) {
+            const auto want = brute_range(input, q, r2);
+            ASSERT_EQ(tree_range(tree, q, r2), want);
+            total += want.size();
+        }
+    }
+    EXPECT_GT(total, 10000u);  // the radii really do catch photons
+}
+
+TEST_P(KdTreeLeaf, SplitInvariantHolds) {
+    const auto input = cornell_like(3000, 7);
+    const PhotonKdTree tree(input, with_index(GetParam()));
+    const auto P = tree.photons();
+    // Every split photon's left range is <= and right range >= its coordinate on its axis.
+    std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, uint32_t(P.size())}};
+    int splits = 0;
+    while (!todo.empty()) {
+        auto [b, e] = todo.back();
+        todo.pop_back();
+        if (e - b <= tree.leaf_size()) {
+            for (uint32_t i = b; i < e; ++i) EXPECT_EQ(P[i].split_axis(), 3);
+            continue;
+        }
+        const uint32_t m = b + (e - b) / 2;
+        const int a = P[m].split_axis();
+        ASSERT_LT(a, 3);
+        const float s = detail::coord(P[m].position, a);
+        for (uint32_t i = b; i < m; ++i) ASSERT_LE(detail::coord(P[i].position, a), s);
+        for (uint32_t i = m + 1; i < e; ++i) ASSERT_GE(detail::coord(P[i].position, a), s);
+        ++splits;
+        todo.push_back({b, m});
+        todo.push_back({m + 1, e});
+    }
+    EXPECT_GT(splits, 100);
+    // The build is a permutation of the input.
+    std::vector<uint32_t> idx(P.size());
+    for (uint32_t i = 0; i < P.size(); ++i) {
+        idx[i] = tree.input_index(i);
+        EXPECT_EQ(P[i].position, input[idx[i]].position);
+        EXPECT_EQ(P[i].power_rgbe, input[idx[i]].power_rgbe);
+    }
+    std::sort(idx.begin(), idx.end());
+    for (uint32_t i = 0; i < idx.size(); ++i) ASSERT_EQ(idx[i], i);
+}
+
+INSTANTIATE_TEST_SUITE_P(LeafSizes, KdTreeLeaf, ::testing::Values(2u, 8u, 16u));
+
+TEST(KdTree, EmptyMap) {
+    const PhotonKdTree tree(std::vector<Photon>{}, with_index(8));
+    EXPECT_TRUE(tree.empty());
+    Neighbour out[4];
+    const KnnResult r = tree.knn(Vec3(0.0f), 4, kInf, out);
+    EXPECT_EQ(r.count, 0u);
+    EXPECT_EQ(r.max_dist2, 0.0f);
+    int calls = 0;
+    tree.for_each_in_radius(Vec3(0.0f), kInf, [&](uint32_t, float) { ++calls; });
+    EXPECT_EQ(calls, 0);
+    EXPECT_EQ(PhotonKdTree().knn(Vec3(0.0f), 4, kInf, out).count, 0u);
+}
+
+TEST(KdTree, KLargerThanNAndZeroK) {
+    const auto input = random_cube(37, 8);
+    const PhotonKdTree tree(input, with_index(4));
+    expect_same_knn(input, tree, Vec3(0.5f), 100, kInf);
+    std::vector<Neighbour> out(100);
+    EXPECT_EQ(tree.knn(Vec3(0.5f), 100, kInf, out.data()).count, 37u);
+    EXPECT_EQ(tree.knn(Vec3(0.5f), 0, kInf, out.data()).count, 0u);
+    EXPECT_EQ(tree.knn(Vec3(0.5f), 5, -1.0f, out.data()).count, 0u);
+}
+
+TEST(KdTree, RadiusZeroFindsCoincidentPhotonsOnly) {
+    auto input = random_cube(500, 9);
+    const Vec3 p = input[123].position;
+    input.push_back(make_photon(p));
+    input.push_back(make_photon(p));
+    const PhotonKdTree tree(input, with_index(8));
+    std::vector<Neighbour> out(10);
+    const KnnResult r = tree.knn(p, 10, 0.0f, out.data());
+    ASSERT_EQ(r.count, 3u);
+    EXPECT_EQ(r.max_dist2, 0.0f);
+    std::set<uint32_t> got;
+    for (uint32_t i = 0; i < r.count; ++i) got.insert(tree.input_index(out[i].index));
+    EXPECT_EQ(got, (std::set<uint32_t>{123, 500, 501}));
+    EXPECT_EQ(tree_range(tree, p, 0.0f), (std::vector<uint32_t>{123, 500, 501}));
+}
+
+TEST(KdTree, AllDuplicates) {
+    std::vector<Photon> input(1000, make_photon(Vec3(0.3f, 0.3f, 0.3f)));
+    input.push_back(make_photon(Vec3(0.9f, 0.3f, 0.3f)));
+    const PhotonKdTree tree(input, with_index(8));
+    std::vector<Neighbour> out(1001);
+    KnnResult r = tree.knn(Vec3(0.3f, 0.3f, 0.3f), 50, kInf, out.data());
+    EXPECT_EQ(r.count, 50u);
+    EXPECT_EQ(r.max_dist2, 0.0f);
+    r = tree.knn(Vec3(1.0f, 0.3f, 0.3f), 1, kInf, out.data());
+    ASSERT_EQ(r.count, 1u);
+    EXPECT_EQ(tree.input_index(out[0].index), 1000u);
+    r = tree.knn(Vec3(1.0f, 0.3f, 0.3f), 1001, kInf, out.data());
+    EXPECT_EQ(r.count, 1001u);
+    EXPECT_EQ(tree_range(tree, Vec3(0.3f, 0.3f, 0.3f), 0.01f).size(), 1000u);
+}
+
+TEST(KdTree, AllOnAPlaneAndOnALine) {
+    Sampler rng(10);
+    std::vector<Photon> plane, line;
+    for (int i = 0; i < 4000; ++i) {
+        plane.push_back(make_photon(Vec3(rng.next(), 0.25f, rng.next())));
+        line.push_back(make_photon(Vec3(0.5f, rng.next(), 0.5f)));
+    }
+    for (const auto* input : {&plane, &line}) {
+        const PhotonKdTree tree(*input, with_index(8));
+        for (uint32_t i = 0; i < tree.size(); ++i)
+            EXPECT_NE(tree.photon(i).split_axis(), input == &plane ? 1 : 0);
+        for (int i = 0; i < 200; ++i) {
+            const Vec3 q = i % 2 ? (*input)[rng.next_index(4000)].position : random_query(rng);
+            expect_same_knn(*input, tree, q, 30, kInf);
+            expect_same_knn(*input, tree, q, 30, 0.001f);
+        }
+    }
+}
+
+TEST(KdTree, FilteredKnnMatchesBruteForceOnFilteredSet) {
+    // A thin wall: photons on both faces of the plane x = 0.5, 1e-3 apart. A normal test must
+    // return k photons of the query's side only.
+    Sampler rng(11);
+    std::vector<Photon> input;
+    for (int i = 0; i < 6000; ++i) {
+        const bool left = i % 2;
+        input.push_back(make_photon(Vec3(left ? 0.4995f : 0.5005f, rng.next(), rng.next()),
+                                    Vec3(left ? -1.0f : 1.0f, 0, 0)));
+    }
+    const PhotonKdTree tree(input, with_index(8));
+    std::vector<Photon> right;
+    std::vector<uint32_t> right_index;
+    for (uint32_t i = 0; i < input.size(); ++i)
+        if (input[i].normal().x > 0) right.push_back(input[i]), right_index.push_back(i);
+    std::vector<Neighbour> out(40), want(40);
+    for (int i = 0; i < 100; ++i) {
+        const Vec3 q(0.5005f, rng.next(), rng.next());
+        const KnnResult r = tree.knn_if(
+            q, 40, 0.01f, out.data(), [](const Photon& p) { return dot(p.normal(), Vec3(1, 0, 0)) > 0.9f; });
+        const KnnResult w = knn_brute_force(right, q, 40, 0.01f, want.data());
+        ASSERT_EQ(r.count, w.count);
+        EXPECT_EQ(r.max_dist2, w.max_dist2);
+        std::set<uint32_t> got, exp;
+        for (uint32_t j = 0; j < r.count; ++j) got.insert(tree.input_index(out[j].index));
+        for (uint32_t j = 0; j < w.count; ++j) exp.insert(right_index[want[j].index]);
+        EXPECT_EQ(got, exp);
+    }
+}
+
+TEST(KdTree, HeapOrderPutsFarthestFirst) {
+    const auto input = random_cube(2000, 12);
+    const PhotonKdTree tree(input);
+    EXPECT_FALSE(tree.has_input_index());
+    std::vector<Neighbour> out(25);
+    const KnnResult r = tree.knn(Vec3(0.5f), 25, kInf, out.data());
+    ASSERT_EQ(r.count, 25u);
+    for (const Neighbour& nb : out) {
+        EXPECT_LE(nb.dist2, out[0].dist2);
+        EXPECT_EQ(nb.dist2, detail::dist2(tree.photon(nb.index).position, Vec3(0.5f)));
+    }
+    EXPECT_EQ(r.max_dist2, out[0].dist2);
+}
+
+TEST(KdTree, BuildIsIdenticalAtOneAndTwoThreads) {
+    // Large enough that the parallel paths (subtrees, bounding boxes) are taken.
+    const auto input = cornell_like(400000, 13);
+    PhotonKdTree t1, t2;
+    tbb::task_arena(1).execute([&] { t1.build(input, with_index(8)); });
+    tbb::task_arena(2).execute([&] { t2.build(input, with_index(8)); });
+    ASSERT_EQ(t1.size(), input.size());
+    ASSERT_EQ(t2.size(), input.size());
+    EXPECT_EQ(std::memcmp(t1.photons().data(), t2.photons().data(), input.size() * sizeof(Photon)), 0);
+    for (uint32_t i = 0; i < t1.size(); ++i) ASSERT_EQ(t1.input_index(i), t2.input_index(i));
+    // And the big tree still answers correctly.
+    Sampler rng(14);
+    for (int i = 0; i < 20; ++i) expect_same_knn(input, t2, random_query(rng), 50, 0.01f);
+}
+
+TEST(KdTree, RejectsNonFinitePositions) {
+    auto input = random_cube(10, 15);
+    input[3].position.y = NAN;
+    PhotonKdTree tree;
+    EXPECT_THROW(tree.build(input), InputError);
+}
+
+}  // namespace
+}  // namespace phos::photon

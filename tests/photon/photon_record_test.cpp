@@ -1,0 +1,161 @@
+// Tests of the 20-byte photon record: RGBE power error bounds, octahedral direction/normal angular
+// error bounds, and that the packed fields do not disturb one another.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.h"
+#include "photon/photon.h"
+
+namespace phos::photon {
+namespace {
+
+Vec3 uniform_sphere(Vec2 u) {
+    const float z = 1.0f - 2.0f * u.x;
+    const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+    const float phi = 2.0f * kPi * u.y;
+    return {r * std::cos(phi), r * std::sin(phi), z};
+}
+
+float angle_degrees(Vec3 a, Vec3 b) {
+    // atan2 form: accurate for tiny angles, unlike acos of the dot product.
+    return std::atan2(length(cross(a, b)), dot(a, b)) * 180.0f / kPi;
+}
+
+TEST(PhotonRecord, IsTwentyBytes) { EXPECT_EQ(sizeof(Photon), 20u); }
+
+TEST(Rgbe, ErrorBoundOverWideRange) {
+    Sampler rng(7);
+    double sum_signed = 0;
+    float worst_max_channel = 0;
+    const int n = 200000;
+    for (int i = 0; i < n; ++i) {
+        // Max channel anywhere in 2^-100..2^100, the others up to 2^12 times smaller (or zero).
+        const float base = std::ldexp(1.0f + rng.next(), int(rng.next_index(200)) - 100);
+        Rgb c(base, base * std::ldexp(rng.next(), -int(rng.next_index(12))),
+              rng.next() < 0.1f ? 0.0f : base * rng.next());
+        if (i % 3 == 1) std::swap(c.r, c.g);
+        if (i % 3 == 2) std::swap(c.r, c.b);
+        const float m = c.max();
+        const Rgb d = decode_rgbe(encode_rgbe(c));
+        for (int ch = 0; ch < 3; ++ch) {
+            ASSERT_LE(std::fabs(d[ch] - c[ch]), kRgbeMaxRelativeError * m) << i << " ch " << ch;
+        }
+        const float rel = std::fabs(d.max() - m) / m;
+        worst_max_channel = std::max(worst_max_channel, rel);
+        sum_signed += (d.max() - m) / m;
+    }
+    EXPECT_LE(worst_max_channel, kRgbeMaxRelativeError);
+    // Rounding, not truncation: no systematic darkening (truncation would average about -2^-9).
+    EXPECT_LT(std::fabs(sum_signed / n), 2e-4);
+}
+
+TEST(Rgbe, ExactValuesAndCarry) {
+    for (float v : {1.0f, 0.5f, 0.75f, 3.0f, 0.125f, 0x1.8p-100f, 0x1.fep+100f}) {
+        EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(v))), Rgb(v));
+    }
+    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(1.0f, 0.5f, 0.25f))), Rgb(1.0f, 0.5f, 0.25f));
+    // 255.75/256 rounds up to 256/256: the exponent must carry, decoding to exactly 1.
+    const Rgb d = decode_rgbe(encode_rgbe(Rgb(255.75f / 256.0f, 0.1f, 0.0f)));
+    EXPECT_EQ(d.r, 1.0f);
+    EXPECT_NEAR(d.g, 0.1f, 1.0f / 512.0f);
+    EXPECT_EQ(d.b, 0.0f);
+}
+
+TEST(Rgbe, DegenerateInputs) {
+    EXPECT_EQ(encode_rgbe(Rgb(0.0f)), 0u);
+    EXPECT_EQ(decode_rgbe(0u), Rgb(0.0f));
+    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(-1.0f, 2.0f, NAN))), Rgb(0.0f, 2.0f, 0.0f));
+    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(-1.0f))), Rgb(0.0f));
+    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(1e-40f))), Rgb(0.0f));  // below the exponent range
+    const Rgb big = decode_rgbe(encode_rgbe(Rgb(INFINITY, 1e38f, 1.0f)));
+    EXPECT_TRUE(big.is_finite());
+    EXPECT_GT(big.r, 1e38f);
+    // Tiny but representable powers (deep bounces of a weak light) keep their precision.
+    const Rgb tiny(3e-36f, 1e-36f, 2e-36f);
+    const Rgb dt = decode_rgbe(encode_rgbe(tiny));
+    EXPECT_NEAR(dt.r, tiny.r, tiny.r * kRgbeMaxRelativeError);
+}
+
+template <int Bits>
+float worst_octahedral_error(int n, uint64_t seed) {
+    Sampler rng(seed);
+    float worst = 0;
+    for (int i = 0; i < n; ++i) {
+        const Vec3 d = uniform_sphere(rng.next2());
+        const Vec3 r = decode_octahedral<Bits>(encode_octahedral<Bits>(d));
+        EXPECT_NEAR(length(r), 1.0f, 1e-5f);
+        worst = std::max(worst, angle_degrees(d, r));
+    }
+    return worst;
+}
+
+TEST(Octahedral, DirectionErrorBound16Bit) {
+    const float worst = worst_octahedral_error<8>(300000, 11);
+    EXPECT_LE(worst, kDirectionMaxErrorDegrees);
+    EXPECT_GT(worst, 0.2f);  // sanity: the bound is not vacuous (we really quantise to 8+8 bits)
+    RecordProperty("worst_degrees", std::to_string(worst));
+}
+
+TEST(Octahedral, NormalErrorBound14Bit) {
+    const float worst = worst_octahedral_error<7>(300000, 12);
+    EXPECT_LE(worst, kNormalMaxErrorDegrees);
+    RecordProperty("worst_degrees", std::to_string(worst));
+}
+
+TEST(Octahedral, AxesAndSeamsAreExact) {
+    const Vec3 axes[] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+    for (Vec3 a : axes) {
+        EXPECT_EQ(decode_octahedral<8>(encode_octahedral<8>(a)), a);
+        EXPECT_EQ(decode_octahedral<7>(encode_octahedral<7>(a)), a);
+        EXPECT_EQ(decode_octahedral<8>(encode_octahedral<8>(a * 3.0f)), a);  // not normalised
+    }
+    // Lower hemisphere next to the fold lines.
+    for (Vec3 d : {Vec3(0.7f, 0.0f, -0.7f), Vec3(0.0f, -0.6f, -0.8f), Vec3(-0.5f, 0.5f, -0.7071f)}) {
+        d = normalize(d);
+        EXPECT_LE(angle_degrees(d, decode_octahedral<8>(encode_octahedral<8>(d))), kDirectionMaxErrorDegrees);
+    }
+    // Degenerate input still yields a valid unit vector.
+    EXPECT_NEAR(length(decode_octahedral<8>(encode_octahedral<8>(Vec3(0.0f)))), 1.0f, 1e-6f);
+}
+
+TEST(PhotonRecord, ConstructAndDecodeFields) {
+    const Vec3 p(0.25f, -3.5f, 1e3f);
+    const Rgb power(2e-5f, 1e-5f, 5e-6f);
+    const Vec3 wi = normalize(Vec3(0.3f, 0.9f, -0.2f));
+    const Vec3 n = normalize(Vec3(-0.1f, 0.2f, 0.97f));
+    Photon ph(p, power, wi * 2.0f, n);
+    EXPECT_EQ(ph.position, p);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(ph.power()[c], power[c], power.max() * kRgbeMaxRelativeError);
+    EXPECT_LE(angle_degrees(ph.wi(), wi), kDirectionMaxErrorDegrees);
+    ASSERT_TRUE(ph.has_normal());
+    EXPECT_LE(angle_degrees(ph.normal(), n), kNormalMaxErrorDegrees);
+
+    // The split-axis bits share a 16-bit word with the normal: setting one keeps the other.
+    const Vec3 before = ph.normal();
+    for (int axis : {0, 1, 2, 3}) {
+        ph.set_split_axis(axis);
+        EXPECT_EQ(ph.split_axis(), axis);
+        EXPECT_EQ(ph.normal(), before);
+    }
+    ph.set_normal(Vec3(0, -1, 0));
+    EXPECT_EQ(ph.split_axis(), 3);
+    EXPECT_EQ(ph.normal(), Vec3(0, -1, 0));
+}
+
+TEST(PhotonRecord, NoNormal) {
+    Photon ph(Vec3(1, 2, 3), Rgb(1.0f), Vec3(0, 0, 1), Vec3(0.0f));
+    EXPECT_FALSE(ph.has_normal());
+    EXPECT_EQ(ph.normal(), Vec3(0.0f));
+    ph.set_split_axis(2);
+    EXPECT_FALSE(ph.has_normal());
+    EXPECT_FALSE(Photon().has_normal());
+    // No real normal ever encodes to the reserved code.
+    Sampler rng(5);
+    for (int i = 0; i < 100000; ++i) {
+        EXPECT_NE(encode_octahedral<7>(uniform_sphere(rng.next2())), uint32_t(Photon::kNoNormalCode));
+    }
+}
+
+}  // namespace
+}  // namespace phos::photon
