@@ -10,23 +10,33 @@
 #include "accel/ray.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "shading/distribution1d.h"
 
 namespace phos::shading {
 
+// The scene's bounding sphere: directional and infinite lights emit photons from a disk of this
+// radius placed outside it, so every photon that can reach geometry is accounted for.
+struct SceneSphere {
+    Vec3 center{0.0f};
+    float radius = 0;
+    // Empty bounds give the unit sphere at the origin (nothing to hit, but no NaNs either).
+    static SceneSphere from_bounds(const accel::Bounds& bounds);
+};
+
 struct LightLiSample {
-    Rgb L;            // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
-    Vec3 wi;          // unit direction from the reference point towards the light
+    Rgb L;                  // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
+    Vec3 wi;                // unit direction from the reference point towards the light
     float distance = kInf;  // to the sampled point on the light (kInf for directional / infinite)
-    Vec3 p_light;     // the sampled point on the light (for shadow rays)
-    Vec3 n_light;     // its normal (area lights)
-    float pdf = 0;    // solid-angle pdf (1 for delta lights)
+    Vec3 p_light;           // the sampled point on the light (for shadow rays)
+    Vec3 n_light;           // its normal (area lights)
+    float pdf = 0;          // solid-angle pdf (1 for delta lights)
     bool delta = false;
 };
 
 struct LightLeSample {
-    accel::Ray ray;   // leaves the light (unit direction)
-    Vec3 n;           // surface normal at the origin (area lights), else the direction
-    Rgb Le;           // emitted radiance (area) or intensity (point/spot) along the ray
+    accel::Ray ray;  // leaves the light (unit direction)
+    Vec3 n;          // surface normal at the origin (area lights), else the direction
+    Rgb Le;          // emitted radiance (area) or intensity (point/spot) along the ray
     float pdf_pos = 1, pdf_dir = 1;
     // Flux carried by this one sample: Le * |cos| / (pdf_pos * pdf_dir). Averaging over N samples
     // gives the light's power; a photon's power is weight / N (times 1/P(choose light)).
@@ -43,8 +53,12 @@ public:
     virtual LightLiSample sample_Li(Vec3 ref, Vec2 u) const = 0;
     // Solid-angle pdf that sample_Li(ref) picks `p_light` (with normal n_light) in direction wi.
     virtual float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const = 0;
-    // Radiance leaving an emitting surface point with normal n towards wo (area lights), or arriving
-    // along an escaped ray's direction -wo (infinite lights); 0 for delta lights.
+    // Area lights: radiance leaving an emitting surface point with normal n towards wo (unit, pointing
+    // away from the surface).
+    // Infinite lights: `n` is unused and `wo` is a direction pointing from the scene towards the sky;
+    // the result is the radiance arriving from that direction. For a ray (origin o, direction d) that
+    // escapes the scene, the radiance it brings back to o is Le({}, normalize(d)).
+    // Delta lights: 0.
     virtual Rgb Le(Vec3 n, Vec3 wo) const = 0;
     virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const = 0;
     virtual Rgb power() const = 0;
@@ -69,7 +83,7 @@ public:
 
 private:
     std::vector<std::unique_ptr<Light>> lights_;
-    std::vector<float> cdf_;
+    Distribution1D distribution_;  // over lights_, by average power (uniform if all are zero)
     std::vector<size_t> infinite_;
 };
 

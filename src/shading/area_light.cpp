@@ -1,0 +1,69 @@
+// Area light: the shape sampler supplies points and densities; this file adds the emission
+// direction rules (one- or two-sided) and the cosine-weighted photon emission.
+#include "shading/area_light.h"
+
+#include <cmath>
+
+#include "core/frame.h"
+#include "core/warp.h"
+
+namespace phos::shading {
+
+AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape)
+    : sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {}
+
+Rgb AreaLight::Le(Vec3 n, Vec3 wo) const { return (two_sided_ || dot(n, wo) > 0) ? radiance_ : Rgb(0.0f); }
+
+Rgb AreaLight::power() const { return radiance_ * (kPi * sampler_.area() * (two_sided_ ? 2.0f : 1.0f)); }
+
+LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u) const {
+    LightLiSample s;
+    const ShapeSample ss = sampler_.sample(ref, u);
+    if (!(ss.pdf > 0)) return s;
+    const Vec3 d = ss.p - ref;
+    const float dist = length(d);
+    if (!(dist > 0)) return s;
+    s.wi = d / dist;
+    s.distance = dist;
+    s.p_light = ss.p;
+    s.n_light = ss.n;
+    s.pdf = ss.pdf;
+    s.L = Le(ss.n, -s.wi);
+    return s;
+}
+
+float AreaLight::pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const {
+    return sampler_.pdf(ref, wi, p_light, n_light);
+}
+
+LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
+    LightLeSample s;
+    const ShapeSample ss = sampler_.sample_area(u_pos);
+    if (!(ss.pdf > 0)) return s;
+    Vec3 n = ss.n;
+    float side_pdf = 1;
+    if (two_sided_) {
+        // Reuse u_dir.x: its lower half picks the front, the upper half the back.
+        side_pdf = 0.5f;
+        if (u_dir.x < 0.5f) {
+            u_dir.x *= 2;
+        } else {
+            u_dir.x = std::min(2 * u_dir.x - 1, std::nextafter(1.0f, 0.0f));
+            n = -n;
+        }
+    }
+    const Vec3 local = warp::cosine_hemisphere(u_dir);
+    const Vec3 w = Frame(n).to_world(local);
+    s.ray = {ss.p, w};
+    s.n = n;
+    s.Le = radiance_;
+    s.pdf_pos = ss.pdf;
+    s.pdf_dir = warp::cosine_hemisphere_pdf(local.z) * side_pdf;
+    // L |cos| / (pdf_pos pdf_dir), which is L pi A / side_pdf; a grazing direction (cos = 0) takes
+    // that limit instead of 0/0.
+    s.weight = s.pdf_dir > 0 ? radiance_ * (local.z / (s.pdf_pos * s.pdf_dir))
+                             : radiance_ * (kPi * sampler_.area() / side_pdf);
+    return s;
+}
+
+}  // namespace phos::shading

@@ -1,0 +1,150 @@
+// Environment light. Each texel's weight is luminance x its solid angle (2 pi / W) (cos_j - cos_j+1),
+// so the 2D distribution picks texels in proportion to the flux they send; inside the chosen texel
+// the direction is uniform in phi and in cos(theta), i.e. uniform in solid angle. The solid-angle
+// pdf is therefore P(texel) / solid angle(texel) = pdf_uv / (2 pi H (cos_j - cos_j+1)).
+#include "shading/infinite_light.h"
+
+#include <cmath>
+#include <string>
+
+#include "core/error.h"
+#include "core/warp.h"
+
+namespace phos::shading {
+namespace {
+
+// Rotation part of the light transform as an orthonormal frame (Gram-Schmidt, keeping a mirror).
+Frame orientation(const Transform& t) {
+    const Vec3 x = normalize(t.vector({1, 0, 0}));
+    Vec3 y = t.vector({0, 1, 0});
+    y = normalize(y - x * dot(x, y));
+    const Vec3 z = cross(x, y) * (t.swaps_handedness() ? -1.0f : 1.0f);
+    return Frame(x, y, z);
+}
+
+}  // namespace
+
+InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
+                             const SceneSphere& sphere)
+    : frame_(orientation(light.to_world)), scale_(light.color), sphere_(sphere) {
+    if (light.texture >= 0) {
+        if (size_t(light.texture) >= textures.size())
+            throw InputError("infinite light: texture index " + std::to_string(light.texture) +
+                             " out of range");
+        const scene::Texture& tex = textures[size_t(light.texture)];
+        scale_ = scale_ * tex.value;
+        if (tex.kind == scene::Texture::Kind::Image) {
+            if (!tex.image || tex.image->width <= 0 || tex.image->height <= 0)
+                throw InputError("infinite light: environment map '" + tex.filename + "' has no pixels");
+            width_ = tex.image->width;
+            height_ = tex.image->height;
+        } else if (tex.kind != scene::Texture::Kind::Constant) {
+            throw InputError("infinite light: texture must be an image or a constant");
+        }
+        if (width_ > 0) {
+            texels_ = tex.image->texels;
+            for (Rgb& c : texels_)
+                for (int k = 0; k < 3; ++k) c[k] = std::isfinite(c[k]) ? std::max(c[k], 0.0f) : 0.0f;
+        }
+    }
+    if (width_ == 0) {
+        integral_ = scale_ * (4 * kPi);
+        return;
+    }
+    cos_edge_.resize(size_t(height_) + 1);
+    for (int j = 0; j <= height_; ++j) cos_edge_[size_t(j)] = std::cos(kPi * float(j) / float(height_));
+    cos_edge_.front() = 1;
+    cos_edge_.back() = -1;
+    std::vector<float> weights(texels_.size());
+    double sum[3] = {0, 0, 0};
+    for (int j = 0; j < height_; ++j) {
+        const double omega =
+            2 * double(kPi) / width_ * (double(cos_edge_[size_t(j)]) - cos_edge_[size_t(j) + 1]);
+        for (int i = 0; i < width_; ++i) {
+            const size_t k = size_t(j) * size_t(width_) + size_t(i);
+            const Rgb c = texels_[k] * scale_;
+            weights[k] = float(c.luminance() * omega);
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += c[ch] * omega;
+        }
+    }
+    integral_ = Rgb(float(sum[0]), float(sum[1]), float(sum[2]));
+    distribution_ = Distribution2D(weights, width_, height_);
+}
+
+Rgb InfiniteLight::power() const { return integral_ * (kPi * sphere_.radius * sphere_.radius); }
+
+void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
+    const float theta = std::acos(std::clamp(w.z, -1.0f, 1.0f));
+    float phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * kPi;
+    uv = {std::min(phi / (2 * kPi), std::nextafter(1.0f, 0.0f)),
+          std::min(theta / kPi, std::nextafter(1.0f, 0.0f))};
+    column = std::min(int(uv.x * float(width_)), width_ - 1);
+    row = std::min(int(uv.y * float(height_)), height_ - 1);
+}
+
+Rgb InfiniteLight::Le(Vec3, Vec3 w) const {
+    if (width_ == 0) return scale_;
+    int i, j;
+    Vec2 uv;
+    cell(frame_.to_local(normalize(w)), i, j, uv);
+    return texels_[size_t(j) * size_t(width_) + size_t(i)] * scale_;
+}
+
+float InfiniteLight::pdf_direction(Vec3 w) const {
+    if (width_ == 0) return warp::uniform_sphere_pdf();
+    int i, j;
+    Vec2 uv;
+    cell(frame_.to_local(normalize(w)), i, j, uv);
+    const float band = cos_edge_[size_t(j)] - cos_edge_[size_t(j) + 1];
+    return distribution_.pdf(uv) / (2 * kPi * float(height_) * band);
+}
+
+Vec3 InfiniteLight::sample_direction(Vec2 u) const {
+    if (width_ == 0) return warp::uniform_sphere(u);
+    float pdf_uv = 0;
+    const Vec2 uv = distribution_.sample(u, &pdf_uv);
+    const int row = std::min(int(uv.y * float(height_)), height_ - 1);
+    // Uniform in cos(theta) inside the row (uniform in solid angle), uniform in phi.
+    const float frac = std::clamp(uv.y * float(height_) - float(row), 0.0f, 1.0f);
+    const float c0 = cos_edge_[size_t(row)], c1 = cos_edge_[size_t(row) + 1];
+    const float z = c0 + frac * (c1 - c0);
+    const float r = std::sqrt(std::max(0.0f, 1 - z * z));
+    const float phi = 2 * kPi * uv.x;
+    return frame_.to_world({r * std::cos(phi), r * std::sin(phi), z});
+}
+
+LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u) const {
+    LightLiSample s;
+    const Vec3 w = normalize(sample_direction(u));
+    // Density and radiance are looked up from the final direction, exactly as pdf_Li and Le do.
+    s.pdf = pdf_direction(w);
+    if (!(s.pdf > 0)) return {};
+    s.wi = w;
+    s.L = Le({}, w);
+    s.distance = kInf;
+    s.p_light = ref + w * (2 * (sphere_.radius + length(ref - sphere_.center)) + 1);
+    s.n_light = -w;
+    return s;
+}
+
+float InfiniteLight::pdf_Li(Vec3, Vec3 wi, Vec3, Vec3) const { return pdf_direction(wi); }
+
+LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
+    LightLeSample s;
+    const Vec3 w = normalize(sample_direction(u_dir));
+    const float pdf_dir = pdf_direction(w);
+    const float R = sphere_.radius;
+    if (!(pdf_dir > 0) || !(R > 0)) return s;
+    const Frame f(w);
+    const Vec2 d = warp::concentric_disk(u_pos);
+    s.ray = {sphere_.center + (w + f.s * d.x + f.t * d.y) * R, -w};
+    s.n = -w;
+    s.Le = Le({}, w);
+    s.pdf_pos = 1 / (kPi * R * R);
+    s.pdf_dir = pdf_dir;
+    s.weight = s.Le / (s.pdf_pos * s.pdf_dir);
+    return s;
+}
+
+}  // namespace phos::shading

@@ -1,0 +1,57 @@
+// Environment light at infinity: constant radiance, or a lat-long radiance map importance-sampled
+// in proportion to luminance.
+//
+// Map convention (pbrt-v3's lat-long): a world direction is first taken to light space with the
+// inverse of the light's `to_world` (its linear part orthonormalised: only its rotation / mirroring
+// counts); there theta is measured from +z and phi = atan2(y, x) in [0, 2 pi) around z, and the
+// texel lookup uses u = phi / (2 pi) (column, left to right) and v = theta / pi (row, row 0 = top =
+// +z). Texels are piecewise constant (nearest lookup), so the sampling density matches the
+// radiance exactly: within a texel, directions are uniform in solid angle.
+#pragma once
+
+#include <vector>
+
+#include "core/frame.h"
+#include "shading/distribution2d.h"
+#include "shading/lights.h"
+
+namespace phos::shading {
+
+class InfiniteLight final : public Light {
+public:
+    // Constant radiance L (`texture` < 0 or a Constant texture) or a lat-long map; the light's colour
+    // multiplies the map. Throws InputError on a bad texture reference.
+    InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
+                  const SceneSphere& sphere);
+    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const override;
+    // Radiance arriving from direction `w` (pointing from the scene towards the sky); `n` unused.
+    Rgb Le(Vec3 n, Vec3 w) const override;
+    // Direction as for sample_Li, origin uniform on a disk of the scene radius R perpendicular to it
+    // outside the scene; power = pi R^2 * integral of L over the sphere.
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    Rgb power() const override;
+    bool is_delta() const override { return false; }
+    bool is_infinite() const override { return true; }
+
+    // Integral of the radiance over the sphere of directions (4 pi L when constant).
+    Rgb integral() const { return integral_; }
+    // Solid-angle density of sample_Li's directions (light independent of the reference point).
+    float pdf_direction(Vec3 w) const;
+
+private:
+    Vec3 sample_direction(Vec2 u) const;
+    // Texel (column, row) of a light-space unit direction.
+    void cell(Vec3 local, int& column, int& row, Vec2& uv) const;
+
+    Frame frame_;                 // light space -> world
+    Rgb scale_;                   // constant radiance, or the multiplier of the map
+    int width_ = 0, height_ = 0;  // 0: constant
+    std::vector<Rgb> texels_;
+    std::vector<float> cos_edge_;  // cos(theta) at the row edges, height_ + 1 values from 1 to -1
+    Distribution2D distribution_;  // luminance x solid angle of each texel
+    Rgb integral_;
+    SceneSphere sphere_;
+};
+
+}  // namespace phos::shading

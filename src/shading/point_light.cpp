@@ -1,0 +1,50 @@
+// Point light: a delta position, so sample_Li is deterministic (pdf 1) and emission is uniform over
+// the sphere of directions.
+#include "shading/point_light.h"
+
+#include "core/warp.h"
+
+namespace phos::shading {
+
+float distance_falloff(float d, bool legacy, Vec3 att) {
+    if (legacy) {
+        const float denom = att.x + att.y * d + att.z * d * d;
+        return denom > 0 ? 1 / denom : 0;
+    }
+    return d > 0 ? 1 / (d * d) : 0;
+}
+
+PointLight::PointLight(const scene::Light& light, const LightOptions& options)
+    : position_(light.position),
+      intensity_(light.color),
+      legacy_(options.legacy_attenuation),
+      attenuation_(light.attenuation) {}
+
+LightLiSample PointLight::sample_Li(Vec3 ref, Vec2) const {
+    LightLiSample s;
+    const Vec3 d = position_ - ref;
+    const float dist = length(d);
+    s.delta = true;
+    s.p_light = position_;
+    if (!(dist > 0)) return s;  // pdf 0: the reference point sits on the light
+    s.wi = d / dist;
+    s.distance = dist;
+    s.n_light = -s.wi;
+    s.pdf = 1;
+    s.L = intensity_ * distance_falloff(dist, legacy_, attenuation_);
+    return s;
+}
+
+LightLeSample PointLight::sample_Le(Vec2, Vec2 u_dir) const {
+    LightLeSample s;
+    const Vec3 w = warp::uniform_sphere(u_dir);
+    s.ray = {position_, w};
+    s.n = w;
+    s.Le = intensity_;
+    s.pdf_pos = 1;
+    s.pdf_dir = warp::uniform_sphere_pdf();
+    s.weight = intensity_ / s.pdf_dir;
+    return s;
+}
+
+}  // namespace phos::shading

@@ -1,0 +1,29 @@
+// Isotropic point light of intensity I (W/sr): irradiance I cos / d^2, flux 4 pi I.
+#pragma once
+
+#include "shading/lights.h"
+
+namespace phos::shading {
+
+class PointLight final : public Light {
+public:
+    PointLight(const scene::Light& light, const LightOptions& options);
+    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    float pdf_Li(Vec3, Vec3, Vec3, Vec3) const override { return 0; }
+    Rgb Le(Vec3, Vec3) const override { return Rgb(0.0f); }
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    Rgb power() const override { return intensity_ * (4 * kPi); }
+    bool is_delta() const override { return true; }
+
+private:
+    Vec3 position_;
+    Rgb intensity_;
+    bool legacy_ = false;
+    Vec3 attenuation_{0, 0, 1};
+};
+
+// Fall-off of a point or spot light at distance d: 1/d^2, or 1/(ca + la d + qa d^2) with the
+// legacy .scn attenuation (a direct-lighting-only approximation; photons always use 1/d^2).
+float distance_falloff(float d, bool legacy, Vec3 attenuation);
+
+}  // namespace phos::shading
