@@ -1,0 +1,101 @@
+// Helpers shared by the light tests: running mean/variance with a k-sigma check, and small scenes
+// (rectangle, disk, sphere emitters) built by hand.
+//
+// Statistical bound: for N independent samples X_i with finite variance, the sample mean has
+// standard deviation sigma / sqrt(N), and by the central limit theorem it is close to normal for the
+// N used here (>= 1e4). Estimating sigma by the sample deviation s, |mean - E[X]| <= k s / sqrt(N)
+// fails by chance with probability about 2 Phi(-k): 6e-5 for k = 4, 6e-7 for k = 5. Seeds are fixed,
+// so a pass is reproducible; a broken estimator is off by many sigma.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/rng.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+namespace phos::shading::test {
+
+inline constexpr double kSigmas = 5.0;
+
+struct RunningStat {
+    double sum = 0, sum2 = 0;
+    long n = 0;
+    void add(double x) {
+        sum += x;
+        sum2 += x * x;
+        ++n;
+    }
+    double mean() const { return sum / double(n); }
+    double std_error() const {
+        const double m = mean();
+        const double var = std::max(0.0, sum2 / double(n) - m * m) * double(n) / double(n - 1);
+        return std::sqrt(var / double(n));
+    }
+};
+
+// Expects the mean within kSigmas standard errors of `expected` (plus a relative 1e-5 for float
+// rounding when the samples are (nearly) constant).
+inline void expect_mean(const RunningStat& s, double expected, const char* what) {
+    const double tol = kSigmas * s.std_error() + 1e-5 * std::fabs(expected) + 1e-12;
+    EXPECT_NEAR(s.mean(), expected, tol) << what << " (N=" << s.n << ", stderr=" << s.std_error() << ")";
+}
+
+inline double dot_d(Vec3 a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }
+
+// Two-triangle mesh of the rectangle [x0,x1] x [z0,z1] at height y, emitting towards -y.
+inline scene::Shape rectangle_y(float x0, float x1, float z0, float z1, float y) {
+    scene::Shape s;
+    s.kind = scene::Shape::Kind::Mesh;
+    s.mesh.positions = {{x0, y, z0}, {x1, y, z0}, {x1, y, z1}, {x0, y, z1}};
+    s.mesh.indices = {0, 1, 2, 0, 2, 3};
+    return s;
+}
+
+inline scene::Shape disk(Vec3 c, Vec3 n, float r, float inner = 0) {
+    scene::Shape s;
+    s.kind = scene::Shape::Kind::Disk;
+    s.center = c;
+    s.normal = n;
+    s.radius = r;
+    s.inner_radius = inner;
+    return s;
+}
+
+inline scene::Shape sphere(Vec3 c, float r) {
+    scene::Shape s;
+    s.kind = scene::Shape::Kind::Sphere;
+    s.center = c;
+    s.radius = r;
+    return s;
+}
+
+inline scene::Light area_light_record(Rgb L, bool two_sided = false) {
+    scene::Light l;
+    l.kind = scene::Light::Kind::Area;
+    l.color = L;
+    l.two_sided = two_sided;
+    l.shape = 0;
+    return l;
+}
+
+// Irradiance at x (unit normal n) from a polygon of uniform radiance L lying entirely above x's
+// tangent plane (Lambert's formula): E = L/2 |sum_i Theta_i n . Gamma_i|, where Theta_i is the
+// angle the edge (v_i, v_i+1) subtends at x and Gamma_i the unit normal of the plane through x and
+// that edge. It is Stokes' theorem applied to the projected solid angle integral of cos over the
+// polygon's spherical projection: the integrand n.w is the divergence-free part whose flux through
+// the spherical polygon reduces to a sum over its great-circle edges.
+inline double lambert_irradiance(const std::vector<Vec3>& poly, Vec3 x, Vec3 n, double L) {
+    double sum = 0;
+    for (size_t i = 0; i < poly.size(); ++i) {
+        const Vec3 a = normalize(poly[i] - x), b = normalize(poly[(i + 1) % poly.size()] - x);
+        const double theta = std::acos(std::clamp(dot_d(a, b), -1.0, 1.0));
+        const Vec3 g = normalize(cross(a, b));
+        sum += theta * dot_d(n, g);
+    }
+    return 0.5 * L * std::fabs(sum);
+}
+
+}  // namespace phos::shading::test
