@@ -1,0 +1,167 @@
+// Area lights against closed forms: Monte Carlo irradiance from sample_Li under a rectangle (mesh),
+// a transformed rectangle, a disk, an annulus, an ellipse (non-uniformly scaled disk) and spheres;
+// one-sidedness; and the emitting-side rule (reverse_orientation XOR handedness swap).
+#include <gtest/gtest.h>
+
+#include "core/transform.h"
+#include "light_test_util.h"
+#include "shading/area_light.h"
+
+namespace phos::shading {
+namespace {
+
+using test::expect_mean;
+using test::RunningStat;
+
+// Irradiance at x (normal n) estimated from N sample_Li samples: mean of L cos+ / pdf.
+RunningStat irradiance(const Light& light, Vec3 x, Vec3 n, int N, uint64_t seed) {
+    Sampler rng(seed);
+    RunningStat e;
+    for (int i = 0; i < N; ++i) {
+        const LightLiSample s = light.sample_Li(x, rng.next2());
+        e.add(s.pdf > 0 ? double(s.L.r) * std::max(0.0, test::dot_d(s.wi, n)) / s.pdf : 0.0);
+    }
+    return e;
+}
+
+std::vector<Vec3> world_vertices(const scene::Shape& s) {
+    std::vector<Vec3> v;
+    for (Vec3 p : s.mesh.positions) v.push_back(s.to_world.point(p));
+    return v;
+}
+
+TEST(AreaLight, RectangleIrradianceMatchesLambert) {
+    const scene::Shape rect = test::rectangle_y(-0.5f, 0.5f, -0.25f, 0.75f, 1.5f);
+    const AreaLight light(test::area_light_record(Rgb(2.0f)), rect);
+    EXPECT_NEAR(light.sampler().area(), 1.0f, 1e-6f);
+    const Vec3 up{0, 1, 0};
+    int i = 0;
+    for (Vec3 x : {Vec3(0, 0, 0), Vec3(1, 0, 0.3f), Vec3(-0.7f, 0, -1.2f), Vec3(2, 0, 2)}) {
+        const double closed = test::lambert_irradiance(rect.mesh.positions, x, up, 2.0);
+        expect_mean(irradiance(light, x, up, 40000, 100 + uint64_t(i++)), closed, "rectangle irradiance");
+    }
+    // A tilted receiver as well.
+    const Vec3 tilted = normalize(Vec3(0.3f, 1, -0.2f));
+    expect_mean(irradiance(light, {0.2f, 0, 0.1f}, tilted, 40000, 9),
+                test::lambert_irradiance(rect.mesh.positions, {0.2f, 0, 0.1f}, tilted, 2.0), "tilted");
+}
+
+TEST(AreaLight, TransformedMeshUsesWorldSpaceGeometry) {
+    // Unit square in object space, stretched non-uniformly, tilted and moved up.
+    scene::Shape rect = test::rectangle_y(0, 1, 0, 1, 0);
+    rect.to_world = Transform::translate({-0.8f, 2, -0.3f}) * Transform::rotate(20, {1, 0, 0}) *
+                    Transform::rotate(35, {0, 1, 0}) * Transform::scale({2, 1, 0.5f});
+    const AreaLight light(test::area_light_record(Rgb(1.5f)), rect);
+    EXPECT_NEAR(light.sampler().area(), 1.0f, 1e-5f);  // 2 x 0.5
+    const std::vector<Vec3> poly = world_vertices(rect);
+    const Vec3 up{0, 1, 0};
+    int i = 0;
+    for (Vec3 x : {Vec3(0, 0, 0), Vec3(0.5f, 0, 0.5f), Vec3(-1, 0, -0.5f)}) {
+        expect_mean(irradiance(light, x, up, 40000, 200 + uint64_t(i++)),
+                    test::lambert_irradiance(poly, x, up, 1.5), "transformed rectangle");
+    }
+}
+
+TEST(AreaLight, DiskAndAnnulusOnAxis) {
+    const float r = 0.8f, h = 1.7f, ri = 0.3f, L = 3;
+    const AreaLight d(test::area_light_record(Rgb(L)), test::disk({0, h, 0}, {0, -1, 0}, r));
+    const AreaLight a(test::area_light_record(Rgb(L)), test::disk({0, h, 0}, {0, -1, 0}, r, ri));
+    const double disk_e = kPi * L * r * r / (r * r + h * h);
+    const double ring_e = disk_e - kPi * L * ri * ri / (ri * ri + h * h);
+    expect_mean(irradiance(d, {0, 0, 0}, {0, 1, 0}, 40000, 1), disk_e, "disk");
+    expect_mean(irradiance(a, {0, 0, 0}, {0, 1, 0}, 40000, 2), ring_e, "annulus");
+    EXPECT_NEAR(d.sampler().area(), kPi * r * r, 1e-5f);
+    EXPECT_NEAR(a.sampler().area(), kPi * (r * r - ri * ri), 1e-5f);
+}
+
+TEST(AreaLight, EllipseFromNonUniformlyScaledDisk) {
+    scene::Shape s = test::disk({0, 0, 0}, {0, -1, 0}, 1);
+    s.to_world = Transform::translate({0.3f, 1.2f, -0.2f}) * Transform::scale({1.5f, 1, 0.6f});
+    const AreaLight light(test::area_light_record(Rgb(1.0f)), s);
+    EXPECT_NEAR(light.sampler().area(), kPi * 1.5f * 0.6f, 1e-5f);
+    // The ellipse as a fine inscribed polygon (area error ~ (2 pi / n)^2 / 6, negligible).
+    std::vector<Vec3> poly;
+    const int n = 2048;
+    for (int k = 0; k < n; ++k) {
+        const float phi = 2 * kPi * float(k) / n;
+        poly.push_back(s.to_world.point({std::cos(phi), 0, std::sin(phi)}));
+    }
+    int i = 0;
+    for (Vec3 x : {Vec3(0, 0, 0), Vec3(1, 0, 0.5f), Vec3(-0.5f, 0, -1)})
+        expect_mean(irradiance(light, x, {0, 1, 0}, 40000, 300 + uint64_t(i++)),
+                    test::lambert_irradiance(poly, x, {0, 1, 0}, 1.0), "ellipse");
+}
+
+TEST(AreaLight, SphereIrradiance) {
+    // E = pi L (r/d)^2 cos(theta) while the whole visible cap is above the receiver's horizon.
+    const float L = 2, r = 1, d = 3;
+    const AreaLight plain(test::area_light_record(Rgb(L)), test::sphere({0, d, 0}, r));
+    scene::Shape scaled = test::sphere({0, 0, 0}, 2);
+    scaled.to_world =
+        Transform::translate({0, d, 0}) * Transform::rotate(40, {1, 1, 0}) * Transform::scale(Vec3(0.5f));
+    const AreaLight similar(test::area_light_record(Rgb(L)), scaled);
+    EXPECT_NEAR(similar.sampler().area(), 4 * kPi, 1e-4f);
+    EXPECT_FALSE(similar.sampler().tessellated());
+    int i = 0;
+    for (float theta : {0.0f, 0.4f, 1.0f}) {
+        const Vec3 n{std::sin(theta), std::cos(theta), 0};
+        const double closed = kPi * L * (r / d) * (r / d) * std::cos(theta);
+        expect_mean(irradiance(plain, {0, 0, 0}, n, 40000, 400 + uint64_t(i++)), closed, "sphere");
+        expect_mean(irradiance(similar, {0, 0, 0}, n, 40000, 500 + uint64_t(i++)), closed, "scaled sphere");
+    }
+}
+
+TEST(AreaLight, OneSidedAndTwoSided) {
+    const scene::Shape rect = test::rectangle_y(-0.5f, 0.5f, -0.5f, 0.5f, 1);
+    const AreaLight one(test::area_light_record(Rgb(1.0f)), rect);
+    const AreaLight two(test::area_light_record(Rgb(1.0f), true), rect);
+    EXPECT_EQ(one.Le({0, -1, 0}, {0, -1, 0}), Rgb(1.0f));
+    EXPECT_EQ(one.Le({0, -1, 0}, {0, 1, 0}), Rgb(0.0f));
+    EXPECT_EQ(two.Le({0, -1, 0}, {0, 1, 0}), Rgb(1.0f));
+    // From above (behind the emitting side) a one-sided light delivers nothing.
+    Sampler rng(5);
+    for (int i = 0; i < 100; ++i) {
+        const Vec2 u = rng.next2();
+        EXPECT_TRUE(one.sample_Li({0, 2, 0}, u).L.is_black());
+        EXPECT_EQ(two.sample_Li({0, 2, 0}, u).L, Rgb(1.0f));
+        EXPECT_EQ(one.sample_Li({0, 0, 0}, u).L, Rgb(1.0f));
+    }
+    EXPECT_NEAR(two.power().r, 2 * one.power().r, 1e-6f);
+}
+
+// Expected emitting normal by the rule: to_world.normal(object normal), flipped if
+// reverse_orientation XOR the transform swaps handedness.
+Vec3 rule_normal(const scene::Shape& s, Vec3 n_obj) {
+    const bool flip = s.reverse_orientation != s.to_world.swaps_handedness();
+    return normalize(s.to_world.normal(n_obj)) * (flip ? -1.0f : 1.0f);
+}
+
+TEST(AreaLight, EmittingSideFollowsOrientationRule) {
+    const Transform mirror = Transform::translate({0.5f, 0, 0}) * Transform::scale({1, 1, -1});
+    const Transform plain = Transform::rotate(30, {0, 0, 1});
+    for (bool reverse : {false, true})
+        for (const Transform* t : {&plain, &mirror}) {
+            // Disk (object normal +y), sphere (outward), mesh (counter-clockwise front = -y here).
+            scene::Shape d = test::disk({0, 0, 0}, {0, 1, 0}, 1);
+            scene::Shape sp = test::sphere({0, 0, 0}, 1);
+            scene::Shape m = test::rectangle_y(0, 1, 0, 1, 0);
+            for (scene::Shape* s : {&d, &sp, &m}) {
+                s->reverse_orientation = reverse;
+                s->to_world = *t;
+            }
+            const ShapeSampler ds(d), ss(sp), ms(m);
+            Sampler rng(17);
+            for (int i = 0; i < 50; ++i) {
+                const Vec2 u = rng.next2();
+                const ShapeSample a = ds.sample_area(u), b = ss.sample_area(u), c = ms.sample_area(u);
+                const Vec3 ed = rule_normal(d, {0, 1, 0});
+                EXPECT_NEAR(dot(a.n, ed), 1.0f, 1e-5f) << reverse;
+                const Vec3 p_obj = t->inverse().point(b.p);
+                EXPECT_NEAR(dot(b.n, rule_normal(sp, p_obj)), 1.0f, 1e-5f) << reverse;
+                EXPECT_NEAR(dot(c.n, rule_normal(m, {0, -1, 0})), 1.0f, 1e-5f) << reverse;
+            }
+        }
+}
+
+}  // namespace
+}  // namespace phos::shading
