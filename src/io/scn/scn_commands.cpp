@@ -1,5 +1,6 @@
 // The `.scn` commands: each reads its fixed arguments, validates them, and appends its camera,
 // material, shape or light to the scene with phos's physically based reading (docs/formats/scn.md).
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 
@@ -252,6 +253,10 @@ void Parser::cmd_mesh(const Token& cmd) {
     const int mat = material(a, 0);
     Token tok;
     const fs::path p = file_argument(cmd, "mesh file name", tok);
+    std::string ext = p.extension().string();
+    for (char& ch : ext) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+    if (ext != ".off" && ext != ".ply" && ext != ".obj")
+        fail(tok, "mesh: unknown mesh format '" + ext + "' (phos reads .off, .ply and .obj meshes)");
     LoadedMesh loaded;
     try {
         loaded = read_mesh(p.string());  // a ParseError names the mesh file's own line
