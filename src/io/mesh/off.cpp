@@ -95,7 +95,11 @@ scene::TriangleMesh read_off(const std::string& path) {
     const auto fail = [&](int line, int col, const std::string& msg) {
         throw ParseError(path, line, col, msg);
     };
-    const auto fail_eof = [&](const std::string& msg) { fail(last_line, 0, msg); };
+    // A truncated file is reported at the end of its last non-empty line.
+    const auto fail_eof = [&](const std::string& msg) {
+        if (lines.empty()) fail(last_line, 1, msg);
+        fail(lines.back().number, lines.back().end_col, msg);
+    };
 
     if (lines.empty()) fail(1, 1, "empty file (expected the OFF header)");
     size_t li = 0;
