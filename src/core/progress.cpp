@@ -21,9 +21,9 @@ void Progress::start(const std::string& label, uint64_t total) {
 void Progress::advance(uint64_t units) {
     const uint64_t done = done_.fetch_add(units, std::memory_order_relaxed) + units;
     if (!enabled_) return;
-    const int64_t now = std::chrono::duration_cast<std::chrono::nanoseconds>(
-                            std::chrono::steady_clock::now() - start_)
-                            .count();
+    const int64_t now =
+        std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - start_)
+            .count();
     int64_t last = last_draw_ns_.load(std::memory_order_relaxed);
     if (now - last < 200'000'000) return;  // 5 redraws per second at most
     if (!last_draw_ns_.compare_exchange_strong(last, now)) return;

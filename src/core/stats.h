@@ -43,7 +43,8 @@ public:
     ScopedTimer(Stats& stats, std::string phase)
         : stats_(stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()) {}
     ~ScopedTimer() {
-        stats_.add_time(phase_, std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
+        stats_.add_time(phase_,
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
     }
     ScopedTimer(const ScopedTimer&) = delete;
     ScopedTimer& operator=(const ScopedTimer&) = delete;

@@ -1,6 +1,137 @@
-// Placeholder CLI until the render command lands.
+// The `phos` command line (CLI11). Accepts the seed renderer's single-dash long options (-aa,
+// -resolution, -real...) by rewriting them to the double-dash form before parsing.
 #include "app/lib/cli.h"
 
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "app/lib/render_command.h"
+#include "core/error.h"
+#include "integrators/factory.h"
+
 namespace phos::app {
-int run_cli(int, char**) { return 0; }
+namespace {
+
+std::vector<std::string> normalise_args(int argc, char** argv, const std::set<std::string>& long_names) {
+    std::vector<std::string> args;
+    for (int i = 1; i < argc; ++i) {
+        std::string a = argv[i];
+        if (a.size() > 2 && a[0] == '-' && a[1] != '-' && long_names.count(a.substr(1))) a = "-" + a;
+        args.push_back(a);
+    }
+    return args;
+}
+
+}  // namespace
+
+int run_cli(int argc, char** argv) {
+    CLI::App app{"phos: a physically based photon-mapping renderer", "phos"};
+    app.require_subcommand(1);
+    app.set_version_flag("--version", "phos 0.1");
+
+    RenderCommand rc;
+    CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt) to an image");
+    render->add_option("scene", rc.scene_path, "scene file (.scn or .pbrt)")->required();
+    render->add_option("-o,--output", rc.output,
+                       "output image: .exr (linear float), .pfm (linear), .png / .bmp (sRGB 8-bit); "
+                       "default: the scene file's Film filename");
+    auto* w = render->add_option("--width", rc.width, "image width in pixels")->check(CLI::Range(1, 65536));
+    auto* h =
+        render->add_option("--height", rc.height, "image height in pixels")->check(CLI::Range(1, 65536));
+    std::vector<int> resolution;
+    auto* res = render->add_option("--resolution", resolution, "image size W H (the seed's -resolution)")
+                    ->expected(2)
+                    ->check(CLI::Range(1, 65536));
+    res->excludes(w)->excludes(h);
+    auto* spp = render->add_option("--spp", rc.spp, "samples per pixel (iterations for ppm/sppm)")
+                    ->check(CLI::Range(1, 1 << 20));
+    render->add_option("--aa", rc.aa, "anti-aliasing level N: 4^N samples per pixel (the seed's -aa)")
+        ->check(CLI::Range(0, 8))
+        ->excludes(spp);
+    render->add_option("--threads", rc.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
+    render->add_option("--seed", rc.seed, "random seed (same seed -> identical image)");
+    std::string names;
+    for (const auto& n : integrators::integrator_names()) names += (names.empty() ? "" : "|") + n;
+    render->add_option("--integrator", rc.integrator, "rendering algorithm: " + names)
+        ->check(CLI::IsMember(integrators::integrator_names()));
+    render->add_option("--max-depth", rc.max_depth, "maximum number of bounces (pbrt's maxdepth)")
+        ->check(CLI::Range(0, 100000));
+    render->add_flag("-v,--verbose", rc.verbose, "print statistics: rays by kind, time per phase");
+    render->add_flag("-q,--quiet", rc.quiet, "no warnings or messages");
+    render->add_option("--exposure", rc.exposure, "exposure in stops for .png/.bmp output")
+        ->check(CLI::Range(-64.0f, 64.0f));
+    render->add_flag("--schlick", rc.schlick, "Schlick's approximation instead of exact Fresnel");
+    std::vector<float> dof;
+    render
+        ->add_option("--dof", dof,
+                     "depth of field: SAMPLES DISTANCE RADIUS (lens samples per pixel sample, focal "
+                     "distance, aperture radius)")
+        ->expected(3);
+    render->add_flag("--legacy-attenuation", rc.legacy_attenuation,
+                     ".scn: honour (ca, la, qa) light attenuation in direct light");
+    render->add_flag("--real", rc.real, ".scn: scale material lobes so kd + ks + kt <= 1 (the seed's -real)");
+    render->add_flag("--ambient", rc.ambient, ".scn: add the non-physical ka * ambient term");
+    render->add_flag("--background-light", rc.background_light,
+                     "the background radiance also lights diffuse surfaces");
+    render->add_flag("--strict", rc.strict, "pbrt: unused scene parameters are errors");
+    bool progress_on = false, progress_off = false;
+    render->add_flag("--progress", progress_on, "always draw the progress bar");
+    render->add_flag("--no-progress", progress_off, "never draw the progress bar");
+
+    std::set<std::string> long_names;
+    for (const CLI::Option* o : render->get_options())
+        for (const auto& n : o->get_lnames()) long_names.insert(n);
+    std::vector<std::string> args = normalise_args(argc, argv, long_names);
+    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
+
+    try {
+        app.parse(args);
+    } catch (const CLI::CallForHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForAllHelp& e) {
+        return app.exit(e);
+    } catch (const CLI::CallForVersion& e) {
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        std::fprintf(stderr, "phos: %s\n", e.what());
+        std::fprintf(stderr, "Run 'phos --help' or 'phos render --help' for the options.\n");
+        return 2;
+    }
+
+    try {
+        if (render->parsed()) {
+            if (!resolution.empty()) rc.width = resolution[0], rc.height = resolution[1];
+            if (!dof.empty()) {
+                if (!(dof[0] >= 1 && dof[0] <= 4096 && dof[0] == float(int(dof[0]))))
+                    throw InputError("--dof: SAMPLES must be a whole number >= 1");
+                if (!(dof[1] > 0)) throw InputError("--dof: DISTANCE must be > 0");
+                if (!(dof[2] >= 0)) throw InputError("--dof: RADIUS must be >= 0");
+                rc.dof_samples = int(dof[0]);
+                rc.dof_distance = dof[1];
+                rc.dof_radius = dof[2];
+            }
+            if (progress_on) rc.progress = 1;
+            if (progress_off) rc.progress = 0;
+            run_render(rc);
+        }
+        return 0;
+    } catch (const ParseError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 2;
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "phos: %s\n", e.what());
+        return 2;
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "phos: out of memory\n");
+        return 1;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "phos: internal error: %s\n", e.what());
+        return 1;
+    }
+}
+
 }  // namespace phos::app

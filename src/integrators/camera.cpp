@@ -1,0 +1,89 @@
+// Primary ray generation. The field of view spans the shorter image side; the longer side extends
+// proportionally, so changing the aspect ratio never crops the shorter dimension.
+#include "integrators/camera.h"
+
+#include <cmath>
+
+#include "core/error.h"
+#include "core/warp.h"
+
+namespace phos::integrators {
+
+CameraModel::CameraModel(const scene::Camera& camera, int width, int height)
+    : cam_(camera), width_(width), height_(height) {
+    if (!(length(camera.forward) > 0)) throw InputError("camera: zero viewing direction");
+    eye_ = camera.eye;
+    forward_ = normalize(camera.forward);
+    Vec3 r = cross(forward_, camera.up);
+    if (!(length(r) > 1e-8f)) {
+        // Up parallel to the view: pick any perpendicular.
+        r = cross(forward_, std::fabs(forward_.y) < 0.9f ? Vec3(0, 1, 0) : Vec3(1, 0, 0));
+    }
+    right_ = normalize(r);
+    up_ = cross(right_, forward_);
+    if (camera.flip_x) right_ = -right_;
+    const float half_short = camera.projection == scene::Camera::Projection::Perspective
+                                 ? std::tan(0.5f * camera.fov)
+                                 : camera.ortho_half_size;
+    if (width >= height) {
+        half_h_ = half_short;
+        half_w_ = half_short * float(width) / float(height);
+    } else {
+        half_w_ = half_short;
+        half_h_ = half_short * float(height) / float(width);
+    }
+}
+
+scene::Camera CameraModel::frame_bounds(const accel::Bounds& bounds) {
+    scene::Camera cam;
+    const Vec3 c = bounds.empty() ? Vec3(0.0f) : bounds.center();
+    const Vec3 e = bounds.empty() ? Vec3(1.0f) : bounds.extent();
+    const float radius = std::max(0.5f * length(e), 1e-3f);
+    cam.fov = 40.0f * kPi / 180.0f;
+    const float dist = radius / std::sin(0.5f * cam.fov);
+    cam.eye = c + Vec3(0, 0, dist);
+    cam.forward = Vec3(0, 0, -1);
+    cam.up = Vec3(0, 1, 0);
+    return cam;
+}
+
+accel::Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
+    const float sx = (2.0f * fx / float(width_) - 1.0f) * half_w_;
+    const float sy = (1.0f - 2.0f * fy / float(height_)) * half_h_;
+    accel::Ray ray;
+    if (cam_.projection == scene::Camera::Projection::Orthographic) {
+        ray.origin = eye_ + right_ * sx + up_ * sy;
+        ray.dir = forward_;
+        ray.tmin = cam_.near_clip;
+        ray.tmax = cam_.far_clip;
+        return ray;
+    }
+    Vec3 dir = normalize(forward_ + right_ * sx + up_ * sy);
+    const float cos_axis = dot(dir, forward_);
+    ray.origin = eye_;
+    if (cam_.lens_radius > 0) {
+        // Thin lens: all rays through the pixel meet on the plane at focal_distance.
+        const Vec3 focus = eye_ + dir * (cam_.focal_distance / cos_axis);
+        const Vec2 d = warp::concentric_disk(u_lens) * cam_.lens_radius;
+        ray.origin = eye_ + right_ * d.x + up_ * d.y;
+        dir = normalize(focus - ray.origin);
+    }
+    ray.dir = dir;
+    // Clip distances are measured along the viewing axis.
+    const float c = std::max(dot(dir, forward_), 1e-6f);
+    ray.tmin = cam_.near_clip / c;
+    ray.tmax = cam_.far_clip >= kInf ? kInf : cam_.far_clip / c;
+    return ray;
+}
+
+bool CameraModel::project(Vec3 p, float& fx, float& fy) const {
+    const Vec3 d = p - eye_;
+    const float z = dot(d, forward_);
+    if (z <= 0) return false;
+    const float sx = dot(d, right_) / z, sy = dot(d, up_) / z;
+    fx = (sx / half_w_ + 1.0f) * 0.5f * float(width_);
+    fy = (1.0f - sy / half_h_) * 0.5f * float(height_);
+    return fx >= 0 && fx < float(width_) && fy >= 0 && fy < float(height_);
+}
+
+}  // namespace phos::integrators

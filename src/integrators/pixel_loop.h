@@ -1,0 +1,33 @@
+// The deterministic parallel pixel loop shared by sample-based integrators: fixed tiles rendered
+// by oneTBB in any order, every pixel owned by one task, every random number keyed by
+// (seed, pixel, sample), so the image is bit-identical for any thread count.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <functional>
+
+#include "core/progress.h"
+#include "core/rng.h"
+#include "core/stats.h"
+#include "film/film.h"
+#include "integrators/prepared.h"
+
+namespace phos::integrators {
+
+// Radiance along one camera ray. `rays` counts the rays it traces (kept per task).
+using RadianceFn = std::function<Rgb(const accel::Ray& ray, Sampler& sampler, RayCounts& rays)>;
+
+// Renders options.spp x options.dof_samples stratified samples per pixel through `radiance`.
+void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
+                   const RadianceFn& radiance);
+
+// Film position of sample `s` of `n` in the pixel: jittered on a sqrt(n) x sqrt(n) grid for the
+// first floor(sqrt(n))^2 samples, uniform for the rest.
+inline Vec2 stratified_sample(int s, int n, Vec2 u) {
+    const int m = int(std::sqrt(double(n)));
+    if (s < m * m) return {(float(s % m) + u.x) / float(m), (float(s / m) + u.y) / float(m)};
+    return u;
+}
+
+}  // namespace phos::integrators

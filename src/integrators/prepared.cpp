@@ -1,0 +1,27 @@
+// Building the prepared scene: BVH, light set (with scene bounds for directional/infinite lights),
+// and the camera (framing the bounds when the scene has none).
+#include "integrators/prepared.h"
+
+namespace phos::integrators {
+
+scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel) {
+    return scene.camera ? *scene.camera : CameraModel::frame_bounds(accel.bounds());
+}
+
+Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, const PrepareOptions& prepare,
+                   Stats& stats_)
+    : scene(scene_),
+      accel(scene_),
+      lights(scene_, accel.bounds(), prepare.lights),
+      camera(camera_for(scene_, accel), options_.width, options_.height),
+      options(options_),
+      bsdf_options(prepare.bsdf),
+      stats(stats_) {}
+
+Rgb Prepared::escaped(Vec3 dir) const {
+    Rgb L(0.0f);
+    for (size_t i : lights.infinite_lights()) L += lights[i].Le(Vec3(0.0f), dir);
+    return L;
+}
+
+}  // namespace phos::integrators

@@ -1,0 +1,54 @@
+// Everything an integrator needs that is derived once from the scene: the Embree BVH, the light
+// set, the camera model and the shading options, plus the statistics sink.
+#pragma once
+
+#include <memory>
+
+#include "accel/embree_scene.h"
+#include "core/stats.h"
+#include "integrators/camera.h"
+#include "integrators/options.h"
+#include "scene/scene.h"
+#include "shading/bsdf.h"
+#include "shading/lights.h"
+
+namespace phos::integrators {
+
+struct PrepareOptions {
+    shading::BsdfOptions bsdf;
+    shading::LightOptions lights;
+};
+
+class Prepared {
+public:
+    Prepared(const scene::Scene& scene, const RenderOptions& options, const PrepareOptions& prepare,
+             Stats& stats);
+
+    const scene::Scene& scene;
+    accel::EmbreeScene accel;
+    shading::LightSet lights;
+    CameraModel camera;
+    RenderOptions options;
+    shading::BsdfOptions bsdf_options;
+    Stats& stats;
+
+    // The BSDF at a hit (material looked up and textured).
+    shading::Bsdf bsdf(const accel::SurfaceHit& hit) const {
+        return shading::Bsdf(scene.materials[size_t(hit.material)], hit, scene, bsdf_options);
+    }
+    // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit).
+    Rgb emitted(const accel::SurfaceHit& hit, Vec3 wo) const {
+        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo) : Rgb(0.0f);
+    }
+    // Radiance arriving along an escaped ray with direction `dir` from infinite lights.
+    Rgb escaped(Vec3 dir) const;
+    // True if the material at `hit` is only a medium boundary (rays pass straight through).
+    bool passes_through(const accel::SurfaceHit& hit) const {
+        return scene.materials[size_t(hit.material)].interface_only;
+    }
+
+private:
+    static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel);
+};
+
+}  // namespace phos::integrators
