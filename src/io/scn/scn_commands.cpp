@@ -91,7 +91,9 @@ void Parser::cmd_material(const Token& cmd) {
         throw ParseError(f.name, f.lexed.end_line, f.lexed.end_col,
                          "material: expected a texture file name or 0, got end of file");
     }
-    if (t->text != "0") {
+    double zero = 1;
+    const bool no_texture = parse_number(t->text, zero) == NumberKind::Number && zero == 0;  // "0", "0.0"
+    if (!no_texture) {
         --files_.back().pos;  // let file_argument read (and locate) it
         Token tok;
         const fs::path p = file_argument(cmd, "texture file name (or 0)", tok);
@@ -124,7 +126,9 @@ int Parser::load_texture(const fs::path& path, const Token& at) {
     Image img;
     try {
         img = read_image(path.string(), /*srgb=*/true);
-    } catch (const InputError& e) {
+    } catch (const ParseError&) {
+        throw;
+    } catch (const std::exception& e) {  // InputError, or a decoder library's own exception
         fail(at, std::string("material: cannot read texture: ") + e.what());
     }
     if (img.width <= 0 || img.height <= 0) fail(at, "material: texture '" + at.text + "' is empty");
@@ -260,8 +264,10 @@ void Parser::cmd_mesh(const Token& cmd) {
     LoadedMesh loaded;
     try {
         loaded = read_mesh(p.string());  // a ParseError names the mesh file's own line
-    } catch (const InputError& e) {
-        fail(tok, std::string("mesh: ") + e.what());
+    } catch (const ParseError&) {
+        throw;
+    } catch (const std::exception& e) {  // InputError, or a reader library's own exception
+        fail(tok, std::string("mesh: cannot read '") + tok.text + "': " + e.what());
     }
     const auto& m = loaded.mesh;
     for (uint32_t i : m.indices)

@@ -179,6 +179,19 @@ TEST_F(ScnCommand, MeshLoadsAnOffFileRelativeToTheScene) {
     EXPECT_EQ(s.shapes[0].material, 0);
 }
 
+TEST_F(ScnCommand, MeshAlsoReadsObjAndPly) {
+    dir.write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 4 3\n");
+    dir.write(
+        "tri.ply",
+        "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+    const auto s = load(kMat + "mesh 0 tri.obj\nmesh -1 tri.ply\n");
+    ASSERT_EQ(s.shapes.size(), 2u);
+    EXPECT_EQ(s.shapes[0].mesh.triangle_count(), 2u);
+    EXPECT_EQ(s.shapes[1].mesh.triangle_count(), 1u);
+    EXPECT_EQ(s.materials[size_t(s.shapes[1].material)].diffuse, Rgb(0.8f));  // default material
+}
+
 TEST_F(ScnCommand, GroupsComposeTransformsAndInheritMaterials) {
     const auto s = load(kMat + kMat +
                         "begin 1   1 0 0 10   0 1 0 0   0 0 1 0   0 0 0 1\n"  // translate x+10, material 1
