@@ -36,9 +36,12 @@ Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& samp
 
         const shading::Bsdf bsdf = P.bsdf(hit);
         if (bsdf.has_non_specular()) L += beta * sample_all_lights(P, hit, bsdf, wo, sampler, rays);
-        if (depth >= P.options.max_depth || !(bsdf.flags() & shading::kSpecular)) break;
+        // Recurse through mirrors and glass (sample_lobes selects by kind: kSpecular = mirror,
+        // kTransmission = dielectric).
+        constexpr uint32_t kRecurse = shading::kSpecular | shading::kTransmission;
+        if (depth >= P.options.max_depth || !(bsdf.flags() & kRecurse)) break;
 
-        const auto bs = bsdf.sample_lobes(shading::kSpecular, wo, sampler.next(), sampler.next2());
+        const auto bs = bsdf.sample_lobes(kRecurse, wo, sampler.next(), sampler.next2());
         if (!bs || bs->weight.is_black()) break;
         beta *= bs->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;

@@ -1,0 +1,53 @@
+// Photon emission and Russian-roulette scattering (see photon_path.h).
+#include "photon/photon_path.h"
+
+namespace phos::photon::detail {
+
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power) {
+    if (ps.lights.size() == 0) return false;
+    float pmf = 0;
+    const size_t li = ps.lights.choose(sampler.next(), pmf);
+    if (!(pmf > 0)) return false;
+    const Vec2 u_pos = sampler.next2();
+    const Vec2 u_dir = sampler.next2();
+    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
+    if (s.weight.is_black() || !s.weight.is_finite()) return false;
+    ray = s.ray;
+    power = s.weight * (1.0f / pmf);
+    return true;
+}
+
+bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
+                    bool& specular) {
+    using namespace shading;
+    const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
+    // Probability of each lobe kind = its albedo averaged over channels (Jensen). If the material
+    // reflects more than it receives, the probabilities are scaled down so they sum to 1 and the
+    // survival weights grow accordingly, keeping the expected power exact.
+    float p[4] = {a.diffuse.average(), a.glossy.average(), a.specular.average(), a.transmission.average()};
+    // sample_lobes masks by lobe kind: mirror = kSpecular, dielectric (smooth or frosted) = kTransmission.
+    const uint32_t masks[4] = {kDiffuse, kGlossy, kSpecular, kTransmission};
+    float total = 0;
+    for (float& v : p) total += v = std::max(v, 0.0f);
+    if (!(total > 0)) return false;
+    if (total > 1)
+        for (float& v : p) v /= total;
+    float u = sampler.next();
+    const float u_lobe = sampler.next();
+    const Vec2 u_dir = sampler.next2();
+    for (int k = 0; k < 4; ++k) {
+        if (u >= p[k]) {
+            u -= p[k];
+            continue;
+        }
+        const auto s = bsdf.sample_lobes(masks[k], wo, u_lobe, u_dir, TransportMode::Importance);
+        if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
+        power = power * s->weight * (1.0f / p[k]);
+        wi_out = s->wi;
+        specular = s->is_specular();
+        return true;
+    }
+    return false;  // absorbed
+}
+
+}  // namespace phos::photon::detail

@@ -1,0 +1,100 @@
+// One photon's random walk from a light through the scene (Jensen's photon tracing): emission by a
+// power-chosen light, Russian roulette on the material's lobe albedos with per-channel power
+// rescaling, and a callback at every non-specular surface hit where photon maps / SPPM store or
+// splat it. Shared by the photon-map, PPM and SPPM integrators.
+#pragma once
+
+#include <cstdint>
+
+#include "accel/embree_scene.h"
+#include "core/rng.h"
+#include "scene/scene.h"
+#include "shading/bsdf.h"
+#include "shading/lights.h"
+
+namespace phos::photon {
+
+// What photon tracing needs from the prepared scene.
+struct PhotonScene {
+    const scene::Scene& scene;
+    const accel::EmbreeScene& accel;
+    const shading::LightSet& lights;
+    shading::BsdfOptions bsdf_options;
+};
+
+// A photon arriving at a surface with a non-specular (diffuse or glossy) component.
+struct PhotonHit {
+    const accel::SurfaceHit& hit;
+    const shading::Bsdf& bsdf;
+    Vec3 wi;     // unit direction towards where the photon came from
+    Rgb power;   // flux in W times the number of photons emitted (divide by N emitted)
+    int bounces;  // scattering events before this hit (0 = straight from the light)
+    bool after_diffuse;   // some earlier bounce was non-specular (path L{S|D}*D D...)
+    bool after_specular;  // the bounces so far were all specular and there was at least one (L S+ D)
+};
+
+struct PhotonPathOptions {
+    int max_bounces = 16;  // scattering events after emission
+};
+
+// Traces photon `index` of pass `pass` (random numbers keyed by (seed, pass, index)), calling
+// `visit(const PhotonHit&)` at every surface hit that has a non-specular component, before the
+// photon scatters on. Returns the number of rays traced.
+template <class Visitor>
+uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
+                      const PhotonPathOptions& options, Visitor&& visit);
+
+// ---- implementation ----
+
+namespace detail {
+// Emits the photon: picks a light by power and samples a ray from it. Returns false when the
+// scene has no light with power. `power` is the sample weight divided by the light's pmf.
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power);
+// Russian roulette on the lobe kinds at a hit, then sampling of the chosen kind in Importance
+// mode. Returns false when the photon is absorbed; otherwise updates `power` (per-channel exact
+// expectation) and sets `wi_out` and whether the chosen lobe was specular.
+bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
+                    bool& specular);
+}  // namespace detail
+
+template <class Visitor>
+uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
+                      const PhotonPathOptions& options, Visitor&& visit) {
+    Sampler sampler(seed, 0x70686f746f6eULL ^ pass, index);
+    accel::Ray ray;
+    Rgb power;
+    if (!detail::emit_photon(ps, sampler, ray, power)) return 0;
+    uint32_t rays = 0;
+    bool after_diffuse = false, after_specular = false;
+    int crossings = 0;
+    for (int bounces = 0; bounces <= options.max_bounces;) {
+        accel::SurfaceHit hit;
+        ++rays;
+        if (!ps.accel.intersect(ray, hit)) break;
+        const Vec3 wo = -normalize(ray.dir);
+        const scene::Material& mat = ps.scene.materials[size_t(hit.material)];
+        if (mat.interface_only) {
+            if (++crossings > 256) break;
+            ray = accel::spawn_ray(hit, ray.dir);
+            continue;
+        }
+        const shading::Bsdf bsdf(mat, hit, ps.scene, ps.bsdf_options);
+        if (bsdf.flags() == 0) break;
+        if (bsdf.has_non_specular()) visit(PhotonHit{hit, bsdf, wo, power, bounces, after_diffuse, after_specular});
+        if (bounces == options.max_bounces) break;
+        Vec3 wi;
+        bool specular = false;
+        if (!detail::scatter_photon(bsdf, wo, sampler, power, wi, specular)) break;
+        if (specular) {
+            after_specular = !after_diffuse;
+        } else {
+            after_diffuse = true;
+            after_specular = false;
+        }
+        ray = accel::spawn_ray(hit, wi);
+        ++bounces;
+    }
+    return rays;
+}
+
+}  // namespace phos::photon
