@@ -1,0 +1,364 @@
+// SceneBuilder core: graphics-state stack, transforms and coordinate systems, the rendering options
+// (camera, film, sampler, integrator) and the load_pbrt entry point.
+#include "io/pbrt/builder.h"
+
+#include <cmath>
+#include <filesystem>
+#include <stdexcept>
+
+#include "core/error.h"
+#include "core/log.h"
+
+namespace phos::io {
+
+scene::Scene load_pbrt(const std::string& path, const PbrtOptions& options) {
+    pbrt::SceneBuilder builder(options, path);
+    pbrt::parse_file(path, builder);
+    scene::Scene s = builder.take_scene();
+    s.source = path;
+    return s;
+}
+
+}  // namespace phos::io
+
+namespace phos::io::pbrt {
+
+namespace fs = std::filesystem;
+
+SceneBuilder::SceneBuilder(const PbrtOptions& options, const std::string& main_file)
+    : options_(options), main_dir_(fs::path(main_file).parent_path().string()) {}
+
+void SceneBuilder::warn(const Loc& loc, const std::string& message) const {
+    log::warn(loc.str() + ": " + message);
+}
+
+void SceneBuilder::warn_once(const std::string& key, const Loc& loc, const std::string& message) const {
+    log::warn_once("pbrt:" + key, loc.str() + ": " + message);
+}
+
+void SceneBuilder::require_world(bool world, const std::string& directive, const Loc& loc) const {
+    if (world && !world_) loc.fail(directive + " is only allowed after WorldBegin");
+    if (!world && world_)
+        loc.fail(directive + " is not allowed after WorldBegin (at " + world_loc_.str() + ")");
+}
+
+std::string SceneBuilder::resolve(const std::string& filename, const Loc& loc) const {
+    const fs::path p(filename);
+    if (p.is_absolute()) return filename;
+    const fs::path local = fs::path(loc.filename()).parent_path() / p;
+    if (fs::exists(local)) return local.string();
+    const fs::path main = fs::path(main_dir_) / p;
+    if (fs::exists(main)) return main.string();
+    return local.string();
+}
+
+int SceneBuilder::current_material() {
+    if (gs_.material >= 0) return gs_.material;
+    if (default_material_ < 0) {
+        scene::Material m;  // pbrt-v4's default material: diffuse, reflectance 0.5
+        m.name = "pbrt-default";
+        m.diffuse = Rgb(0.5f);
+        default_material_ = int(scene_.materials.size());
+        scene_.materials.push_back(m);
+    }
+    return default_material_;
+}
+
+// ---- transforms ----
+
+void SceneBuilder::set_ctm(const Transform& t, const Loc& loc) {
+    for (float v : t.matrix().m)
+        if (!std::isfinite(v)) loc.fail("transformation is not finite");
+    gs_.ctm = t;
+}
+
+void SceneBuilder::identity(const Loc& loc) { set_ctm(Transform(), loc); }
+
+void SceneBuilder::translate(Vec3 d, const Loc& loc) { set_ctm(gs_.ctm * Transform::translate(d), loc); }
+
+void SceneBuilder::scale(Vec3 s, const Loc& loc) {
+    if (s.x == 0 || s.y == 0 || s.z == 0) loc.fail("Scale by zero");
+    set_ctm(gs_.ctm * Transform::scale(s), loc);
+}
+
+void SceneBuilder::rotate(float degrees, Vec3 axis, const Loc& loc) {
+    if (!(length(axis) > 0)) loc.fail("Rotate about a zero-length axis");
+    set_ctm(gs_.ctm * Transform::rotate(degrees, axis), loc);
+}
+
+void SceneBuilder::look_at(Vec3 eye, Vec3 target, Vec3 up, const Loc& loc) {
+    try {
+        set_ctm(gs_.ctm * Transform::look_at(eye, target, up), loc);
+    } catch (const std::invalid_argument& e) {
+        loc.fail(e.what());
+    }
+}
+
+namespace {
+// pbrt writes matrices column by column (translation in elements 12..14).
+Transform from_pbrt_matrix(const float v[16], const Loc& loc) {
+    Mat4 m;
+    for (int r = 0; r < 4; ++r)
+        for (int c = 0; c < 4; ++c) m(r, c) = v[c * 4 + r];
+    Mat4 inv;
+    if (!m.inverse(inv)) loc.fail("singular transformation matrix");
+    return Transform(m, inv);
+}
+}  // namespace
+
+void SceneBuilder::transform(const float m[16], const Loc& loc) { set_ctm(from_pbrt_matrix(m, loc), loc); }
+
+void SceneBuilder::concat_transform(const float m[16], const Loc& loc) {
+    set_ctm(gs_.ctm * from_pbrt_matrix(m, loc), loc);
+}
+
+void SceneBuilder::coordinate_system(const std::string& name, const Loc&) { coord_systems_[name] = gs_.ctm; }
+
+void SceneBuilder::coord_sys_transform(const std::string& name, const Loc& loc) {
+    const auto it = coord_systems_.find(name);
+    if (it == coord_systems_.end()) loc.fail("CoordSysTransform: unknown coordinate system '" + name + "'");
+    gs_.ctm = it->second;
+}
+
+void SceneBuilder::reverse_orientation(const Loc&) { gs_.reverse_orientation = !gs_.reverse_orientation; }
+
+// ---- rendering options ----
+
+void SceneBuilder::camera(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "Camera", loc);
+    CameraSpec c;
+    c.type = type;
+    c.loc = loc;
+    c.medium = gs_.outside;
+    const Transform world_to_camera = gs_.ctm;
+    c.camera_to_world = world_to_camera.inverse();
+    coord_systems_["camera"] = c.camera_to_world;
+    const std::string d = "Camera \"" + type + "\"";
+    if (type != "perspective" && type != "orthographic") {
+        warn(loc,
+             d + " is not supported; a perspective camera with the default 90 degree field of view is used");
+        params.mark_all_used();
+        c.type = "perspective";
+    } else {
+        if (type == "perspective") {
+            c.fov_deg = params.get_float("fov", 90.0f);
+            if (!(c.fov_deg > 0 && c.fov_deg < 180))
+                params.find("fov")->loc.fail("fov must be in (0, 180) degrees");
+        }
+        c.lens_radius = params.get_float("lensradius", 0.0f);
+        c.focal_distance = params.get_float("focaldistance", 1e6f);
+        if (c.lens_radius < 0) params.find("lensradius")->loc.fail("lensradius must not be negative");
+        if (!(c.focal_distance > 0)) params.find("focaldistance")->loc.fail("focaldistance must be positive");
+        const std::vector<float> sw = params.get_floats("screenwindow");
+        if (!sw.empty()) {
+            if (sw.size() != 4 || !(sw[1] > sw[0]) || !(sw[3] > sw[2]))
+                params.find("screenwindow")->loc.fail("screenwindow needs 4 values: xmin xmax ymin ymax");
+            c.screen_window = sw;
+        }
+        if (params.has("frameaspectratio")) {
+            params.get_float("frameaspectratio", 1.0f);
+            warn(params.find("frameaspectratio")->loc, d + ": parameter \"float frameaspectratio\" is not "
+                                                           "supported (the film's aspect ratio is used)");
+        }
+    }
+    done(params, d);
+    camera_ = c;
+}
+
+void SceneBuilder::film(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "Film", loc);
+    const std::string d = "Film \"" + type + "\"";
+    if (type != "rgb" && type != "gbuffer" && type != "spectral")
+        warn(loc, d + " is not a pbrt-v4 film type; treated as \"rgb\"");
+    const int w = params.get_int("xresolution", 1280), h = params.get_int("yresolution", 720);
+    if (w <= 0 || h <= 0) loc.fail(d + ": resolution must be positive");
+    scene_.settings.width = w;
+    scene_.settings.height = h;
+    const std::string out = params.get_string("filename", "");
+    if (!out.empty()) scene_.settings.output = out;
+    done(params, d);
+}
+
+void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "PixelFilter", loc);
+    const std::string d = "PixelFilter \"" + type + "\"";
+    if (type != "box") {
+        warn(loc, d + " is not supported; phos uses a box filter of radius 0.5 pixel");
+        params.mark_all_used();
+        return;
+    }
+    const float xr = params.get_float("xradius", 0.5f), yr = params.get_float("yradius", 0.5f);
+    if (xr != 0.5f || yr != 0.5f) warn(loc, d + ": phos's box filter always has radius 0.5 pixel");
+    done(params, d);
+}
+
+void SceneBuilder::sampler(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "Sampler", loc);
+    const std::string d = "Sampler \"" + type + "\"";
+    if (params.has("pixelsamples")) {
+        const int spp = params.get_int("pixelsamples", 16);
+        if (spp <= 0) params.find("pixelsamples")->loc.fail("pixelsamples must be positive");
+        scene_.settings.spp = spp;
+    }
+    // phos has its own sample generator; the sampler's other settings do not apply.
+    for (const char* p : {"seed", "randomization", "jitter", "xsamples", "ysamples", "dimensions"})
+        if (params.has(p)) {
+            params.find(p);
+            warn(params.find(p)->loc,
+                 d + ": parameter \"" + std::string(p) + "\" does not apply to phos (ignored)");
+        }
+    done(params, d);
+}
+
+void SceneBuilder::integrator(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "Integrator", loc);
+    const std::string d = "Integrator \"" + type + "\"";
+    if (params.has("maxdepth")) {
+        const int depth = params.get_int("maxdepth", 5);
+        if (depth < 0) params.find("maxdepth")->loc.fail("maxdepth must not be negative");
+        scene_.settings.max_depth = depth;
+    }
+    if (type == "sppm") {
+        scene_.settings.integrator = "sppm";
+        if (params.has("radius")) {
+            const float r = params.get_float("radius", 1.0f);
+            if (!(r > 0)) params.find("radius")->loc.fail("radius must be positive");
+            scene_.settings.sppm_radius = r;
+        }
+        const int photons = params.get_int("photonsperiteration", -1);
+        if (photons > 0) scene_.settings.photons_per_iteration = photons;
+        done(params, d);
+        return;
+    }
+    scene_.settings.integrator = "path";
+    if (type == "path" || type == "volpath") {
+        params.get_bool("regularize", false);
+        done(params, d);
+        return;
+    }
+    warn(loc, d + " is not available in phos; the path integrator is used instead");
+    params.mark_all_used();
+}
+
+void SceneBuilder::accelerator(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(false, "Accelerator", loc);
+    params.mark_all_used();
+    log::info(loc.str() + ": note: Accelerator \"" + type + "\" ignored (phos always uses Embree)");
+}
+
+void SceneBuilder::color_space(const std::string& name, const Loc& loc) {
+    if (name != "srgb")
+        warn(loc, "ColorSpace \"" + name + "\" is not supported; colours are read as linear sRGB");
+}
+
+void SceneBuilder::option(const Param& param, const Loc& loc) {
+    log::info(loc.str() + ": note: Option " + param.declaration() + " ignored");
+}
+
+// ---- world structure ----
+
+void SceneBuilder::world_begin(const Loc& loc) {
+    if (world_) loc.fail("WorldBegin given twice (first at " + world_loc_.str() + ")");
+    if (!stack_.empty())
+        loc.fail("WorldBegin inside AttributeBegin (opened at " + stack_.back().loc.str() + ")");
+    world_ = true;
+    world_loc_ = loc;
+    gs_.ctm = Transform();
+    coord_systems_["world"] = gs_.ctm;
+}
+
+void SceneBuilder::attribute_begin(const Loc& loc) { stack_.push_back({gs_, loc, false}); }
+
+void SceneBuilder::attribute_end(const Loc& loc) {
+    if (stack_.empty()) loc.fail("AttributeEnd without matching AttributeBegin");
+    if (stack_.back().transform_only)
+        loc.fail("AttributeEnd closes the TransformBegin at " + stack_.back().loc.str());
+    gs_ = stack_.back().state;
+    stack_.pop_back();
+}
+
+void SceneBuilder::transform_begin(const Loc& loc) {
+    warn_once("TransformBegin", loc,
+              "TransformBegin/TransformEnd are deprecated in pbrt-v4 (handled as in pbrt-v3)");
+    stack_.push_back({gs_, loc, true});
+}
+
+void SceneBuilder::transform_end(const Loc& loc) {
+    if (stack_.empty()) loc.fail("TransformEnd without matching TransformBegin");
+    if (!stack_.back().transform_only)
+        loc.fail("TransformEnd closes the AttributeBegin at " + stack_.back().loc.str());
+    gs_.ctm = stack_.back().state.ctm;
+    stack_.pop_back();
+}
+
+void SceneBuilder::attribute(const std::string& target, const ParamList& params, const Loc& loc) {
+    warn(loc, "Attribute \"" + target + "\" is not supported (its parameters are ignored)");
+    params.mark_all_used();
+}
+
+void SceneBuilder::object_begin(const std::string& name, const Loc& loc) {
+    require_world(true, "ObjectBegin", loc);
+    if (object_ >= 0) loc.fail("ObjectBegin inside the object started at " + object_loc_.str());
+    if (objects_.count(name)) loc.fail("object '" + name + "' defined twice");
+    attribute_begin(loc);
+    object_ = int(scene_.objects.size());
+    object_loc_ = loc;
+    objects_[name] = object_;
+    scene_.objects.push_back({name, {}});
+}
+
+void SceneBuilder::object_end(const Loc& loc) {
+    if (object_ < 0) loc.fail("ObjectEnd without matching ObjectBegin");
+    object_ = -1;
+    attribute_end(loc);
+}
+
+void SceneBuilder::object_instance(const std::string& name, const Loc& loc) {
+    require_world(true, "ObjectInstance", loc);
+    if (object_ >= 0) loc.fail("ObjectInstance inside an object definition is not allowed");
+    const auto it = objects_.find(name);
+    if (it == objects_.end()) loc.fail("ObjectInstance: unknown object '" + name + "'");
+    scene_.instances.push_back({it->second, gs_.ctm});
+}
+
+void SceneBuilder::ignored_directive(const std::string& name, const Loc& loc) {
+    warn(loc, name + " is not supported (ignored)");
+}
+
+void SceneBuilder::end_of_files(const Loc& loc) {
+    if (object_ >= 0) object_loc_.fail("ObjectBegin without ObjectEnd");
+    if (!stack_.empty())
+        warn(stack_.back().loc, "AttributeBegin without AttributeEnd at the end of the input");
+    if (!world_) warn(loc, "no WorldBegin in the scene");
+    if (!camera_) return;  // the renderer frames the scene itself
+    const CameraSpec& c = *camera_;
+    scene::Camera cam;
+    cam.eye = c.camera_to_world.point({0, 0, 0});
+    cam.forward = normalize(c.camera_to_world.vector({0, 0, 1}));
+    cam.up = normalize(c.camera_to_world.vector({0, 1, 0}));
+    // pbrt's image x axis is camera +x; phos's is cross(forward, up).
+    const Vec3 pbrt_right = c.camera_to_world.vector({1, 0, 0});
+    cam.flip_x = dot(pbrt_right, cross(cam.forward, cam.up)) < 0;
+    cam.lens_radius = c.lens_radius;
+    cam.focal_distance = c.focal_distance;
+    // pbrt's default screen window spans [-1, 1] along the shorter image axis.
+    const int w = scene_.settings.width.value_or(1280), h = scene_.settings.height.value_or(720);
+    float half_short = 1.0f;
+    if (c.screen_window) {
+        const std::vector<float>& sw = *c.screen_window;
+        if (sw[0] != -sw[1] || sw[2] != -sw[3])
+            warn(c.loc, "Camera: off-centre \"screenwindow\" is not supported; it is centred");
+        half_short = w >= h ? 0.5f * (sw[3] - sw[2]) : 0.5f * (sw[1] - sw[0]);
+    }
+    if (c.type == "orthographic") {
+        cam.projection = scene::Camera::Projection::Orthographic;
+        cam.ortho_half_size = half_short;
+    } else {
+        const float t = std::tan(0.5f * c.fov_deg * kPi / 180.0f) * half_short;
+        cam.fov = 2.0f * std::atan(t);
+    }
+    scene_.camera = cam;
+    scene_.camera_medium = c.medium;
+}
+
+}  // namespace phos::io::pbrt

@@ -1,0 +1,138 @@
+// The ParserTarget that turns pbrt directives into a scene::Scene: graphics state and its stack,
+// transforms and named coordinate systems, named materials/textures/media, object instancing.
+// Implemented in builder.cpp (state, camera, options), builder_shapes.cpp, builder_materials.cpp
+// (materials and textures) and builder_lights.cpp (lights and media).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/transform.h"
+#include "io/pbrt/parser.h"
+#include "io/pbrt/pbrt_loader.h"
+#include "io/pbrt/spectra.h"
+#include "scene/scene.h"
+
+namespace phos::io::pbrt {
+
+class SceneBuilder : public ParserTarget {
+public:
+    SceneBuilder(const PbrtOptions& options, const std::string& main_file);
+
+    // The finished scene (call after parse_file).
+    scene::Scene take_scene() { return std::move(scene_); }
+
+    void identity(const Loc& loc) override;
+    void translate(Vec3 d, const Loc& loc) override;
+    void scale(Vec3 s, const Loc& loc) override;
+    void rotate(float degrees, Vec3 axis, const Loc& loc) override;
+    void look_at(Vec3 eye, Vec3 target, Vec3 up, const Loc& loc) override;
+    void transform(const float m[16], const Loc& loc) override;
+    void concat_transform(const float m[16], const Loc& loc) override;
+    void coordinate_system(const std::string& name, const Loc& loc) override;
+    void coord_sys_transform(const std::string& name, const Loc& loc) override;
+    void reverse_orientation(const Loc& loc) override;
+
+    void camera(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void film(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void pixel_filter(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void sampler(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void integrator(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void accelerator(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void color_space(const std::string& name, const Loc& loc) override;
+    void option(const Param& param, const Loc& loc) override;
+    void make_named_medium(const std::string& name, const ParamList& params, const Loc& loc) override;
+    void medium_interface(const std::string& inside, const std::string& outside, const Loc& loc) override;
+
+    void world_begin(const Loc& loc) override;
+    void attribute_begin(const Loc& loc) override;
+    void attribute_end(const Loc& loc) override;
+    void transform_begin(const Loc& loc) override;
+    void transform_end(const Loc& loc) override;
+    void attribute(const std::string& target, const ParamList& params, const Loc& loc) override;
+    void texture(const std::string& name, const std::string& type, const std::string& tex_class,
+                 const ParamList& params, const Loc& loc) override;
+    void material(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void make_named_material(const std::string& name, const ParamList& params, const Loc& loc) override;
+    void named_material(const std::string& name, const Loc& loc) override;
+    void light_source(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void area_light_source(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void shape(const std::string& type, const ParamList& params, const Loc& loc) override;
+    void object_begin(const std::string& name, const Loc& loc) override;
+    void object_end(const Loc& loc) override;
+    void object_instance(const std::string& name, const Loc& loc) override;
+    void ignored_directive(const std::string& name, const Loc& loc) override;
+    void end_of_files(const Loc& loc) override;
+
+private:
+    struct AreaLight {
+        Rgb L{1.0f};
+        bool two_sided = false;
+        float power = -1;  // > 0: rescale L so the shape emits this flux
+        Loc loc;
+    };
+    struct GraphicsState {
+        Transform ctm;
+        bool reverse_orientation = false;
+        int material = -1;  // index into scene_.materials; -1: pbrt's default (diffuse 0.5)
+        std::optional<AreaLight> area_light;
+        int inside = -1, outside = -1;  // media
+    };
+    struct StackEntry {
+        GraphicsState state;
+        Loc loc;
+        bool transform_only = false;  // TransformBegin saves only the transform
+    };
+    struct CameraSpec {
+        std::string type;
+        Transform camera_to_world;
+        float fov_deg = 90, lens_radius = 0, focal_distance = 1e6f;
+        std::optional<std::vector<float>> screen_window;
+        int medium = -1;
+        Loc loc;
+    };
+
+    // Helpers shared by the builder files.
+    void warn(const Loc& loc, const std::string& message) const;
+    void warn_once(const std::string& key, const Loc& loc, const std::string& message) const;
+    void done(const ParamList& params, const std::string& directive) const {
+        params.report_unused(directive, options_.strict);
+    }
+    void require_world(bool world, const std::string& directive, const Loc& loc) const;
+    std::string resolve(const std::string& filename, const Loc& loc) const;
+    int current_material();
+    void set_ctm(const Transform& t, const Loc& loc);
+
+    // Colours: an "rgb", "spectrum" or "blackbody" (or "float", as grey) parameter, or nullopt.
+    std::optional<Rgb> color(const ParamList& params, const std::string& name, SpectrumUse use) const;
+    // A colour that may instead name a texture ("texture reflectance" "wood"); sets *tex (or -1).
+    Rgb color_or_texture(const ParamList& params, const std::string& name, Rgb def, int* tex, SpectrumUse use,
+                         const std::string& directive);
+    // A float that pbrt allows to be a texture; a texture is warned about and `def` used.
+    float float_param(const ParamList& params, const std::string& name, float def,
+                      const std::string& directive);
+    int constant_texture(Rgb value);
+
+    scene::Material make_material(const std::string& type, const ParamList& params, const Loc& loc,
+                                  const std::string& directive);
+    void add_shape(scene::Shape shape, float area, const Loc& loc);
+
+    PbrtOptions options_;
+    std::string main_dir_;
+    scene::Scene scene_;
+    GraphicsState gs_;
+    std::vector<StackEntry> stack_;
+    std::map<std::string, Transform> coord_systems_;
+    std::map<std::string, int> named_materials_, float_textures_, spectrum_textures_, media_, objects_;
+    std::optional<CameraSpec> camera_;
+    bool world_ = false;
+    Loc world_loc_;
+    int object_ = -1;  // index into scene_.objects while between ObjectBegin and ObjectEnd
+    Loc object_loc_;
+    int default_material_ = -1;
+    bool media_warned_ = false;
+};
+
+}  // namespace phos::io::pbrt

@@ -1,0 +1,237 @@
+// SceneBuilder: LightSource, AreaLightSource, MakeNamedMedium and MediumInterface. Emission follows
+// pbrt-v4's conventions: RGB values are radiance/intensity as given, other spectra are normalised to
+// luminance 1, then `scale` and any `power`/`illuminance` normalisation apply.
+#include <cmath>
+#include <map>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "io/image/image_io.h"
+#include "io/pbrt/builder.h"
+
+namespace phos::io::pbrt {
+namespace {
+
+struct Preset {
+    Rgb sigma_prime_s, sigma_a;
+};
+// Jensen et al. 2001 measured media (reduced scattering and absorption, 1/mm), as pbrt names them.
+const std::map<std::string, Preset>& presets() {
+    static const std::map<std::string, Preset> p = {
+        {"Apple", {{2.29f, 2.39f, 1.97f}, {0.0030f, 0.0034f, 0.046f}}},
+        {"Chicken1", {{0.15f, 0.21f, 0.38f}, {0.015f, 0.077f, 0.19f}}},
+        {"Chicken2", {{0.19f, 0.25f, 0.32f}, {0.018f, 0.088f, 0.20f}}},
+        {"Cream", {{7.38f, 5.47f, 3.15f}, {0.0002f, 0.0028f, 0.0163f}}},
+        {"Ketchup", {{0.18f, 0.07f, 0.03f}, {0.061f, 0.97f, 1.45f}}},
+        {"Marble", {{2.19f, 2.62f, 3.00f}, {0.0021f, 0.0041f, 0.0071f}}},
+        {"Potato", {{0.68f, 0.70f, 0.55f}, {0.0024f, 0.0090f, 0.12f}}},
+        {"Skimmilk", {{0.70f, 1.22f, 1.90f}, {0.0014f, 0.0025f, 0.0142f}}},
+        {"Skin1", {{0.74f, 0.88f, 1.01f}, {0.032f, 0.17f, 0.48f}}},
+        {"Skin2", {{1.09f, 1.59f, 1.79f}, {0.013f, 0.070f, 0.145f}}},
+        {"Spectralon", {{11.6f, 20.4f, 14.9f}, {0.00f, 0.00f, 0.00f}}},
+        {"Wholemilk", {{2.55f, 3.21f, 3.77f}, {0.0011f, 0.0024f, 0.014f}}},
+    };
+    return p;
+}
+
+}  // namespace
+
+void SceneBuilder::light_source(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(true, "LightSource", loc);
+    const std::string d = "LightSource \"" + type + "\"";
+    if (object_ >= 0) {
+        warn(loc, d + ": lights inside ObjectBegin/ObjectEnd are not supported (skipped)");
+        params.mark_all_used();
+        return;
+    }
+    const Transform& t = gs_.ctm;
+    scene::Light light;
+    light.to_world = t;
+    const float scale = params.get_float("scale", 1.0f);
+    auto emitted = [&](const char* name) {
+        return color(params, name, SpectrumUse::Illuminant).value_or(Rgb(1.0f)) * scale;
+    };
+    auto positive = [&](const char* name) {
+        const float v = params.get_float(name, -1.0f);
+        if (params.has(name) && !(v > 0))
+            params.find(name)->loc.fail(d + ": \"" + std::string(name) + "\" must be positive");
+        return v;
+    };
+
+    if (type == "point") {
+        light.kind = scene::Light::Kind::Point;
+        light.color = emitted("I");
+        const float power = positive("power");
+        if (power > 0) light.color = light.color * (power / (4 * kPi));
+        light.position = t.point(params.get_point3("from", {0, 0, 0}));
+    } else if (type == "spot") {
+        light.kind = scene::Light::Kind::Spot;
+        light.color = emitted("I");
+        const Vec3 from = params.get_point3("from", {0, 0, 0}), to = params.get_point3("to", {0, 0, 1});
+        if (!(length(to - from) > 0)) loc.fail(d + ": \"from\" and \"to\" coincide");
+        const float cone = params.get_float("coneangle", 30.0f), delta = params.get_float("conedelta", 5.0f);
+        if (!(cone > 0 && cone <= 180)) loc.fail(d + ": coneangle must be in (0, 180]");
+        light.position = t.point(from);
+        light.direction = normalize(t.vector(to - from));
+        light.cutoff = cone * kPi / 180.0f;
+        light.falloff_start = std::clamp(cone - delta, 0.0f, cone) * kPi / 180.0f;
+        light.dropoff = 0;
+        const float power = positive("power");
+        if (power > 0) {
+            const float c0 = std::cos(light.falloff_start), c1 = std::cos(light.cutoff);
+            light.color = light.color * (power / (2 * kPi * ((1 - c0) + 0.5f * (c0 - c1))));
+        }
+    } else if (type == "distant") {
+        light.kind = scene::Light::Kind::Directional;
+        light.color = emitted("L");
+        const Vec3 from = params.get_point3("from", {0, 0, 0}), to = params.get_point3("to", {0, 0, 1});
+        if (!(length(to - from) > 0)) loc.fail(d + ": \"from\" and \"to\" coincide");
+        light.direction = normalize(t.vector(to - from));
+        const float e = positive("illuminance");
+        if (e > 0) light.color = light.color * e;
+    } else if (type == "infinite") {
+        light.kind = scene::Light::Kind::Infinite;
+        const Param* fp = params.find("filename");
+        if (fp && params.has("L")) loc.fail(d + ": give either \"L\" or \"filename\", not both");
+        if (const Param* pp = params.find("portal"))
+            warn(pp->loc, d + ": \"portal\" is not supported (ignored)");
+        const float e = positive("illuminance");
+        if (!fp) {
+            light.color = emitted("L");
+            // A uniform environment of radiance L gives illuminance pi * L on an upward surface.
+            if (e > 0) light.color = light.color * (e / kPi);
+        } else {
+            const std::string path = resolve(params.get_string("filename", ""), fp->loc);
+            Image img;
+            try {
+                img = read_image(path, false);
+            } catch (const std::exception& ex) {
+                fp->loc.fail(d + ": " + std::string(ex.what()));
+            }
+            if (e > 0) warn(loc, d + ": \"illuminance\" with an image is not supported (ignored)");
+            if (img.width == img.height) {
+                // pbrt-v4's own environment maps are square equal-area octahedral maps, which phos
+                // cannot look up; keep their mean radiance so the lighting level is right.
+                Rgb sum(0.0f);
+                for (const Rgb& c : img.pixels) sum += c;
+                light.color = sum / float(img.pixels.size()) * scale;
+                warn(fp->loc, d + ": equal-area (square) environment maps are not supported; a constant "
+                                  "environment of the map's mean radiance is used");
+            } else {
+                auto ti = std::make_shared<scene::TextureImage>();
+                ti->width = img.width;
+                ti->height = img.height;
+                ti->texels = std::move(img.pixels);
+                scene::Texture tex;
+                tex.kind = scene::Texture::Kind::Image;
+                tex.image = std::move(ti);
+                tex.filename = path;
+                scene_.textures.push_back(std::move(tex));
+                light.texture = int(scene_.textures.size()) - 1;
+                light.color = Rgb(scale);
+                warn(fp->loc, d + ": a non-square map is read as a latitude-longitude map (pbrt-v4 expects "
+                                  "equal-area square maps)");
+            }
+        }
+    } else {
+        warn(loc, d + " is not supported (the light is skipped)");
+        params.mark_all_used();
+        return;
+    }
+    if (!light.color.is_finite()) loc.fail(d + ": emission is not finite");
+    done(params, d);
+    scene_.lights.push_back(light);
+}
+
+void SceneBuilder::area_light_source(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(true, "AreaLightSource", loc);
+    const std::string d = "AreaLightSource \"" + type + "\"";
+    if (type != "diffuse") {
+        warn(loc, d + " is not supported (the shapes that follow do not emit)");
+        params.mark_all_used();
+        gs_.area_light.reset();
+        return;
+    }
+    AreaLight al;
+    al.loc = loc;
+    const float scale = params.get_float("scale", 1.0f);
+    al.L = color(params, "L", SpectrumUse::Illuminant).value_or(Rgb(1.0f)) * scale;
+    al.two_sided = params.get_bool("twosided", false);
+    al.power = params.get_float("power", -1.0f);
+    if (params.has("power") && !(al.power > 0))
+        params.find("power")->loc.fail(d + ": \"power\" must be positive");
+    if (const Param* fp = params.find("filename"))
+        warn(fp->loc, d + ": image emission (\"filename\") is not supported; \"L\" is used");
+    if (!al.L.is_finite()) loc.fail(d + ": emission is not finite");
+    done(params, d);
+    gs_.area_light = al;
+}
+
+void SceneBuilder::make_named_medium(const std::string& name, const ParamList& params, const Loc& loc) {
+    if (media_.count(name)) loc.fail("medium \"" + name + "\" defined twice");
+    if (!params.has("type")) loc.fail("MakeNamedMedium \"" + name + "\": missing \"string type\"");
+    const std::string type = params.get_string("type", "");
+    const std::string d = "MakeNamedMedium \"" + name + "\" (" + type + ")";
+    if (!media_warned_) {
+        media_warned_ = true;
+        log::warn(loc.str() + ": note: participating media are loaded but not rendered yet");
+    }
+    if (type != "homogeneous" && type != "uniformgrid") {
+        warn(loc, d + ": medium type \"" + type + "\" is not supported; the medium is treated as vacuum");
+        params.mark_all_used();
+        media_[name] = -1;
+        return;
+    }
+    scene::Medium m;
+    m.name = name;
+    m.to_world = gs_.ctm;
+    m.sigma_a = Rgb(0.0011f, 0.0024f, 0.014f);  // pbrt's defaults (whole milk)
+    m.sigma_s = Rgb(2.55f, 3.21f, 3.77f);
+    const std::string preset = params.get_string("preset", "");
+    if (!preset.empty()) {
+        const auto it = presets().find(preset);
+        if (it == presets().end())
+            params.find("preset")->loc.fail(d + ": unknown medium preset \"" + preset + "\"");
+        m.sigma_a = it->second.sigma_a;
+        m.sigma_s = it->second.sigma_prime_s;
+    }
+    if (auto a = color(params, "sigma_a", SpectrumUse::Unbounded)) m.sigma_a = *a;
+    if (auto s = color(params, "sigma_s", SpectrumUse::Unbounded)) m.sigma_s = *s;
+    m.scale = params.get_float("scale", 1.0f);
+    m.g = params.get_float("g", 0.0f);
+    if (!(m.g > -1 && m.g < 1)) params.find("g")->loc.fail(d + ": g must be in (-1, 1)");
+    if (m.sigma_a.r < 0 || m.sigma_a.g < 0 || m.sigma_a.b < 0 || m.sigma_s.r < 0 || m.sigma_s.g < 0 ||
+        m.sigma_s.b < 0 || m.scale < 0)
+        loc.fail(d + ": coefficients must not be negative");
+    if (auto le = color(params, "Le", SpectrumUse::Illuminant))
+        m.emission = *le * params.get_float("Lescale", 1.0f);
+    if (type == "uniformgrid") {
+        m.kind = scene::Medium::Kind::UniformGrid;
+        m.nx = params.get_int("nx", 1), m.ny = params.get_int("ny", 1), m.nz = params.get_int("nz", 1);
+        if (m.nx <= 0 || m.ny <= 0 || m.nz <= 0) loc.fail(d + ": nx, ny and nz must be positive");
+        m.density = params.get_floats("density");
+        if (m.density.size() != size_t(m.nx) * size_t(m.ny) * size_t(m.nz))
+            loc.fail(d + ": \"density\" has " + std::to_string(m.density.size()) +
+                     " values, nx*ny*nz = " + std::to_string(size_t(m.nx) * size_t(m.ny) * size_t(m.nz)));
+        m.p0 = params.get_point3("p0", {0, 0, 0});
+        m.p1 = params.get_point3("p1", {1, 1, 1});
+        if (const Param* tp = params.find("temperature"))
+            warn(tp->loc, d + ": \"temperature\" grids are not supported");
+    }
+    done(params, d);
+    media_[name] = int(scene_.media.size());
+    scene_.media.push_back(std::move(m));
+}
+
+void SceneBuilder::medium_interface(const std::string& inside, const std::string& outside, const Loc& loc) {
+    auto lookup = [&](const std::string& n) {
+        if (n.empty()) return -1;
+        const auto it = media_.find(n);
+        if (it == media_.end()) loc.fail("MediumInterface: unknown medium \"" + n + "\"");
+        return it->second;
+    };
+    gs_.inside = lookup(inside);
+    gs_.outside = lookup(outside);
+}
+
+}  // namespace phos::io::pbrt

@@ -1,0 +1,204 @@
+// SceneBuilder: the Shape directive. Meshes (trianglemesh, bilinearmesh, plymesh) are baked into
+// world space with pbrt's orientation rules resolved into the triangle winding; spheres, disks and
+// cylinders keep the current transform as to_world. Area lights attach here.
+#include <cmath>
+#include <filesystem>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "io/mesh/mesh_io.h"
+#include "io/pbrt/builder.h"
+
+namespace phos::io::pbrt {
+namespace {
+
+// Moves an object-space mesh into the space of `t` and orders each triangle counter-clockwise
+// around pbrt's surface normal: the interpolated shading normal N when given (pbrt makes the
+// geometric normal follow it), otherwise the winding normal flipped by ReverseOrientation XOR a
+// handedness-swapping transform. N itself is flipped by ReverseOrientation, as pbrt does.
+float bake_mesh(scene::TriangleMesh& mesh, const Transform& t, bool reverse) {
+    for (Vec3& p : mesh.positions) p = t.point(p);
+    for (Vec3& n : mesh.normals) {
+        n = t.normal(n);
+        const float len = length(n);
+        if (len > 0) n = n / len;
+        if (reverse) n = -n;
+    }
+    const bool flip = reverse != t.swaps_handedness();
+    float area = 0;
+    for (size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+        uint32_t* tri = &mesh.indices[i];
+        const Vec3 p0 = mesh.positions[tri[0]], p1 = mesh.positions[tri[1]], p2 = mesh.positions[tri[2]];
+        const Vec3 ng = cross(p1 - p0, p2 - p0);
+        area += 0.5f * length(ng);
+        bool swap = flip;
+        if (!mesh.normals.empty()) {
+            const Vec3 ns = mesh.normals[tri[0]] + mesh.normals[tri[1]] + mesh.normals[tri[2]];
+            swap = dot(ng, ns) < 0;
+        }
+        if (swap) std::swap(tri[1], tri[2]);
+    }
+    return area;
+}
+
+// Linear scale factor of a transform (cube root of |det|), for areas of transformed quadrics.
+float linear_scale(const Transform& t) {
+    const Vec3 x = t.vector({1, 0, 0}), y = t.vector({0, 1, 0}), z = t.vector({0, 0, 1});
+    return std::cbrt(std::fabs(dot(x, cross(y, z))));
+}
+
+}  // namespace
+
+void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
+    if (object_ >= 0) {
+        if (gs_.area_light)
+            warn_once("instanced area light", loc,
+                      "area lights inside ObjectBegin/ObjectEnd are not supported (the "
+                      "shapes are kept, without emission)");
+        scene_.objects[size_t(object_)].shapes.push_back(std::move(shape));
+        return;
+    }
+    if (!gs_.area_light) {
+        scene_.shapes.push_back(std::move(shape));
+        return;
+    }
+    const AreaLight& al = *gs_.area_light;
+    Rgb L = al.L;
+    if (al.power > 0) {
+        // pbrt-v4: scale so that the emitted flux pi * area * L (twice if two-sided) equals `power`.
+        const float k = kPi * area * (al.two_sided ? 2.0f : 1.0f);
+        if (!(k > 0)) loc.fail("area light with \"power\" on a shape of zero area");
+        L = L * (al.power / k);
+    }
+    scene_.add_area_light(std::move(shape), L, al.two_sided);
+}
+
+void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {
+    require_world(true, "Shape", loc);
+    const std::string d = "Shape \"" + type + "\"";
+    scene::Shape s;
+    s.material = current_material();
+    s.media = {gs_.inside, gs_.outside};
+    s.origin = loc.filename() + ":" + std::to_string(loc.line);
+    if (const Param* a = params.find("alpha"))
+        warn(a->loc, d + ": \"alpha\" (cut-outs) is not supported; the shape is opaque");
+    for (const char* p : {"emission", "displacement", "edgelength"})
+        if (const Param* q = params.find(p))
+            warn(q->loc, d + ": \"" + std::string(p) + "\" is not supported (ignored)");
+
+    auto mesh_from_params = [&](bool bilinear) {
+        const Param* pp = params.find("P");
+        if (!pp) loc.fail(d + ": missing \"point3 P\"");
+        scene::TriangleMesh m;
+        m.positions = params.get_point3s("P");
+        const size_t n = m.positions.size();
+        const size_t per = bilinear ? 4 : 3;
+        std::vector<int> idx = params.get_ints("indices");
+        if (!params.has("indices")) {
+            if (n != per)
+                loc.fail(d + ": \"integer indices\" is required unless there are exactly " +
+                         std::to_string(per) + " vertices");
+            for (size_t i = 0; i < per; ++i) idx.push_back(int(i));
+        }
+        if (idx.empty() || idx.size() % per != 0)
+            loc.fail(d + ": the number of indices (" + std::to_string(idx.size()) +
+                     ") is not a positive multiple of " + std::to_string(per));
+        for (int i : idx)
+            if (i < 0 || size_t(i) >= n)
+                loc.fail(d + ": vertex index " + std::to_string(i) + " out of range (" + std::to_string(n) +
+                         " vertices in P)");
+        m.normals = params.get_point3s("N");
+        if (!m.normals.empty() && m.normals.size() != n)
+            loc.fail(d + ": \"N\" has " + std::to_string(m.normals.size()) + " normals for " +
+                     std::to_string(n) + " vertices");
+        m.uvs = params.get_point2s("uv");
+        if (m.uvs.empty()) m.uvs = params.get_point2s("st");
+        if (!m.uvs.empty() && m.uvs.size() != n)
+            loc.fail(d + ": \"uv\" has " + std::to_string(m.uvs.size()) + " entries for " +
+                     std::to_string(n) + " vertices");
+        for (const Vec3& p : m.positions)
+            if (!is_finite(p)) pp->loc.fail(d + ": non-finite vertex position");
+        if (const Param* q = params.find("S"))
+            warn(q->loc, d + ": tangents \"S\" are not supported (ignored)");
+        if (const Param* q = params.find("faceIndices")) q->used = true;  // only pbrt's ptex uses it
+        if (!bilinear) {
+            m.indices.assign(idx.begin(), idx.end());
+        } else {
+            // pbrt's patch vertex order is p00 p10 p01 p11: triangles (p00 p10 p11) and (p00 p11 p01)
+            // keep the orientation of dp/du x dp/dv.
+            for (size_t i = 0; i < idx.size(); i += 4) {
+                const uint32_t a = uint32_t(idx[i]), b = uint32_t(idx[i + 1]), c = uint32_t(idx[i + 2]),
+                               e = uint32_t(idx[i + 3]);
+                m.indices.insert(m.indices.end(), {a, b, e, a, e, c});
+            }
+        }
+        return m;
+    };
+
+    float area = 0;
+    const Transform& t = gs_.ctm;
+    const float ls = linear_scale(t);
+    if (type == "trianglemesh" || type == "bilinearmesh" || type == "plymesh") {
+        s.kind = scene::Shape::Kind::Mesh;
+        if (type == "plymesh") {
+            const Param* fp = params.find("filename");
+            if (!fp) loc.fail(d + ": missing \"string filename\"");
+            const std::string path = resolve(params.get_string("filename", ""), fp->loc);
+            if (!std::filesystem::exists(path)) fp->loc.fail(d + ": cannot open '" + path + "'");
+            s.mesh = read_ply(path);
+        } else {
+            s.mesh = mesh_from_params(type == "bilinearmesh");
+        }
+        area = bake_mesh(s.mesh, t, gs_.reverse_orientation);
+        s.to_world = Transform();  // baked
+    } else if (type == "sphere") {
+        s.kind = scene::Shape::Kind::Sphere;
+        s.radius = params.get_float("radius", 1.0f);
+        if (!(s.radius > 0)) params.find("radius")->loc.fail(d + ": radius must be positive");
+        const float zmin = params.get_float("zmin", -s.radius), zmax = params.get_float("zmax", s.radius);
+        const float phimax = params.get_float("phimax", 360.0f);
+        if (zmin > -s.radius || zmax < s.radius || phimax < 360.0f)
+            warn(loc, d + ": partial spheres (zmin/zmax/phimax) are unsupported; the full sphere is used");
+        s.center = Vec3(0.0f);
+        s.to_world = t;
+        s.reverse_orientation = gs_.reverse_orientation;
+        area = 4 * kPi * s.radius * s.radius * ls * ls;
+    } else if (type == "disk") {
+        s.kind = scene::Shape::Kind::Disk;
+        s.radius = params.get_float("radius", 1.0f);
+        s.inner_radius = params.get_float("innerradius", 0.0f);
+        if (!(s.radius > 0)) params.find("radius")->loc.fail(d + ": radius must be positive");
+        if (s.inner_radius < 0 || s.inner_radius >= s.radius)
+            params.find("innerradius")->loc.fail(d + ": innerradius must be in [0, radius)");
+        if (params.get_float("phimax", 360.0f) < 360.0f)
+            warn(loc, d + ": partial disks (phimax) are unsupported; the full disk is used");
+        s.center = {0, 0, params.get_float("height", 0.0f)};
+        s.normal = {0, 0, 1};
+        s.to_world = t;
+        s.reverse_orientation = gs_.reverse_orientation;
+        area = kPi * (s.radius * s.radius - s.inner_radius * s.inner_radius) * ls * ls;
+    } else if (type == "cylinder") {
+        s.kind = scene::Shape::Kind::Cylinder;
+        s.radius = params.get_float("radius", 1.0f);
+        const float zmin = params.get_float("zmin", -1.0f), zmax = params.get_float("zmax", 1.0f);
+        if (!(s.radius > 0)) params.find("radius")->loc.fail(d + ": radius must be positive");
+        if (!(zmax != zmin)) loc.fail(d + ": zmin and zmax must differ");
+        if (params.get_float("phimax", 360.0f) < 360.0f)
+            warn(loc, d + ": partial cylinders (phimax) are unsupported; the full cylinder is used");
+        s.center = {0, 0, 0.5f * (zmin + zmax)};
+        s.axis = {0, 0, 1};
+        s.height = std::fabs(zmax - zmin);
+        s.capped = false;
+        s.to_world = t;
+        s.reverse_orientation = gs_.reverse_orientation;
+        area = 2 * kPi * s.radius * s.height * ls * ls;
+    } else {
+        warn(loc, d + " is not supported (the shape is skipped)");
+        params.mark_all_used();
+        return;
+    }
+    done(params, d);
+    add_shape(std::move(s), area, loc);
+}
+
+}  // namespace phos::io::pbrt

@@ -1,0 +1,132 @@
+// Spectrum to RGB conversion for the pbrt loader. phos renders in RGB, so spectra are integrated
+// once against the CIE matching functions at load time.
+#include "io/pbrt/spectra.h"
+
+#include <cmath>
+#include <map>
+
+namespace phos::io::pbrt {
+namespace {
+
+float lobe(float x, float mu, float s1, float s2) {
+    const float t = (x - mu) / (x < mu ? s1 : s2);
+    return std::exp(-0.5f * t * t);
+}
+
+// Integrates f(lambda) * CMF over 360..830 nm in 1 nm steps.
+template <class F>
+Vec3 integrate_xyz(F f) {
+    Vec3 xyz{0.0f};
+    for (int l = 360; l <= 830; ++l) xyz += cie_xyz(float(l)) * f(float(l));
+    return xyz;
+}
+
+Rgb normalise(Vec3 xyz, SpectrumUse use) {
+    if (use == SpectrumUse::Illuminant) {
+        if (!(xyz.y > 0)) return Rgb(0.0f);
+        return xyz_to_linear_srgb(xyz / xyz.y);
+    }
+    // Reflectance-like: divide by the response to a flat spectrum of 1, so grey stays grey
+    // (a von Kries-style white balance from the equal-energy white to RGB white).
+    static const Rgb white = xyz_to_linear_srgb(integrate_xyz([](float) { return 1.0f; }));
+    return xyz_to_linear_srgb(xyz) / white;
+}
+
+// Complex indices of refraction of pbrt-v4's named metals reduced to linear-sRGB triples (the usual
+// values from measured data at the red, green and blue primaries; approximate by nature).
+struct Metal {
+    Rgb eta, k;
+};
+const std::map<std::string, Metal>& metals() {
+    static const std::map<std::string, Metal> m = {
+        {"Cu", {{0.2004f, 0.9240f, 1.1022f}, {3.9129f, 2.4528f, 2.1421f}}},
+        {"Au", {{0.1431f, 0.3749f, 1.4424f}, {3.9831f, 2.3857f, 1.6032f}}},
+        {"Ag", {{0.1552f, 0.1167f, 0.1383f}, {4.8283f, 3.1222f, 2.1469f}}},
+        {"Al", {{1.6574f, 0.8803f, 0.5212f}, {9.2238f, 6.2695f, 4.8370f}}},
+        {"CuZn", {{0.444f, 0.527f, 1.094f}, {3.695f, 2.765f, 1.829f}}},
+        {"MgO", {{1.732f, 1.738f, 1.752f}, {0.0f, 0.0f, 0.0f}}},
+        {"TiO2", {{2.554f, 2.651f, 2.872f}, {0.0f, 0.0f, 0.0f}}},
+    };
+    return m;
+}
+
+// Refractive indices of pbrt-v4's named glasses at the d line (587.6 nm).
+const std::map<std::string, float>& glasses() {
+    static const std::map<std::string, float> g = {
+        {"glass-BK7", 1.5168f},  {"glass-BAF10", 1.6700f}, {"glass-FK51A", 1.4866f}, {"glass-LASF9", 1.8503f},
+        {"glass-F5", 1.6034f},   {"glass-F10", 1.7283f},   {"glass-F11", 1.7847f},   {"glass-SF5", 1.6727f},
+        {"glass-SF10", 1.7283f}, {"glass-SF11", 1.7847f},
+    };
+    return g;
+}
+
+}  // namespace
+
+Vec3 cie_xyz(float l) {
+    // Wyman, Sloan and Shirley (2013), "Simple analytic approximations to the CIE XYZ colour
+    // matching functions", multi-lobe fit.
+    const float x = 1.056f * lobe(l, 599.8f, 37.9f, 31.0f) + 0.362f * lobe(l, 442.0f, 16.0f, 26.7f) -
+                    0.065f * lobe(l, 501.1f, 20.4f, 26.2f);
+    const float y = 0.821f * lobe(l, 568.8f, 46.9f, 40.5f) + 0.286f * lobe(l, 530.9f, 16.3f, 31.1f);
+    const float z = 1.217f * lobe(l, 437.0f, 11.8f, 36.0f) + 0.681f * lobe(l, 459.0f, 26.0f, 13.8f);
+    return {x, y, z};
+}
+
+Rgb xyz_to_linear_srgb(Vec3 c) {
+    return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
+            -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+            0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
+}
+
+Rgb blackbody_rgb(float kelvin) {
+    if (!(kelvin > 0)) return Rgb(0.0f);
+    const double h = 6.62606957e-34, c = 299792458.0, kb = 1.3806488e-23;
+    const Vec3 xyz = integrate_xyz([&](float nm) {
+        const double l = double(nm) * 1e-9;
+        return float(2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * double(kelvin))) - 1)) *
+                     1e-12);
+    });
+    return normalise(xyz, SpectrumUse::Illuminant);
+}
+
+float sampled_spectrum_at(const std::vector<float>& lambda, const std::vector<float>& value, float nm) {
+    if (lambda.empty()) return 0.0f;
+    if (nm <= lambda.front()) return value.front();
+    if (nm >= lambda.back()) return value.back();
+    size_t i = 1;
+    while (lambda[i] < nm) ++i;
+    const float t = (nm - lambda[i - 1]) / (lambda[i] - lambda[i - 1]);
+    return value[i - 1] + t * (value[i] - value[i - 1]);
+}
+
+Rgb sampled_spectrum_rgb(const std::vector<float>& lambda, const std::vector<float>& value, SpectrumUse use) {
+    return normalise(integrate_xyz([&](float nm) { return sampled_spectrum_at(lambda, value, nm); }), use);
+}
+
+std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use) {
+    if (name.rfind("metal-", 0) == 0) {
+        const size_t dash = name.rfind('-');
+        const std::string metal = name.substr(6, dash - 6), part = name.substr(dash + 1);
+        const auto it = metals().find(metal);
+        if (it == metals().end() || (part != "eta" && part != "k")) return std::nullopt;
+        return part == "eta" ? it->second.eta : it->second.k;
+    }
+    if (const auto g = glasses().find(name); g != glasses().end()) return Rgb(g->second);
+    // Standard illuminants: luminance 1 with their colour (D65 is the sRGB white). The same colour
+    // serves for any use, since pbrt normalises emission spectra to 1 nit anyway.
+    (void)use;
+    if (name == "stdillum-D65") return Rgb(1.0f);
+    if (name == "stdillum-A") return blackbody_rgb(2856.0f);
+    if (name == "stdillum-D50") return blackbody_rgb(5003.0f);  // D50 is close to a 5003 K Planckian
+    if (name == "illum-acesD60") return blackbody_rgb(6000.0f);
+    if (name.rfind("stdillum-F", 0) == 0) return Rgb(1.0f);  // fluorescent lamps: white approximation
+    return std::nullopt;
+}
+
+std::optional<float> named_spectrum_value(const std::string& name) {
+    if (const auto g = glasses().find(name); g != glasses().end()) return g->second;
+    if (const auto c = named_spectrum_rgb(name, SpectrumUse::Unbounded)) return c->g;
+    return std::nullopt;
+}
+
+}  // namespace phos::io::pbrt
