@@ -299,9 +299,21 @@ void analytic_bounds(const Analytic& a, D3& lo, D3& hi) {
     hi = hi + D3(pad, pad, pad);
 }
 
-AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit) {
+AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit, double inset) {
     using Kind = scene::Shape::Kind;
     D3 p = hit.p, n;
+    const double k = a.kind == Kind::Cone ? a.radius / a.height : 0.0, h2 = 0.5 * a.height;
+    if (a.capped && (a.kind == Kind::Cylinder || a.kind == Kind::Cone)) {
+        // Keep points off the rim between cap and side (see the header).
+        const double r0 = std::sqrt(p.x * p.x + p.y * p.y);
+        if (hit.part != kSide) {
+            const double rmax = a.radius - inset * (1 + 2 * k);
+            if (r0 > rmax && rmax > 0.5 * a.radius) p.x *= rmax / r0, p.y *= rmax / r0;
+        } else {
+            const double lo = -h2 + inset * (1 + 2 * k), hi = k > 0 ? h2 - 3 * inset / k : h2 - inset;
+            if (lo < hi) p.z = std::clamp(p.z, lo, hi);
+        }
+    }
     double phi = std::atan2(p.y, p.x);
     if (phi < 0) phi += kTwoPi;
     const double rho = std::sqrt(p.x * p.x + p.y * p.y);
@@ -333,8 +345,10 @@ AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit) {
                 uv = {u, float(std::clamp(p.z / a.height + 0.5, 0.0, 1.0))};
                 break;
             case Kind::Cone: {
-                const double k = a.radius / a.height;
                 const double w = 0.5 * a.height - p.z;
+                // Re-project horizontally onto the cone (also after the rim clamp moved z).
+                const double rw = std::sqrt(p.x * p.x + p.y * p.y);
+                if (rw > 0) p.x *= k * w / rw, p.y *= k * w / rw;
                 n = normalized(D3(p.x, p.y, k * k * w));
                 if (!(dot(n, n) > 0)) n = D3(0, 0, 1);  // the apex
                 uv = {u, float(std::clamp(p.z / a.height + 0.5, 0.0, 1.0))};

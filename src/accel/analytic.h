@@ -83,10 +83,13 @@ void analytic_bounds(const Analytic& a, D3& lo, D3& hi);
 
 // Surface geometry at a canonical hit, in the geometry's space: the point (re-projected onto the
 // surface), the unit outward normal (flipped by `flip`), a unit tangent along u, and the uv.
+// On capped cylinders and cones the point is kept `inset` (canonical units, about the spawn
+// offset) away from the rim where cap and side meet: a point a rounding error beyond the rim
+// would spawn rays outside the neighbouring piece, which then escape the closed shape.
 struct AnalyticSurface {
     D3 p, n, dpdu;
     Vec2 uv;
 };
-AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit);
+AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit, double inset);
 
 }  // namespace phos::accel::detail

@@ -391,13 +391,49 @@ struct Local {
     double error = 0;
 };
 
+// The hit point moved at least `inset` away from every edge of the triangle (towards its
+// interior) when that is a small move. Near an edge shared with another
+// face, the rounding of p to float could otherwise put it on the wrong side of the neighbour's
+// plane, and a ray spawned from there would slip out through the edge (a leak at box corners).
+D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, D3 cr, double inset) {
+    const double area2 = std::sqrt(detail::dot(cr, cr));
+    double need[3];
+    const D3 opposite[3] = {p2 - p1, p0 - p2, p1 - p0};
+    double sum = 0;
+    for (int i = 0; i < 3; ++i) {
+        // Barycentric coordinate i at distance `inset` from the opposite edge: inset / altitude.
+        const double len = std::sqrt(detail::dot(opposite[i], opposite[i]));
+        need[i] = area2 > 0 ? inset * len / area2 : 1.0;
+        sum += need[i];
+    }
+    const D3 p = p0 * b0 + p1 * b1 + p2 * b2;
+    if (!(sum < 1)) return p;  // smaller than the inset: leave it
+    // Shrink the triangle about the point with barycentrics need/sum: every b_i >= need_i. Slivers
+    // would move the point far along the surface; they keep the plain point.
+    const double k = 1 - sum;
+    const D3 q = p0 * (need[0] + k * b0) + p1 * (need[1] + k * b1) + p2 * (need[2] + k * b2);
+    const D3 dq = q - p;
+    return detail::dot(dq, dq) <= 16 * inset * inset ? q : p;
+}
+
 Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
     const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
     const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
-    const double b1 = u, b2 = v, b0 = 1.0 - b1 - b2;
+    // Clamp to the triangle (Embree's robust test can report barycentrics a hair outside): p is
+    // then a convex combination of the vertices and cannot fall outside a neighbouring face's
+    // plane at an axis-aligned edge or corner, where a spawned ray would escape.
+    double b1 = std::clamp(double(u), 0.0, 1.0), b2 = std::clamp(double(v), 0.0, 1.0);
+    if (b1 + b2 > 1) {
+        const double s = b1 + b2;
+        b1 /= s, b2 /= s;
+    }
+    const double b0 = std::max(0.0, 1.0 - b1 - b2);
     Local L;
-    L.p = p0 * b0 + p1 * b1 + p2 * b2;
-    D3 n = normalized(detail::cross(p1 - p0, p2 - p0));  // counter-clockwise = front
+    const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
+    L.error = 16 * kUlp * mag;
+    const D3 cr = detail::cross(p1 - p0, p2 - p0);
+    L.p = inset_point(p0, p1, p2, b0, b1, b2, cr, L.error);
+    D3 n = normalized(cr);  // counter-clockwise = front
     if (m.flip) n = n * -1.0;
     L.ng = L.ns = n;
     if (!m.normals.empty()) {
@@ -426,19 +462,23 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
         dpdu = D3(f.s);
     }
     L.dpdu = dpdu;
-    const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
-    L.error = 16 * kUlp * mag;
     return L;
 }
 
-Local analytic_local(const Analytic& a, const CanonicalHit& h) {
-    const detail::AnalyticSurface s = detail::analytic_surface(a, h);
+// `amplify` >= 1 accounts for the larger spawn offsets of instanced hits (see intersect).
+Local analytic_local(const Analytic& a, const CanonicalHit& h, double amplify) {
+    const D3 approx = a.to_space.point(h.p);
+    const double error = 32 * kUlp * std::max(max_abs(approx), a.size);
+    // The spawn offset is at most about sqrt(3) * error * amplify; in canonical units, times the
+    // norm of the inverse map.
+    const double inset = 4 * error * amplify * a.to_canon.norm();
+    const detail::AnalyticSurface s = detail::analytic_surface(a, h, inset);
     Local L;
     L.p = s.p;
     L.ng = L.ns = s.n;
     L.dpdu = s.dpdu;
     L.uv = s.uv;
-    L.error = 32 * kUlp * std::max(max_abs(s.p), a.size);
+    L.error = error;
     return L;
 }
 
@@ -481,7 +521,7 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
         hit.primitive = int(rh.hit.primID);
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];
-        L = analytic_local(a, qc.hit);
+        L = analytic_local(a, qc.hit, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);
         shape = a.source;
         shape_index = a.shape;
         hit.primitive = 0;

@@ -15,7 +15,10 @@ struct Bounds {
     bool empty() const { return lo.x > hi.x; }
     Vec3 center() const { return (lo + hi) * 0.5f; }
     Vec3 extent() const { return hi - lo; }
-    void extend(Vec3 p) { lo = min(lo, p); hi = max(hi, p); }
+    void extend(Vec3 p) {
+        lo = min(lo, p);
+        hi = max(hi, p);
+    }
 };
 
 class EmbreeScene {

@@ -16,18 +16,18 @@ struct Ray {
 // Everything shading needs to know about the closest hit.
 struct SurfaceHit {
     float t = kInf;
-    Vec3 p;        // world-space hit point
-    Vec3 ng;       // unit geometric normal, pointing to the shape's outside (after reverse_orientation)
-    Vec3 ns;       // unit shading normal (interpolated where the mesh has normals), same side as ng
-    Vec2 uv;       // surface parameterisation (mesh uv, or the primitive's own)
-    Vec3 dpdu;     // tangent along u (unit; arbitrary but consistent if the shape has none)
-    int shape = -1;       // index into Scene::shapes, or of the instanced object's shape
-    int instance = -1;    // index into Scene::instances, or -1 for top-level shapes
-    int primitive = -1;   // triangle index within a mesh, 0 for analytic shapes
+    Vec3 p;              // world-space hit point
+    Vec3 ng;             // unit geometric normal, pointing to the shape's outside (after reverse_orientation)
+    Vec3 ns;             // unit shading normal (interpolated where the mesh has normals), same side as ng
+    Vec2 uv;             // surface parameterisation (mesh uv, or the primitive's own)
+    Vec3 dpdu;           // tangent along u (unit; arbitrary but consistent if the shape has none)
+    int shape = -1;      // index into Scene::shapes, or of the instanced object's shape
+    int instance = -1;   // index into Scene::instances, or -1 for top-level shapes
+    int primitive = -1;  // triangle index within a mesh, 0 for analytic shapes
     int material = -1;
     int area_light = -1;  // index into Scene::lights when the surface emits
     scene::MediumInterface media;
-    float error = 0.0f;   // conservative bound on the position error of p, for spawning
+    float error = 0.0f;  // conservative bound on the position error of p, for spawning
 };
 
 // Offsets `p` off the surface along the geometric normal towards the side `dir` points to, far
