@@ -1,4 +1,5 @@
-// Picks an integrator by name ("whitted", "path", ...) — the names the CLI accepts.
+// Picks an integrator by name ("whitted", "path", ...) — the names the CLI accepts — and hands it
+// its own options.
 #pragma once
 
 #include <memory>
@@ -6,11 +7,19 @@
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "integrators/photon_map_options.h"
+#include "integrators/progressive_options.h"
 
 namespace phos::integrators {
 
+// The per-integrator option structs; each integrator reads its own.
+struct IntegratorConfig {
+    PhotonMapOptions photon_map;
+    ProgressiveOptions progressive;
+};
+
 std::vector<std::string> integrator_names();
-// Throws InputError for an unknown name.
-std::unique_ptr<Integrator> make_integrator(const std::string& name);
+// Throws InputError for an unknown name or invalid options.
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config = {});
 
 }  // namespace phos::integrators

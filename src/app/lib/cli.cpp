@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "app/lib/photon_map_cli.h"
+#include "app/lib/progressive_cli.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
 #include "integrators/factory.h"
@@ -78,6 +80,10 @@ int run_cli(int argc, char** argv) {
     render->add_flag("--background-light", rc.background_light,
                      "the background radiance also lights diffuse surfaces");
     render->add_flag("--strict", rc.strict, "pbrt: unused scene parameters are errors");
+    render->add_flag("--layers", rc.layers,
+                     "also write each layer (direct, indirect, caustic, specular) as OUT.<layer>.<ext>");
+    add_photon_map_options(*render, rc.config.photon_map);
+    add_progressive_options(*render, rc.config.progressive);
     bool progress_on = false, progress_off = false;
     render->add_flag("--progress", progress_on, "always draw the progress bar");
     render->add_flag("--no-progress", progress_off, "never draw the progress bar");

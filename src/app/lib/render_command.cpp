@@ -32,6 +32,11 @@ void check_output(const std::string& out) {
 
 }  // namespace
 
+std::string layer_path(const std::string& output, const std::string& layer) {
+    const std::filesystem::path p(output);
+    return (p.parent_path() / (p.stem().string() + "." + layer + p.extension().string())).string();
+}
+
 void run_render(const RenderCommand& cmd) {
     log::set_quiet(cmd.quiet);
     std::optional<tbb::global_control> threads;
@@ -67,7 +72,7 @@ void run_render(const RenderCommand& cmd) {
     if (cmd.dof_samples) opt.dof_samples = *cmd.dof_samples;
     if (opt.width <= 0 || opt.height <= 0) throw InputError("image size must be positive");
     const std::string integrator_name = cmd.integrator.value_or(scene.settings.integrator.value_or("path"));
-    auto integrator = integrators::make_integrator(integrator_name);
+    auto integrator = integrators::make_integrator(integrator_name, cmd.config);
 
     if (cmd.dof_samples) {
         if (!scene.camera) scene.camera.emplace();  // replaced below by the framing camera if absent
@@ -95,6 +100,9 @@ void run_render(const RenderCommand& cmd) {
     {
         ScopedTimer t(stats, "write");
         io::write_image(output, film.image(), {cmd.exposure});
+        if (cmd.layers)
+            for (const std::string& name : film.layer_names())
+                io::write_image(layer_path(output, name), film.find_layer(name)->image(), {cmd.exposure});
     }
     if (cmd.verbose) {
         stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " +

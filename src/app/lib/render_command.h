@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "integrators/factory.h"
 #include "integrators/options.h"
 
 namespace phos::app {
@@ -28,9 +29,15 @@ struct RenderCommand {
     // --dof SAMPLES DISTANCE RADIUS
     std::optional<int> dof_samples;
     float dof_distance = 1, dof_radius = 0;
+    // also write every film layer (direct, indirect, caustic, specular...) next to the output
+    bool layers = false;
+    integrators::IntegratorConfig config;
     // progress bar: -1 auto (when stderr is a terminal), 0 off, 1 on
     int progress = -1;
 };
+
+// Where layer `layer` of `output` is written: out.png -> out.caustic.png.
+std::string layer_path(const std::string& output, const std::string& layer);
 
 // Runs the render; throws ParseError / InputError for bad input.
 void run_render(const RenderCommand& cmd);
