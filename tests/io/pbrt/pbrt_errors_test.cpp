@@ -1,0 +1,143 @@
+// Malformed pbrt input: each case must throw a ParseError at the exact file:line:col of the fault.
+#include <gtest/gtest.h>
+
+#include "pbrt_test_util.h"
+
+namespace phos::io::test {
+namespace {
+
+struct Case {
+    const char* name;
+    std::string text;
+    int line, col;
+    const char* message;
+};
+
+class PbrtErrors : public ::testing::TestWithParam<Case> {};
+
+TEST_P(PbrtErrors, ThrowsAtTheRightPlace) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const Case& c = GetParam();
+    const std::string path = dir.write("bad.pbrt", c.text);
+    expect_pbrt_error(path, c.line, c.col, c.message, path);
+}
+
+const std::string W = "WorldBegin\n";  // line 1
+
+INSTANTIATE_TEST_SUITE_P(
+    Malformed, PbrtErrors,
+    ::testing::Values(
+        Case{"UnterminatedString", W + "Shape \"sphere\" \"float radius\" [ 1 ]\nMaterial \"diffuse\n", 3, 10,
+             "unterminated string"},
+        Case{"MissingBracket", W + "Shape \"sphere\" \"float radius\" [ 1\nAttributeBegin\n", 2, 31,
+             "missing ']'"},
+        Case{"MissingBracketAtEof", W + "Shape \"sphere\" \"float radius\" [ 1", 2, 31, "missing ']'"},
+        Case{"UnknownDirective", W + "  Shpe \"sphere\"\n", 2, 3, "unknown directive 'Shpe'"},
+        Case{"WrongParamType", W + "Shape \"sphere\" \"string radius\" \"big\"\n", 2, 16, "should be float"},
+        Case{"UnknownParamType", W + "Shape \"sphere\" \"flot radius\" 1\n", 2, 16, "unknown parameter type"},
+        Case{"StringForNumber", W + "Shape \"sphere\" \"float radius\" [ \"one\" ]\n", 2, 16,
+             "needs numbers"},
+        Case{"BadIndex",
+             W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0]\n  \"integer indices\" [0 1 3]\n",
+             2, 1, "vertex index 3 out of range"},
+        Case{"NegativeIndex",
+             W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0] \"integer indices\" [0 1 "
+                 "-1]\n",
+             2, 1, "vertex index -1 out of range"},
+        Case{"IndexCount",
+             W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0] \"integer indices\" [0 1 2 "
+                 "3]\n",
+             2, 1, "not a positive multiple of 3"},
+        Case{"MissingIndices", W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\n", 2, 1,
+             "\"integer indices\" is required"},
+        Case{"NormalCount",
+             W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"normal N\" [0 0 1]\n", 2, 1,
+             "\"N\" has 1 normals for 3 vertices"},
+        Case{"PointCount", W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1]\n", 2, 22,
+             "multiple of 3"},
+        Case{"MissingInclude", W + "\n Include \"nothere.pbrt\"\n", 3, 2, "cannot open included file"},
+        Case{"NaN", W + "Translate 1 nan 0\n", 2, 13, "not a finite number"},
+        Case{"NaNParam", W + "Shape \"sphere\" \"float radius\" [ inf ]\n", 2, 33, "not a finite number"},
+        Case{"AttributeEndWithoutBegin", W + "AttributeBegin\nAttributeEnd\nAttributeEnd\n", 4, 1,
+             "AttributeEnd without matching AttributeBegin"},
+        Case{"WorldBeginTwice", W + "Shape \"sphere\"\n  WorldBegin\n", 3, 3, "WorldBegin given twice"},
+        Case{"UnknownObject", W + "ObjectInstance \"ghost\"\n", 2, 1, "unknown object 'ghost'"},
+        Case{"UnknownNamedMaterial", W + "NamedMaterial \"gold\"\n", 2, 1, "unknown material \"gold\""},
+        Case{"NegativeRadius", W + "Shape \"sphere\" \"float radius\" -2\n", 2, 16,
+             "radius must be positive"},
+        Case{"ShapeBeforeWorld", "Shape \"sphere\"\n", 1, 1, "only allowed after WorldBegin"},
+        Case{"CameraAfterWorld", W + "Camera \"perspective\"\n", 2, 1, "not allowed after WorldBegin"},
+        Case{"RotateZeroAxis", W + "Rotate 30 0 0 0\n", 2, 1, "zero-length axis"},
+        Case{"ScaleZero", W + "Scale 1 0 1\n", 2, 1, "Scale by zero"},
+        Case{"MissingNumber", W + "Translate 1 2 Shape\n", 2, 15, "expected a number"},
+        Case{"SingularTransform", W + "Transform [1 0 0 0 0 0 0 0 0 0 1 0 0 0 0 1]\n", 2, 1, "singular"},
+        Case{"UnknownCoordSys", W + "CoordSysTransform \"lamp\"\n", 2, 1, "unknown coordinate system"},
+        Case{"UnknownMedium", W + "MediumInterface \"fog\" \"\"\n", 2, 1, "unknown medium \"fog\""},
+        Case{"UnknownTexture", W + "Material \"diffuse\" \"texture reflectance\" \"wood\"\n", 2, 20,
+             "unknown texture \"wood\""},
+        Case{"ObjectEndWithoutBegin", W + "ObjectEnd\n", 2, 1, "ObjectEnd without matching ObjectBegin"},
+        Case{"UnclosedObject", W + "ObjectBegin \"a\"\nShape \"sphere\"\n", 2, 1,
+             "ObjectBegin without ObjectEnd"},
+        Case{"DuplicateParam", W + "Shape \"sphere\" \"float radius\" 1 \"float radius\" 2\n", 2, 33,
+             "given twice"},
+        Case{"BadParamDeclaration", W + "Shape \"sphere\" \"radius\" 1\n", 2, 16,
+             "malformed parameter declaration"},
+        Case{"StringWhereDirective", W + "\"sphere\"\n", 2, 1, "expected a directive"},
+        Case{"UnknownNamedSpectrum", W + "Material \"conductor\" \"spectrum eta\" \"metal-Xx-eta\"\n", 2, 22,
+             "neither a named spectrum"},
+        Case{"BadBool", W + "AreaLightSource \"diffuse\" \"bool twosided\" \"yes\"\n", 2, 27,
+             "true or false"},
+        Case{"IntegerNotInteger",
+             W + "Shape \"trianglemesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0] \"integer indices\" [0 1 2.5]\n", 2,
+             53, "non-integer"},
+        Case{"MismatchedTransformEnd", W + "AttributeBegin\nTransformEnd\n", 3, 1,
+             "closes the AttributeBegin"},
+        Case{"BadEscape", W + "Shape \"sph\\qere\"\n", 2, 11, "unknown escape"},
+        Case{"MaterialRedefined",
+             W + "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\nMakeNamedMaterial \"a\" \"string "
+                 "type\" \"diffuse\"\n",
+             3, 1, "defined twice"}),
+    [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
+
+TEST(PbrtErrorsFiles, ErrorInsideAnIncludedFileNamesThatFile) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string inc = dir.write("sub/inc.pbrt", "# comment\nShape \"sphere\" \"float radius\" \"x\"\n");
+    const std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"sub/inc.pbrt\"\n");
+    expect_pbrt_error(main, 2, 16, "needs numbers", inc);
+}
+
+TEST(PbrtErrorsFiles, IncludeCycle) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string a = dir.write("a.pbrt", "WorldBegin\nInclude \"b.pbrt\"\n");
+    const std::string b = dir.write("b.pbrt", "\n\n  Import \"a.pbrt\"\n");
+    expect_pbrt_error(a, 3, 3, "Include cycle", b);
+}
+
+TEST(PbrtErrorsFiles, MissingSceneFile) {
+    EXPECT_THROW(load_pbrt("/nonexistent/dir/scene.pbrt"), ParseError);
+}
+
+TEST(PbrtErrorsFiles, MissingPlyFileIsReportedAtTheParameter) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string p =
+        dir.write("m.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"none.ply\"\n");
+    expect_pbrt_error(p, 2, 17, "cannot open", p);
+}
+
+TEST(PbrtErrorsFiles, MalformedPlyIsReportedInThePlyFile) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string ply = dir.write("bad.ply",
+                                      "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+                                      "property float y\nproperty float z\nend_header\n0 0 zero\n");
+    const std::string p =
+        dir.write("m.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\n");
+    expect_pbrt_error(p, 8, 5, "malformed number", ply);
+}
+
+}  // namespace
+}  // namespace phos::io::test
