@@ -66,7 +66,11 @@ public:
     virtual bool is_infinite() const { return false; }
 };
 
-// All lights of a scene, with a power-proportional distribution for choosing one.
+// All lights of a scene, with a power-proportional distribution for choosing one. Light i is built
+// from scene.lights[i]; area lights refer to top-level shapes (Scene::shapes; emitters inside
+// instanced objects are not lights). Throws InputError for a bad shape or texture index. Warns
+// (log::warn) about lights with zero power, and once per light about non-physical .scn attenuation
+// when options.legacy_attenuation is off.
 class LightSet {
 public:
     LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds, const LightOptions& options = {});
