@@ -70,7 +70,26 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
         if (!(k > 0)) loc.fail("area light with \"power\" on a shape of zero area");
         L = L * (al.power / k);
     }
-    scene_.add_area_light(std::move(shape), L, al.two_sided);
+    // Not needed to render an area light, but filled as other loaders do: a representative point
+    // and the mean emitting direction (area-weighted normal) for meshes.
+    Vec3 position = shape.to_world.point(shape.center), direction{0, -1, 0};
+    if (shape.kind == scene::Shape::Kind::Mesh && !shape.mesh.indices.empty()) {
+        const scene::TriangleMesh& m = shape.mesh;
+        Vec3 sum_n{0.0f}, sum_p{0.0f};
+        for (size_t i = 0; i + 2 < m.indices.size(); i += 3) {
+            const Vec3 p0 = m.positions[m.indices[i]], p1 = m.positions[m.indices[i + 1]],
+                       p2 = m.positions[m.indices[i + 2]];
+            const Vec3 n = cross(p1 - p0, p2 - p0);
+            sum_n += n;
+            sum_p += (p0 + p1 + p2) * (length(n) / 3.0f);
+        }
+        const float total = 2.0f * area;  // the weights |n| sum to twice the area
+        if (total > 0) position = sum_p / total;
+        if (length(sum_n) > 0) direction = normalize(sum_n);
+    }
+    const int index = scene_.add_area_light(std::move(shape), L, al.two_sided);
+    scene_.lights[size_t(index)].position = position;
+    scene_.lights[size_t(index)].direction = direction;
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {
