@@ -151,7 +151,9 @@ void compare(const std::string& name) {
     for (bool emitters : {false, true}) {
         const auto tp = triangles(p, emitters), ts = triangles(s, emitters);
         ASSERT_EQ(tp.size(), ts.size()) << name << (emitters ? " emitters" : " surfaces");
-        if (!emitters) EXPECT_GE(tp.size(), 2u) << name;
+        if (!emitters) {
+            EXPECT_GE(tp.size(), 2u) << name;
+        }
         for (const auto& [k, m] : tp) {
             const auto it = ts.find(k);
             ASSERT_NE(it, ts.end()) << name << ": a pbrt triangle has no .scn twin";
