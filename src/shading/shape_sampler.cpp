@@ -93,10 +93,18 @@ Vec3 ShapeSampler::world_normal(Vec3 n_object) const { return normalize(to_world
 
 void ShapeSampler::add_mesh(const scene::Shape& s) {
     const auto& m = s.mesh;
-    // The world cross product of transformed edges already carries the handedness flip (it equals
-    // det(A) A^-T times the object one), so only reverse_orientation remains to apply.
-    const float flip = s.reverse_orientation ? -1.0f : 1.0f;
+    const float flip = sign_;  // the world cross product, flipped if reverse XOR swaps (accel layer)
     const bool identity = s.to_world.is_identity();
+    if (!m.normals.empty() && m.normals.size() == m.positions.size()) {
+        shading_normals_.resize(m.normals.size());
+        for (size_t i = 0; i < m.normals.size(); ++i) {
+            const Vec3 n = s.to_world.normal(m.normals[i]);
+            const float len = length(n);
+            shading_normals_[i] =
+                len > 0 && std::isfinite(len) ? n / len * (s.reverse_orientation ? -1.0f : 1.0f) : Vec3(0.0f);
+        }
+        indices_ = m.indices;
+    }
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         Vec3 v[3];
         for (int k = 0; k < 3; ++k) {
@@ -107,6 +115,7 @@ void ShapeSampler::add_mesh(const scene::Shape& s) {
         }
         Patch p;
         p.kind = PatchKind::Triangle;
+        p.triangle = uint32_t(t);
         p.o = v[0];
         p.e1 = v[1] - v[0];
         p.e2 = v[2] - v[0];
@@ -133,7 +142,8 @@ void ShapeSampler::add_box(const scene::Shape& s) {
             p.o = s.to_world.point(corner);
             p.e1 = s.to_world.vector(e1);
             p.e2 = s.to_world.vector(e2);
-            p.n = world_normal(n);
+            // The accel layer meshes boxes, so the mesh rule applies: outward unless reversed.
+            p.n = normalize(s.to_world.normal(n)) * (s.reverse_orientation ? -1.0f : 1.0f);
             add_patch(p, length(cross(p.e1, p.e2)));
         }
     }
@@ -280,6 +290,13 @@ ShapeSample ShapeSampler::sample_patch(const Patch& pt, Vec2 u) const {
             const Vec2 b = warp::uniform_triangle(u);
             out.p = pt.o + pt.e1 * b.x + pt.e2 * b.y;
             out.n = pt.n;
+            if (!shading_normals_.empty() && !pt.project) {
+                // As the accel layer does: the geometric normal follows the interpolated shading one.
+                const uint32_t* idx = &indices_[3 * size_t(pt.triangle)];
+                const Vec3 ns = shading_normals_[idx[0]] * (1 - b.x - b.y) + shading_normals_[idx[1]] * b.x +
+                                shading_normals_[idx[2]] * b.y;
+                if (dot(ns, out.n) < 0) out.n = -out.n;
+            }
             break;
         }
         case PatchKind::Parallelogram:

@@ -2,9 +2,16 @@
 // uniformly by area (photon emission, and direct light in general) or, for a sphere seen from
 // outside, uniformly over the solid angle of its visible cap (direct light).
 //
-// Emission side: the world normal is to_world.normal(object-space outward normal), flipped if
-// reverse_orientation XOR to_world.swaps_handedness() (the accel layer's rule). For a mesh this equals
-// the cross product of the world-space edges (counter-clockwise front), flipped if reverse_orientation.
+// Emission side: the side the accel layer's geometric normal (SurfaceHit::ng) points to, so that
+// Le(hit.ng, wo) and the light's own samples agree:
+//  - analytic shapes (sphere, disk, cylinder, cone): to_world.normal(object outward normal), flipped
+//    if reverse_orientation XOR to_world.swaps_handedness();
+//  - meshes: the cross product of the world-space edges (counter-clockwise front), flipped if
+//    reverse_orientation XOR swaps_handedness (pbrt-v4); where the mesh has shading normals, the
+//    geometric normal is turned to the side of the interpolated shading normal (which goes through
+//    to_world.normal and flips with reverse_orientation only);
+//  - boxes (12 triangles wound counter-clockwise from outside): the mesh rule, which works out as
+//    to_world.normal(outward normal) flipped if reverse_orientation.
 //
 // Exactness: meshes (vertices transformed to world space), disks/annuli, box faces and the caps of
 // cylinders and cones are sampled exactly uniformly under any affine transform (an affine map has a
@@ -57,7 +64,8 @@ private:
     //                as the cylinder.
     struct Patch {
         PatchKind kind = PatchKind::Triangle;
-        bool project = false;  // a tessellation triangle: project samples onto the true surface
+        bool project = false;   // a tessellation triangle: project samples onto the true surface
+        uint32_t triangle = 0;  // mesh triangle index (for shading normals)
         Vec3 o, e1, e2, n;
         float a = 0, b = 1;
     };
@@ -76,6 +84,10 @@ private:
     // World normal from an object-space outward normal, with the orientation rule applied.
     Vec3 world_normal(Vec3 n_object) const;
 
+    // Meshes with shading normals: world-space vertex normals (flipped if reverse_orientation) and
+    // the index buffer, to orient each sample's normal the way the accel layer does.
+    std::vector<Vec3> shading_normals_;
+    std::vector<uint32_t> indices_;
     std::vector<Patch> patches_;
     std::vector<float> areas_;
     Distribution1D by_area_;

@@ -129,11 +129,16 @@ TEST(AreaLight, OneSidedAndTwoSided) {
     EXPECT_NEAR(two.power().r, 2 * one.power().r, 1e-6f);
 }
 
-// Expected emitting normal by the rule: to_world.normal(object normal), flipped if
-// reverse_orientation XOR the transform swaps handedness.
-Vec3 rule_normal(const scene::Shape& s, Vec3 n_obj) {
-    const bool flip = s.reverse_orientation != s.to_world.swaps_handedness();
-    return normalize(s.to_world.normal(n_obj)) * (flip ? -1.0f : 1.0f);
+// Expected emitting normals, by the accel layer's rules (see shape_sampler.h): analytic shapes use
+// to_world.normal(object normal) flipped if reverse XOR swaps; meshes the world-space edge cross
+// product flipped if reverse XOR swaps; boxes are meshes wound counter-clockwise from outside.
+bool flipped(const scene::Shape& s) { return s.reverse_orientation != s.to_world.swaps_handedness(); }
+Vec3 analytic_normal(const scene::Shape& s, Vec3 n_obj) {
+    return normalize(s.to_world.normal(n_obj)) * (flipped(s) ? -1.0f : 1.0f);
+}
+Vec3 mesh_normal(const scene::Shape& s, Vec3 a, Vec3 b, Vec3 c) {
+    const Vec3 wa = s.to_world.point(a), wb = s.to_world.point(b), wc = s.to_world.point(c);
+    return normalize(cross(wb - wa, wc - wa)) * (flipped(s) ? -1.0f : 1.0f);
 }
 
 TEST(AreaLight, EmittingSideFollowsOrientationRule) {
@@ -141,26 +146,48 @@ TEST(AreaLight, EmittingSideFollowsOrientationRule) {
     const Transform plain = Transform::rotate(30, {0, 0, 1});
     for (bool reverse : {false, true})
         for (const Transform* t : {&plain, &mirror}) {
-            // Disk (object normal +y), sphere (outward), mesh (counter-clockwise front = -y here).
+            // Disk (object normal +y), sphere (outward), mesh (counter-clockwise front = -y here),
+            // unit box.
             scene::Shape d = test::disk({0, 0, 0}, {0, 1, 0}, 1);
             scene::Shape sp = test::sphere({0, 0, 0}, 1);
             scene::Shape m = test::rectangle_y(0, 1, 0, 1, 0);
-            for (scene::Shape* s : {&d, &sp, &m}) {
+            scene::Shape box;
+            box.kind = scene::Shape::Kind::Box;
+            for (scene::Shape* s : {&d, &sp, &m, &box}) {
                 s->reverse_orientation = reverse;
                 s->to_world = *t;
             }
-            const ShapeSampler ds(d), ss(sp), ms(m);
+            const ShapeSampler ds(d), ss(sp), ms(m), bs(box);
+            const Vec3 mesh_n = mesh_normal(m, m.mesh.positions[0], m.mesh.positions[1], m.mesh.positions[2]);
             Sampler rng(17);
             for (int i = 0; i < 50; ++i) {
                 const Vec2 u = rng.next2();
                 const ShapeSample a = ds.sample_area(u), b = ss.sample_area(u), c = ms.sample_area(u);
-                const Vec3 ed = rule_normal(d, {0, 1, 0});
-                EXPECT_NEAR(dot(a.n, ed), 1.0f, 1e-5f) << reverse;
+                EXPECT_NEAR(dot(a.n, analytic_normal(d, {0, 1, 0})), 1.0f, 1e-5f) << reverse;
                 const Vec3 p_obj = t->inverse().point(b.p);
-                EXPECT_NEAR(dot(b.n, rule_normal(sp, p_obj)), 1.0f, 1e-5f) << reverse;
-                EXPECT_NEAR(dot(c.n, rule_normal(m, {0, -1, 0})), 1.0f, 1e-5f) << reverse;
+                EXPECT_NEAR(dot(b.n, analytic_normal(sp, p_obj)), 1.0f, 1e-5f) << reverse;
+                EXPECT_NEAR(dot(c.n, mesh_n), 1.0f, 1e-5f) << reverse;
+                // Box face: the outward direction in world space is that of to_world.normal of the
+                // object face normal; mesh rule = outward unless reversed.
+                const ShapeSample e = bs.sample_area(u);
+                const Vec3 q = t->inverse().point(e.p);
+                const Vec3 centre_dir = normalize(t->normal(q - Vec3(0.5f)));
+                EXPECT_GT(dot(e.n, centre_dir) * (reverse ? -1.0f : 1.0f), 0.0f) << reverse;
             }
         }
+}
+
+TEST(AreaLight, MeshShadingNormalsPickTheEmittingSide) {
+    // Same rectangle (geometric front -y) with vertex normals pointing up: the accel layer turns
+    // the geometric normal towards them, so the light emits upwards.
+    scene::Shape m = test::rectangle_y(0, 1, 0, 1, 0);
+    m.mesh.normals.assign(4, Vec3(0, 1, 0));
+    const ShapeSampler s(m);
+    Sampler rng(3);
+    for (int i = 0; i < 20; ++i) EXPECT_NEAR(s.sample_area(rng.next2()).n.y, 1.0f, 1e-6f);
+    m.reverse_orientation = true;  // shading normals flip with reverse_orientation
+    const ShapeSampler r(m);
+    for (int i = 0; i < 20; ++i) EXPECT_NEAR(r.sample_area(rng.next2()).n.y, -1.0f, 1e-6f);
 }
 
 }  // namespace
