@@ -82,14 +82,11 @@ void build_range(Key* keys, uint8_t* axes, uint32_t b, uint32_t e, uint32_t leaf
 
 }  // namespace
 
-void PhotonKdTree::build(std::vector<Photon> photons, const KdTreeOptions& options) {
-    leaf_size_ = std::max<uint32_t>(options.leaf_size, 2);
-    photons_.clear();
-    input_index_.clear();
+void PhotonKdTree::build(std::span<const Photon> photons, const KdTreeOptions& options) {
     if (photons.size() >= std::numeric_limits<uint32_t>::max() - 1)
         throw InputError("photon map: too many photons for 32-bit indices");
     const uint32_t n = uint32_t(photons.size());
-    if (n == 0) return;
+    const uint32_t leaf = std::max<uint32_t>(options.leaf_size, 2);
 
     std::vector<Key> keys(n);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14),
@@ -104,18 +101,22 @@ void PhotonKdTree::build(std::vector<Photon> photons, const KdTreeOptions& optio
             throw InputError("photon map: photon " + std::to_string(k.index) + " has a non-finite position");
     }
     std::vector<uint8_t> axes(n, 3);  // 3 = leaf photon
-    build_range(keys.data(), axes.data(), 0, n, leaf_size_);
+    if (n > 0) build_range(keys.data(), axes.data(), 0, n, leaf);
 
-    photons_.resize(n);
-    if (options.keep_input_index) input_index_.resize(n);
+    // Built aside and swapped in, so `photons` may even be this tree's own array.
+    std::vector<Photon> tree(n);
+    std::vector<uint32_t> input_index(options.keep_input_index ? n : 0);
     tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14),
                       [&](const tbb::blocked_range<uint32_t>& r) {
                           for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                              photons_[i] = photons[keys[i].index];
-                              photons_[i].set_split_axis(axes[i]);
-                              if (!input_index_.empty()) input_index_[i] = keys[i].index;
+                              tree[i] = photons[keys[i].index];
+                              tree[i].set_split_axis(axes[i]);
+                              if (!input_index.empty()) input_index[i] = keys[i].index;
                           }
                       });
+    photons_.swap(tree);
+    input_index_.swap(input_index);
+    leaf_size_ = leaf;
 }
 
 KnnResult PhotonKdTree::knn(Vec3 q, uint32_t k, float max_dist2, Neighbour* out) const {

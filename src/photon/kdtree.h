@@ -50,13 +50,14 @@ struct KdTreeOptions {
 class PhotonKdTree {
 public:
     PhotonKdTree() = default;
-    explicit PhotonKdTree(std::vector<Photon> photons, const KdTreeOptions& options = {}) {
-        build(std::move(photons), options);
+    explicit PhotonKdTree(std::span<const Photon> photons, const KdTreeOptions& options = {}) {
+        build(photons, options);
     }
 
-    // Replaces the contents. Uses the calling thread's oneTBB arena (so a tbb::task_arena limits
-    // the threads). Throws InputError for non-finite positions or more than 2^32 - 2 photons.
-    void build(std::vector<Photon> photons, const KdTreeOptions& options = {});
+    // Replaces the contents with a copy of `photons` in tree order (the caller may then free its
+    // array). Runs in the calling thread's oneTBB arena (so a tbb::task_arena limits the
+    // threads). Throws InputError for non-finite positions or more than 2^32 - 2 photons.
+    void build(std::span<const Photon> photons, const KdTreeOptions& options = {});
 
     size_t size() const { return photons_.size(); }
     bool empty() const { return photons_.empty(); }
@@ -95,7 +96,7 @@ private:
 
     std::vector<Photon> photons_;
     std::vector<uint32_t> input_index_;
-    uint32_t leaf_size_ = 8;
+    uint32_t leaf_size_ = 16;
 };
 
 // Reference answer for tests: the same query by examining every photon. Returns the neighbours
