@@ -119,31 +119,57 @@ struct DirectionHistogram {
     // An attempt that produced no direction in the grid's measure (rejected or delta sample).
     void add_residual() { counts.back() += 1; }
 
-    // Expected counts for `total` attempts of a sampler with solid-angle density `pdf`: composite
-    // Simpson over each bin (sub x sub intervals, sub even), residual = total - the rest.
-    std::vector<double> expected(const std::function<double(Vec3)>& pdf, int sub = 8) const {
+    // Expected counts for `total` attempts of a sampler with solid-angle density `pdf`, integrated
+    // over each bin by adaptive 6-point Gauss-Legendre quadrature in theta and phi: a cell is split
+    // in four while the split changes its integral by more than a small fraction of a count (pdfs
+    // may jump inside a bin, e.g. the frosted dielectric's at wi where the half vector turns
+    // horizontal). Residual = total - the rest.
+    std::vector<double> expected(const std::function<double(Vec3)>& pdf) const {
         std::vector<double> e(counts.size(), 0.0);
         const double dt = theta_max / n_theta, dp = 2 * M_PI / n_phi;
-        const auto simpson_w = [sub](int k) { return (k == 0 || k == sub) ? 1.0 : (k % 2 ? 4.0 : 2.0); };
         double sum = 0;
         for (int it = 0; it < n_theta; ++it)
             for (int ip = 0; ip < n_phi; ++ip) {
-                double acc = 0;
-                for (int a = 0; a <= sub; ++a) {
-                    const double theta = (it + double(a) / sub) * dt;
-                    const double st = std::sin(theta), ct = std::cos(theta);
-                    for (int b = 0; b <= sub; ++b) {
-                        const double phi = (ip + double(b) / sub) * dp;
-                        const Vec3 w(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
-                        acc += simpson_w(a) * simpson_w(b) * pdf(w) * st;
-                    }
-                }
-                const double v = acc * (dt / (3 * sub)) * (dp / (3 * sub)) * total;
+                const double v =
+                    total * adaptive(pdf, it * dt, (it + 1) * dt, ip * dp, (ip + 1) * dp,
+                                     gauss(pdf, it * dt, (it + 1) * dt, ip * dp, (ip + 1) * dp), 0);
                 e[size_t(it) * size_t(n_phi) + size_t(ip)] = v;
                 sum += v;
             }
         e.back() = std::max(0.0, total - sum);
         return e;
+    }
+
+private:
+    static double gauss(const std::function<double(Vec3)>& pdf, double t0, double t1, double p0, double p1) {
+        static constexpr double x[6] = {-0.9324695142031521, -0.6612093864662645, -0.2386191860831969,
+                                        0.2386191860831969,  0.6612093864662645,  0.9324695142031521};
+        static constexpr double wgt[6] = {0.1713244923791704, 0.3607615730481386, 0.4679139345726910,
+                                          0.4679139345726910, 0.3607615730481386, 0.1713244923791704};
+        double acc = 0;
+        for (int a = 0; a < 6; ++a) {
+            const double theta = 0.5 * (t0 + t1) + 0.5 * (t1 - t0) * x[a];
+            const double st = std::sin(theta), ct = std::cos(theta);
+            for (int b = 0; b < 6; ++b) {
+                const double phi = 0.5 * (p0 + p1) + 0.5 * (p1 - p0) * x[b];
+                const Vec3 w(float(st * std::cos(phi)), float(st * std::sin(phi)), float(ct));
+                acc += wgt[a] * wgt[b] * pdf(w) * st;
+            }
+        }
+        return acc * 0.25 * (t1 - t0) * (p1 - p0);
+    }
+    double adaptive(const std::function<double(Vec3)>& pdf, double t0, double t1, double p0, double p1,
+                    double coarse, int depth) const {
+        const double tm = 0.5 * (t0 + t1), pm = 0.5 * (p0 + p1);
+        const double q[4] = {gauss(pdf, t0, tm, p0, pm), gauss(pdf, tm, t1, p0, pm),
+                             gauss(pdf, t0, tm, pm, p1), gauss(pdf, tm, t1, pm, p1)};
+        const double fine = q[0] + q[1] + q[2] + q[3];
+        // Tolerance in counts: far below the Poisson noise sqrt(expected) of any bin.
+        if (depth >= 6 || std::fabs(fine - coarse) * total <= 0.01 + 1e-4 * fine * total) return fine;
+        return adaptive(pdf, t0, tm, p0, pm, q[0], depth + 1) +
+               adaptive(pdf, tm, t1, p0, pm, q[1], depth + 1) +
+               adaptive(pdf, t0, tm, pm, p1, q[2], depth + 1) +
+               adaptive(pdf, tm, t1, pm, p1, q[3], depth + 1);
     }
 };
 

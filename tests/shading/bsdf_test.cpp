@@ -1,0 +1,564 @@
+// Tests of shading::Bsdf: white furnace (albedo) per lobe, sample/pdf/eval consistency with
+// chi-square histograms, reciprocity, the light-leak rule, lobe masks and Russian-roulette albedos.
+#include "shading/bsdf.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+
+#include "core/rng.h"
+#include "core/warp.h"
+#include "shading/fresnel.h"
+#include "support/chi_square.h"
+
+namespace phos::shading {
+namespace {
+
+using scene::Material;
+
+// Direction at polar angle theta (degrees, from +z) and azimuth phi (degrees).
+Vec3 sph(float theta_deg, float phi_deg = 0) {
+    const float t = theta_deg * kPi / 180, p = phi_deg * kPi / 180;
+    return {std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+}
+
+accel::SurfaceHit flat_hit(Vec3 ng = {0, 0, 1}, Vec3 ns = {0, 0, 1}) {
+    accel::SurfaceHit h;
+    h.ng = ng;
+    h.ns = ns;
+    h.dpdu = {1, 0, 0};
+    h.uv = {0.5f, 0.5f};
+    return h;
+}
+
+const scene::Scene& empty_scene() {
+    static const scene::Scene s;
+    return s;
+}
+
+Bsdf make(const Material& m, BsdfOptions o = {}) { return Bsdf(m, flat_hit(), empty_scene(), o); }
+
+Material lambert(float kd) {
+    Material m;
+    m.diffuse = Rgb(kd);
+    return m;
+}
+Material phong(float ks, float n) {
+    Material m;
+    m.specular = Rgb(ks);
+    m.shininess = n;
+    return m;
+}
+Material glass(float kt, float ior, float n = 1e6f) {
+    Material m;
+    m.transmission = Rgb(kt);
+    m.ior = ior;
+    m.transmission_shininess = n;
+    return m;
+}
+
+// Mean and standard error of the sampled albedo (mean of the average-channel weight).
+struct Stat {
+    double mean = 0, sem = 0;
+};
+Stat sampled_albedo(const Bsdf& b, Vec3 wo, int n, uint64_t seed,
+                    TransportMode mode = TransportMode::Importance, uint32_t mask = ~0u) {
+    Sampler rng(seed);
+    double s = 0, s2 = 0;
+    for (int i = 0; i < n; ++i) {
+        const float ul = rng.next();
+        const Vec2 u = rng.next2();
+        const auto bs = b.sample_lobes(mask, wo, ul, u, mode);
+        const double w = bs ? double(bs->weight.average()) : 0.0;
+        s += w;
+        s2 += w * w;
+    }
+    Stat st;
+    st.mean = s / n;
+    st.sem = std::sqrt(std::max(0.0, s2 / n - st.mean * st.mean) / n);
+    return st;
+}
+// Albedo by quadrature of eval |cos| over the sphere (independent of the sampling code).
+double quadrature_albedo(const Bsdf& b, Vec3 wo, TransportMode mode, int nt = 1024, int np = 256) {
+    return test::integrate_sphere(
+        [&](Vec3 wi) { return double(b.eval(wo, wi, mode).average()) * std::fabs(wi.z); }, M_PI, nt, np);
+}
+
+// 5 standard errors: a statistical bound that a correct implementation exceeds with probability
+// ~6e-7 (and the seeds are fixed, so the outcome is deterministic).
+constexpr double kSigmas = 5;
+
+TEST(BsdfFurnace, Lambert) {
+    const Bsdf b = make(lambert(1.0f));
+    for (float theta : {0.0f, 30.0f, 60.0f, 85.0f, 120.0f, 175.0f}) {  // both sides: two-sided
+        const Vec3 wo = sph(theta, 40);
+        // Every cosine-sampled weight is exactly kd.
+        Sampler rng(1);
+        for (int i = 0; i < 1000; ++i) {
+            const auto bs = b.sample(wo, rng.next(), rng.next2());
+            ASSERT_TRUE(bs);
+            EXPECT_NEAR(bs->weight.r, 1.0f, 1e-5f);
+        }
+        // Uniform-sphere Monte Carlo of eval |cos| / (1/4pi): independent of the sampler.
+        Sampler r2(2);
+        double s = 0, s2 = 0;
+        const int n = 200000;
+        for (int i = 0; i < n; ++i) {
+            const Vec3 wi = warp::uniform_sphere(r2.next2());
+            const double v = double(b.eval(wo, wi).r) * std::fabs(wi.z) * 4 * M_PI;
+            s += v;
+            s2 += v * v;
+        }
+        const double mean = s / n, sem = std::sqrt((s2 / n - mean * mean) / n);
+        EXPECT_NEAR(mean, 1.0, kSigmas * sem) << theta;
+        EXPECT_NEAR(quadrature_albedo(b, wo, TransportMode::Radiance, 512, 64), 1.0, 1e-3) << theta;
+    }
+}
+
+TEST(BsdfFurnace, PhongNormalIncidenceIsOne) {
+    // At normal incidence the lobe axis is the normal, no sample is lost below the horizon and
+    // the albedo is (n+2)/(n+1) * E[cos] = (n+2)/(n+1) * (n+1)/(n+2) = 1 exactly.
+    for (float n : {0.0f, 1.0f, 10.0f, 100.0f, 1000.0f}) {
+        const Bsdf b = make(phong(1.0f, n));
+        const Stat st = sampled_albedo(b, Vec3(0, 0, 1), 200000, 3);
+        EXPECT_NEAR(st.mean, 1.0, kSigmas * st.sem + 1e-4) << n;
+        EXPECT_LE(st.mean, 1.0 + kSigmas * st.sem + 1e-4) << n;
+        if (n <= 100) {
+            EXPECT_NEAR(quadrature_albedo(b, Vec3(0, 0, 1), TransportMode::Radiance), 1.0, 2e-3) << n;
+        }
+    }
+}
+
+TEST(BsdfFurnace, PhongOblique) {
+    // Away from the normal part of the lobe falls below the horizon: albedo < 1, and the sampled
+    // estimate agrees with the quadrature of eval.
+    for (float n : {1.0f, 10.0f, 100.0f})
+        for (float theta : {30.0f, 60.0f, 80.0f}) {
+            const Bsdf b = make(phong(1.0f, n));
+            const Vec3 wo = sph(theta, 10);
+            const Stat st = sampled_albedo(b, wo, 200000, 4);
+            const double q = quadrature_albedo(b, wo, TransportMode::Radiance);
+            EXPECT_LT(st.mean, 1.0) << n << " " << theta;
+            EXPECT_NEAR(st.mean, q, kSigmas * st.sem + 2e-3) << n << " " << theta;
+        }
+}
+
+TEST(BsdfFurnace, MirrorAndConductor) {
+    const Bsdf mirror = make(phong(1.0f, Material::kMirrorShininess));
+    EXPECT_TRUE(mirror.is_purely_specular());
+    Material cm = phong(1.0f, 1e6f);
+    cm.conductor = true;
+    cm.conductor_eta = Rgb(0.2f, 0.9f, 1.1f);
+    cm.conductor_k = Rgb(3.0f, 2.5f, 2.0f);
+    const Bsdf cond = make(cm);
+    for (float theta : {0.0f, 45.0f, 89.0f, 135.0f}) {
+        const Vec3 wo = sph(theta, 70);
+        const auto bs = mirror.sample(wo, 0.3f, Vec2(0.2f, 0.7f));
+        ASSERT_TRUE(bs);
+        EXPECT_TRUE(bs->is_specular());
+        EXPECT_NEAR(bs->weight.g, 1.0f, 1e-6f);
+        EXPECT_NEAR(bs->f.g * std::fabs(bs->wi.z) / bs->pdf, 1.0f, 1e-5f);  // documented f convention
+        const Vec3 expect = reflect(wo, Vec3(0, 0, 1));
+        EXPECT_NEAR(length(bs->wi - expect), 0.0f, 1e-5f);
+        EXPECT_EQ(mirror.eval(wo, expect), Rgb(0.0f));  // deltas are not in eval
+        EXPECT_EQ(mirror.pdf(wo, expect), 0.0f);
+        const auto cs = cond.sample(wo, 0.5f, Vec2(0.5f, 0.5f));
+        ASSERT_TRUE(cs);
+        const Rgb fc = fresnel_conductor(std::fabs(wo.z), cm.conductor_eta, cm.conductor_k);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(cs->weight[c], fc[c], 1e-5f);
+        const auto al = cond.lobe_albedos(wo);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(al.specular[c], fc[c], 1e-5f);
+    }
+}
+
+TEST(BsdfFurnace, SmoothGlassConservesEnergy) {
+    // kt = 1 in Importance mode: every sample (reflected or refracted) has weight exactly 1, for
+    // entering and leaving rays, including total internal reflection; the reflected fraction is F.
+    const Bsdf b = make(glass(1.0f, 1.5f));
+    EXPECT_TRUE(b.is_purely_specular());
+    for (float theta : {0.0f, 30.0f, 60.0f, 85.0f, 180.0f, 150.0f, 135.0f, 120.0f, 100.0f}) {
+        const Vec3 wo = sph(theta, 200);
+        const bool entering = wo.z > 0;
+        const float eta = entering ? 1.5f : 1 / 1.5f;
+        const float F = fresnel_dielectric(std::fabs(wo.z), eta);
+        Sampler rng(5);
+        const int n = 20000;
+        int reflected = 0;
+        for (int i = 0; i < n; ++i) {
+            const auto bs = b.sample(wo, rng.next(), rng.next2(), TransportMode::Importance);
+            ASSERT_TRUE(bs);
+            ASSERT_NEAR(bs->weight.r, 1.0f, 1e-5f);
+            if (bs->flags & kReflection) {
+                ++reflected;
+                EXPECT_NEAR(length(bs->wi - reflect(wo, Vec3(0, 0, 1))), 0.0f, 1e-5f);
+            } else {
+                // Snell: n1 sin1 = n2 sin2, and the refracted ray crosses to the other side.
+                EXPECT_LT(bs->wi.z * wo.z, 0);
+                const float sin_o = std::sqrt(1 - wo.z * wo.z), sin_i = std::sqrt(1 - bs->wi.z * bs->wi.z);
+                EXPECT_NEAR(sin_o, eta * sin_i, 1e-4f);
+                EXPECT_FLOAT_EQ(bs->eta, eta);
+                // Radiance mode divides refracted radiance by eta^2.
+                const auto br = b.sample(wo, 0.9999f, Vec2(0.5f, 0.5f), TransportMode::Radiance);
+                ASSERT_TRUE(br);
+                if (br->flags & kTransmission) {
+                    EXPECT_NEAR(br->weight.r, 1 / (eta * eta), 1e-5f);
+                }
+            }
+        }
+        const double frac = double(reflected) / n, sd = std::sqrt(F * (1 - F) / n);
+        EXPECT_NEAR(frac, F, kSigmas * sd + 1e-9) << theta;
+        if (!entering && std::sqrt(1 - wo.z * wo.z) > 1 / 1.5f) {
+            EXPECT_EQ(reflected, n) << "TIR " << theta;
+        }
+    }
+}
+
+TEST(BsdfFurnace, ThinAndSchlickGlass) {
+    Material m = glass(1.0f, 1.5f);
+    m.thin = true;
+    const Bsdf thin = make(m);
+    BsdfOptions schlick;
+    schlick.schlick = true;
+    const Bsdf sg = make(glass(1.0f, 1.5f), schlick);
+    for (float theta : {0.0f, 50.0f, 80.0f, 160.0f}) {
+        const Vec3 wo = sph(theta, 30);
+        const float r = thin_sheet_reflectance(fresnel_dielectric(std::fabs(wo.z), 1.5f));
+        Sampler rng(6);
+        const int n = 20000;
+        int reflected = 0, sreflected = 0;
+        for (int i = 0; i < n; ++i) {
+            const float ul = rng.next();
+            const auto bs = thin.sample(wo, ul, Vec2(0.5f, 0.5f), TransportMode::Radiance);
+            ASSERT_TRUE(bs);
+            ASSERT_NEAR(bs->weight.r, 1.0f, 1e-5f);  // no 1/eta^2: the ray leaves into the same medium
+            if (bs->flags & kReflection) {
+                ++reflected;
+            } else {
+                EXPECT_NEAR(length(bs->wi + wo), 0.0f, 1e-6f);  // straight through
+            }
+            const auto ss = sg.sample(wo, ul, Vec2(0.5f, 0.5f), TransportMode::Importance);
+            ASSERT_TRUE(ss);
+            ASSERT_NEAR(ss->weight.r, 1.0f, 1e-5f);
+            if (ss->flags & kReflection) ++sreflected;
+        }
+        EXPECT_NEAR(double(reflected) / n, r, kSigmas * std::sqrt(r * (1 - r) / n) + 1e-9) << theta;
+        const float rs = fresnel_schlick(wo.z, 1.5f);
+        EXPECT_NEAR(double(sreflected) / n, rs, kSigmas * std::sqrt(rs * (1 - rs) / n) + 1e-9) << theta;
+    }
+}
+
+TEST(BsdfFurnace, FrostedGlassAtMostOne) {
+    for (MicrofacetModel model : {MicrofacetModel::GGX, MicrofacetModel::Beckmann})
+        for (float n : {3.0f, 20.0f, 300.0f}) {
+            BsdfOptions o;
+            o.microfacet = model;
+            const Bsdf b = make(glass(1.0f, 1.5f, n), o);
+            EXPECT_TRUE(b.flags() & kGlossy);
+            EXPECT_FALSE(b.flags() & kSpecular);
+            for (float theta : {0.0f, 45.0f, 75.0f, 180.0f, 150.0f, 120.0f}) {
+                const Vec3 wo = sph(theta, 15);
+                const Stat st = sampled_albedo(b, wo, 60000, 7);
+                EXPECT_LE(st.mean, 1.0 + kSigmas * st.sem + 1e-4) << n << " " << theta;
+                // Single-scattering microfacets lose energy (to paths they ignore), more the
+                // rougher they are; a loose sanity bound, 1 - 0.75 alpha, catches gross losses.
+                const double alpha = MicrofacetDistribution::alpha_from_phong(n);
+                if (std::fabs(wo.z) > 0.5f) {
+                    EXPECT_GT(st.mean, 1 - 0.75 * alpha) << n << " " << theta;
+                }
+            }
+        }
+}
+
+TEST(BsdfFurnace, CombinedMaterialAtMostOne) {
+    Material m;
+    m.diffuse = Rgb(0.3f);
+    m.specular = Rgb(0.3f);
+    m.shininess = 20;
+    m.transmission = Rgb(0.4f);
+    m.ior = 1.5f;
+    m.transmission_shininess = 50;
+    Material m2 = m;
+    m2.shininess = 1e6f;
+    m2.transmission_shininess = 1e6f;
+    for (const Material& mat : {m, m2}) {
+        const Bsdf b = make(mat);
+        for (float theta : {0.0f, 40.0f, 80.0f, 170.0f}) {
+            const Stat st = sampled_albedo(b, sph(theta, 100), 100000, 8);
+            EXPECT_LE(st.mean, 1.0 + kSigmas * st.sem) << theta;
+            EXPECT_GT(st.mean, 0.5) << theta;
+        }
+    }
+}
+
+// Materials with non-delta lobes (some with delta lobes too) for the consistency tests.
+struct Case {
+    std::string name;
+    Material m;
+    BsdfOptions o;
+};
+std::vector<Case> consistency_cases() {
+    std::vector<Case> c;
+    c.push_back({"lambert", lambert(0.8f), {}});
+    c.push_back({"phong1", phong(0.7f, 1), {}});
+    c.push_back({"phong20", phong(0.7f, 20), {}});
+    c.push_back({"phong100", phong(0.7f, 100), {}});
+    Material lp = lambert(0.4f);
+    lp.specular = Rgb(0.5f);
+    lp.shininess = 30;
+    c.push_back({"lambert+phong", lp, {}});
+    Material cond = phong(1.0f, 15);
+    cond.conductor = true;
+    cond.conductor_eta = Rgb(0.2f, 0.9f, 1.1f);
+    cond.conductor_k = Rgb(3.0f, 2.5f, 2.0f);
+    c.push_back({"conductor-phong", cond, {}});
+    c.push_back({"frosted-ggx", glass(0.9f, 1.5f, 20), {}});
+    BsdfOptions beck;
+    beck.microfacet = MicrofacetModel::Beckmann;
+    c.push_back({"frosted-beckmann", glass(0.9f, 1.5f, 40), beck});
+    BsdfOptions sch;
+    sch.schlick = true;
+    c.push_back({"frosted-schlick", glass(1.0f, 1.33f, 8), sch});
+    Material dt = lambert(0.3f);
+    dt.diffuse_transmission = Rgb(0.5f);
+    c.push_back({"lambert+diffuse-transmission", dt, {}});
+    Material lm = lambert(0.5f);
+    lm.specular = Rgb(0.3f);
+    lm.shininess = 1e6f;
+    c.push_back({"lambert+mirror", lm, {}});
+    Material all = lambert(0.2f);
+    all.specular = Rgb(0.2f);
+    all.shininess = 10;
+    all.transmission = Rgb(0.3f);
+    all.ior = 1.5f;
+    all.transmission_shininess = 30;
+    all.diffuse_transmission = Rgb(0.2f);
+    c.push_back({"all-lobes", all, {}});
+    return c;
+}
+
+TEST(BsdfConsistency, SampleMatchesEvalAndPdf) {
+    for (const Case& c : consistency_cases()) {
+        const Bsdf b = make(c.m, c.o);
+        for (float theta : {25.0f, 70.0f, 160.0f}) {
+            const Vec3 wo = sph(theta, 50);
+            for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+                Sampler rng(9);
+                int produced = 0;
+                for (int i = 0; i < 5000; ++i) {
+                    const auto bs = b.sample(wo, rng.next(), rng.next2(), mode);
+                    if (!bs) continue;
+                    ++produced;
+                    ASSERT_TRUE(bs->weight.is_finite()) << c.name;
+                    ASSERT_NEAR(length(bs->wi), 1.0f, 1e-4f);
+                    if (bs->is_specular()) continue;
+                    const float p = b.pdf(wo, bs->wi);
+                    const Rgb f = b.eval(wo, bs->wi, mode);
+                    ASSERT_NEAR(bs->pdf, p, 1e-3f * p) << c.name << " " << theta;
+                    for (int k = 0; k < 3; ++k) {
+                        ASSERT_NEAR(bs->f[k], f[k], 1e-3f * f[k] + 1e-7f) << c.name;
+                        ASSERT_NEAR(bs->weight[k], f[k] * std::fabs(bs->wi.z) / p,
+                                    2e-3f * bs->weight[k] + 1e-7f)
+                            << c.name;
+                    }
+                    // The sampled branch's flags match the side wi is on.
+                    ASSERT_EQ(bool(bs->flags & kTransmission), bs->wi.z * wo.z < 0) << c.name;
+                }
+                EXPECT_GT(produced, 1000) << c.name << " " << theta;
+            }
+        }
+    }
+}
+
+TEST(BsdfConsistency, HistogramsMatchPdf) {
+    const bool verbose = std::getenv("PHOS_TEST_VERBOSE") != nullptr;
+    for (const Case& c : consistency_cases()) {
+        const Bsdf b = make(c.m, c.o);
+        for (float theta : {25.0f, 70.0f, 160.0f}) {
+            const Vec3 wo = sph(theta, 50);
+            test::DirectionHistogram h(36, 72, M_PI);
+            Sampler rng(10);
+            const int n = 150000;
+            for (int i = 0; i < n; ++i) {
+                const auto bs = b.sample(wo, rng.next(), rng.next2());
+                if (bs && !bs->is_specular()) {
+                    h.add(bs->wi);
+                } else {
+                    h.add_residual();  // delta and rejected samples: the mass pdf() does not hold
+                }
+            }
+            h.total = n;
+            const auto r =
+                test::chi_square(h.counts, h.expected([&](Vec3 wi) { return double(b.pdf(wo, wi)); }));
+            EXPECT_TRUE(r.passed) << c.name << " theta " << theta << ": " << r.detail;
+            if (verbose) {
+                const auto e = h.expected([&](Vec3 wi) { return double(b.pdf(wo, wi)); });
+                std::printf("%s %g: %s residual obs %g exp %g\n", c.name.c_str(), double(theta),
+                            r.detail.c_str(), h.counts.back(), e.back());
+            }
+        }
+    }
+}
+
+TEST(BsdfReciprocity, ReflectionLobesAreSymmetric) {
+    Material cond = phong(0.9f, 25);
+    cond.conductor = true;
+    cond.conductor_eta = Rgb(0.2f, 0.9f, 1.1f);
+    cond.conductor_k = Rgb(3.0f, 2.5f, 2.0f);
+    Material lp = lambert(0.4f);
+    lp.specular = Rgb(0.5f);
+    lp.shininess = 7;
+    const std::vector<Material> mats = {lambert(0.7f),     phong(0.8f, 3), phong(0.8f, 60), cond, lp,
+                                        glass(1, 1.5f, 15)};
+    Sampler rng(12);
+    for (const Material& m : mats) {
+        const Bsdf b = make(m);
+        for (int i = 0; i < 2000; ++i) {
+            Vec3 a = warp::uniform_hemisphere(rng.next2()), c = warp::uniform_hemisphere(rng.next2());
+            if (i % 2) a.z = -a.z, c.z = -c.z;  // the other side as well
+            for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+                const Rgb f1 = b.eval(a, c, mode), f2 = b.eval(c, a, mode);
+                for (int k = 0; k < 3; ++k) ASSERT_NEAR(f1[k], f2[k], 1e-4f * std::max(f1[k], 1.0f));
+            }
+        }
+    }
+}
+
+TEST(BsdfReciprocity, FrostedTransmissionAdjoint) {
+    // Radiance-mode f(wo, wi) equals Importance-mode f(wi, wo) (the adjoint BTDF), for both
+    // microfacet distributions; the radiance BTDF itself is not symmetric (eta^2 factor).
+    for (MicrofacetModel model : {MicrofacetModel::GGX, MicrofacetModel::Beckmann}) {
+        BsdfOptions o;
+        o.microfacet = model;
+        const Bsdf b = make(glass(1, 1.5f, 10), o);
+        Sampler rng(13);
+        int nonzero = 0;
+        for (int i = 0; i < 2000; ++i) {
+            const Vec3 a = warp::uniform_hemisphere(rng.next2());
+            Vec3 c = warp::uniform_hemisphere(rng.next2());
+            c.z = -c.z;
+            const float fr = b.eval(a, c, TransportMode::Radiance).r;
+            const float fi = b.eval(c, a, TransportMode::Importance).r;
+            ASSERT_NEAR(fr, fi, 1e-3f * fr + 1e-5f);
+            if (fr > 0) {
+                ++nonzero;
+                EXPECT_NEAR(b.eval(c, a, TransportMode::Radiance).r, fr * 1.5f * 1.5f,
+                            2e-3f * fr * 2.25f + 1e-5f);
+            }
+        }
+        EXPECT_GT(nonzero, 200);
+    }
+}
+
+TEST(BsdfSides, GeometricNormalStopsLightLeaks) {
+    // Shading normal tilted 30 degrees away from the geometric one.
+    const Vec3 ng(0, 0, 1), ns = sph(30, 0);
+    const Bsdf b(lambert(1.0f), flat_hit(ng, ns), empty_scene());
+    const Vec3 wo = sph(60, 180);  // above both
+    const Vec3 wi = sph(100, 0);   // above ns (cos = cos 70 deg) but below ng
+    ASSERT_GT(dot(wi, ns), 0);
+    ASSERT_LT(dot(wi, ng), 0);
+    EXPECT_EQ(b.eval(wo, wi), Rgb(0.0f));
+    EXPECT_EQ(b.pdf(wo, wi), 0.0f);
+    EXPECT_GT(b.eval(wo, sph(10, 0)).r, 0.0f);
+    Sampler rng(14);
+    int lost = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const auto bs = b.sample(wo, rng.next(), rng.next2());
+        if (!bs) {
+            ++lost;
+            continue;
+        }
+        ASSERT_GT(dot(bs->wi, ng), 0);
+    }
+    EXPECT_GT(lost, 0);  // part of the cosine lobe around ns lies below ng and is rejected
+
+    // Glass: transmission needs opposite sides of ng, reflection the same side.
+    const Bsdf g(glass(1.0f, 1.5f, 20), flat_hit(ng, ns), empty_scene());
+    for (int i = 0; i < 20000; ++i) {
+        const auto bs = g.sample(wo, rng.next(), rng.next2());
+        if (!bs) continue;
+        ASSERT_EQ(bool(bs->flags & kTransmission), dot(bs->wi, ng) < 0);
+    }
+}
+
+TEST(BsdfFlags, InterfaceAndBlackBody) {
+    Material iface = glass(1, 1.5f);
+    iface.interface_only = true;
+    const Bsdf i = make(iface);
+    EXPECT_EQ(i.flags(), 0u);
+    EXPECT_FALSE(i.sample(sph(30), 0.5f, Vec2(0.5f, 0.5f)));
+    EXPECT_EQ(i.eval(sph(30), sph(40, 180)), Rgb(0.0f));
+
+    const Bsdf black = make(Material{});
+    EXPECT_NE(black.flags(), 0u);  // opaque: integrators must not pass through it
+    EXPECT_FALSE(black.sample(sph(30), 0.5f, Vec2(0.5f, 0.5f)));
+    EXPECT_EQ(black.eval(sph(30), sph(40, 180)), Rgb(0.0f));
+
+    EXPECT_EQ(make(lambert(0.5f)).flags(), uint32_t(kDiffuse | kReflection));
+    EXPECT_EQ(make(phong(0.5f, 10)).flags(), uint32_t(kGlossy | kReflection));
+    EXPECT_EQ(make(glass(1, 1.5f)).flags(), uint32_t(kSpecular | kReflection | kTransmission));
+    EXPECT_EQ(make(glass(1, 1.5f, 10)).flags(), uint32_t(kGlossy | kReflection | kTransmission));
+}
+
+TEST(BsdfLobes, AlbedosAndMaskedSampling) {
+    Material m = lambert(0.6f);
+    m.specular = Rgb(0.3f);
+    m.shininess = 40;
+    m.transmission = Rgb(0.5f, 0.6f, 0.7f);
+    m.ior = 1.5f;
+    m.diffuse_transmission = Rgb(0.1f);
+    const Bsdf b = make(m);
+    const Vec3 wo = sph(35, 80);
+    const auto a = b.lobe_albedos(wo);
+    EXPECT_NEAR(a.diffuse.r, 0.7f, 1e-6f);
+    EXPECT_NEAR(a.glossy.g, 0.3f, 1e-6f);
+    EXPECT_EQ(a.specular, Rgb(0.0f));
+    EXPECT_EQ(a.transmission, m.transmission);
+
+    Sampler rng(15);
+    for (int i = 0; i < 5000; ++i) {
+        const float ul = rng.next();
+        const Vec2 u = rng.next2();
+        // Glass only: weight is kt, whichever Fresnel branch was taken.
+        const auto t = b.sample_lobes(kTransmission, wo, ul, u, TransportMode::Importance);
+        ASSERT_TRUE(t);
+        EXPECT_TRUE(t->is_specular());
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(t->weight[k], m.transmission[k], 1e-5f);
+        // Glossy only: the Phong lobe's own f cos / pdf = ks (n+2)/(n+1) cos(theta_i).
+        if (const auto g = b.sample_lobes(kGlossy, wo, ul, u)) {
+            EXPECT_EQ(g->flags, uint32_t(kGlossy | kReflection));
+            EXPECT_NEAR(g->weight.r, 0.3f * 42.0f / 41.0f * g->wi.z, 1e-4f);
+        }
+        // Diffuse: Lambert reflection and transmission, weight = their sum of f cos / mixture pdf,
+        // i.e. 0.6 when reflecting and 0.1 when transmitting after renormalising the selection
+        // (0.6 : 0.1) -> weight = kd / (6/7) or kdt / (1/7) = 0.7 either way.
+        const auto d = b.sample_lobes(kDiffuse, wo, ul, u);
+        ASSERT_TRUE(d);
+        EXPECT_TRUE(d->flags & kDiffuse);
+        EXPECT_NEAR(d->weight.r, 0.7f, 1e-4f);
+        // The full mask equals sample().
+        const auto s1 = b.sample(wo, ul, u), s2 = b.sample_lobes(b.flags(), wo, ul, u);
+        ASSERT_EQ(bool(s1), bool(s2));
+        if (s1) {
+            EXPECT_EQ(s1->wi, s2->wi);
+        }
+    }
+}
+
+TEST(BsdfFrame, UsesDpduForTangent) {
+    accel::SurfaceHit h = flat_hit(Vec3(0, 0, 1), normalize(Vec3(0, 0.2f, 1)));
+    h.dpdu = Vec3(2, 0, 0.5f);
+    const Bsdf b(lambert(1), h, empty_scene());
+    const Frame& f = b.frame();
+    EXPECT_NEAR(dot(f.s, f.n), 0.0f, 1e-6f);
+    EXPECT_NEAR(dot(f.t, f.n), 0.0f, 1e-6f);
+    EXPECT_NEAR(length(f.s), 1.0f, 1e-6f);
+    EXPECT_NEAR(length(cross(f.s, f.t) - f.n), 0.0f, 1e-5f);  // right-handed
+    // s is dpdu minus its normal component.
+    const Vec3 proj = normalize(h.dpdu - f.n * dot(f.n, h.dpdu));
+    EXPECT_NEAR(length(f.s - proj), 0.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace phos::shading

@@ -1,0 +1,152 @@
+// Tests of texture evaluation (shading/texture_eval.h): bilinear image lookup, wrap modes, uv
+// mapping, checkerboard and scale textures, and their use by the Bsdf's diffuse albedo.
+#include "shading/texture_eval.h"
+
+#include <gtest/gtest.h>
+
+#include "shading/bsdf.h"
+
+namespace phos::shading {
+namespace {
+
+using scene::Texture;
+
+// 2 x 2 image, row 0 at the top: top-left red, top-right green, bottom-left blue, bottom-right white.
+std::shared_ptr<scene::TextureImage> quad_image() {
+    auto img = std::make_shared<scene::TextureImage>();
+    img->width = 2;
+    img->height = 2;
+    img->texels = {Rgb(1, 0, 0), Rgb(0, 1, 0), Rgb(0, 0, 1), Rgb(1, 1, 1)};
+    return img;
+}
+
+scene::Scene scene_with(Texture t) {
+    scene::Scene s;
+    s.textures.push_back(std::move(t));
+    return s;
+}
+
+Texture image_texture(Texture::Wrap wrap) {
+    Texture t;
+    t.kind = Texture::Kind::Image;
+    t.image = quad_image();
+    t.wrap = wrap;
+    return t;
+}
+
+void expect_rgb(Rgb a, Rgb b, float tol = 1e-5f) {
+    EXPECT_NEAR(a.r, b.r, tol);
+    EXPECT_NEAR(a.g, b.g, tol);
+    EXPECT_NEAR(a.b, b.b, tol);
+}
+
+TEST(TextureEval, ConstantAndNoTexture) {
+    Texture t;
+    t.value = Rgb(0.2f, 0.3f, 0.4f);
+    const auto s = scene_with(t);
+    expect_rgb(eval_texture(s, 0, Vec2(0.3f, 0.9f)), t.value);
+    expect_rgb(eval_texture(s, -1, Vec2(0.3f, 0.9f)), Rgb(1.0f));
+    expect_rgb(eval_texture(s, 7, Vec2(0.3f, 0.9f)), Rgb(1.0f));  // bad index: no crash
+}
+
+TEST(TextureEval, BilinearAtTexelCentresAndBetween) {
+    const auto s = scene_with(image_texture(Texture::Wrap::Clamp));
+    // v grows upwards: v = 0.75 is the top row.
+    expect_rgb(eval_texture(s, 0, Vec2(0.25f, 0.75f)), Rgb(1, 0, 0));
+    expect_rgb(eval_texture(s, 0, Vec2(0.75f, 0.75f)), Rgb(0, 1, 0));
+    expect_rgb(eval_texture(s, 0, Vec2(0.25f, 0.25f)), Rgb(0, 0, 1));
+    expect_rgb(eval_texture(s, 0, Vec2(0.75f, 0.25f)), Rgb(1, 1, 1));
+    // Centre: the mean of all four; halfway along the top row: mean of red and green.
+    expect_rgb(eval_texture(s, 0, Vec2(0.5f, 0.5f)), Rgb(0.5f, 0.5f, 0.5f));
+    expect_rgb(eval_texture(s, 0, Vec2(0.5f, 0.75f)), Rgb(0.5f, 0.5f, 0));
+    // A quarter of the way from red to green texel centre.
+    expect_rgb(eval_texture(s, 0, Vec2(0.375f, 0.75f)), Rgb(0.75f, 0.25f, 0));
+}
+
+TEST(TextureEval, WrapModes) {
+    const auto rep = scene_with(image_texture(Texture::Wrap::Repeat));
+    const auto clamp = scene_with(image_texture(Texture::Wrap::Clamp));
+    const auto black = scene_with(image_texture(Texture::Wrap::Black));
+    // Repeat: periodic in both directions, and the edge between tiles blends across them.
+    for (Vec2 uv : {Vec2(0.3f, 0.6f), Vec2(0.8f, 0.1f)}) {
+        expect_rgb(eval_texture(rep, 0, uv + Vec2(1, 0)), eval_texture(rep, 0, uv));
+        expect_rgb(eval_texture(rep, 0, uv + Vec2(-3, 2)), eval_texture(rep, 0, uv), 1e-4f);
+    }
+    // At u = 0 on the top row: halfway between red (left) and green (wrapped from the right).
+    expect_rgb(eval_texture(rep, 0, Vec2(0.0f, 0.75f)), Rgb(0.5f, 0.5f, 0));
+    // Clamp: the edge texel extends outwards.
+    expect_rgb(eval_texture(clamp, 0, Vec2(0.0f, 0.75f)), Rgb(1, 0, 0));
+    expect_rgb(eval_texture(clamp, 0, Vec2(-5.0f, 0.75f)), Rgb(1, 0, 0));
+    expect_rgb(eval_texture(clamp, 0, Vec2(0.75f, 7.0f)), Rgb(0, 1, 0));
+    // Black: outside texels are black, so the edge fades to half and beyond is black.
+    expect_rgb(eval_texture(black, 0, Vec2(0.0f, 0.75f)), Rgb(0.5f, 0, 0));
+    expect_rgb(eval_texture(black, 0, Vec2(-0.5f, 0.75f)), Rgb(0.0f));
+    // The low-level lookup agrees (texel coordinates, row 0 at the top).
+    expect_rgb(lookup_bilinear(*quad_image(), 0.5f, 0.5f, Texture::Wrap::Clamp), Rgb(1, 0, 0));
+    expect_rgb(lookup_bilinear(*quad_image(), 1.0f, 1.5f, Texture::Wrap::Clamp), Rgb(0.5f, 0.5f, 1));
+}
+
+TEST(TextureEval, UvMappingAndInvertV) {
+    Texture t = image_texture(Texture::Wrap::Clamp);
+    t.u_scale = 0.5f;
+    t.u_offset = 0.5f;  // u = 0.5 -> 0.75 (right column)
+    t.v_scale = 2.0f;
+    t.v_offset = -0.25f;  // v = 0.5 -> 0.75 (top row)
+    t.value = Rgb(2.0f);  // image multiplier
+    expect_rgb(eval_texture(scene_with(t), 0, Vec2(0.5f, 0.5f)), Rgb(0, 2, 0));
+    Texture inv = image_texture(Texture::Wrap::Clamp);
+    inv.invert_v = true;  // v = 0.25 is now the top row
+    expect_rgb(eval_texture(scene_with(inv), 0, Vec2(0.25f, 0.25f)), Rgb(1, 0, 0));
+}
+
+TEST(TextureEval, CheckerboardAndScale) {
+    scene::Scene s;
+    Texture a;
+    a.value = Rgb(0.2f);
+    Texture b;
+    b.value = Rgb(0.9f);
+    s.textures = {a, b};
+    Texture check;
+    check.kind = Texture::Kind::Checkerboard;
+    check.tex1 = 0;
+    check.tex2 = 1;
+    check.u_scale = check.v_scale = 4;  // 4 x 4 squares over the unit square
+    s.textures.push_back(check);
+    expect_rgb(eval_texture(s, 2, Vec2(0.1f, 0.1f)), Rgb(0.2f));
+    expect_rgb(eval_texture(s, 2, Vec2(0.3f, 0.1f)), Rgb(0.9f));
+    expect_rgb(eval_texture(s, 2, Vec2(0.3f, 0.3f)), Rgb(0.2f));
+    expect_rgb(eval_texture(s, 2, Vec2(-0.1f, 0.1f)), Rgb(0.9f));  // negative coordinates alternate too
+    Texture plain = check;                                         // values instead of textures
+    plain.tex1 = plain.tex2 = -1;
+    plain.value = Rgb(1, 0, 0);
+    plain.value2 = Rgb(0, 0, 1);
+    s.textures.push_back(plain);
+    expect_rgb(eval_texture(s, 3, Vec2(0.3f, 0.1f)), Rgb(0, 0, 1));
+    Texture scale;
+    scale.kind = Texture::Kind::Scale;
+    scale.tex1 = 2;
+    scale.value = Rgb(0.5f);
+    s.textures.push_back(scale);
+    expect_rgb(eval_texture(s, 4, Vec2(0.3f, 0.1f)), Rgb(0.45f));
+    Texture cyc;  // a malformed self-reference must not recurse forever
+    cyc.kind = Texture::Kind::Scale;
+    cyc.tex1 = 5;
+    s.textures.push_back(cyc);
+    EXPECT_TRUE(eval_texture(s, 5, Vec2(0.3f, 0.1f)).is_finite());
+}
+
+TEST(TextureEval, BsdfDiffuseAlbedoIsTextured) {
+    auto s = scene_with(image_texture(Texture::Wrap::Repeat));
+    scene::Material m;
+    m.diffuse = Rgb(0.5f);
+    m.diffuse_texture = 0;
+    accel::SurfaceHit h;
+    h.ng = h.ns = Vec3(0, 0, 1);
+    h.uv = Vec2(0.25f, 0.25f);  // blue texel
+    const Bsdf b(m, h, s);
+    expect_rgb(b.diffuse_albedo(), Rgb(0, 0, 0.5f));
+    expect_rgb(b.eval(Vec3(0, 0, 1), Vec3(0, 0, 1)), Rgb(0, 0, 0.5f * kInvPi));
+}
+
+}  // namespace
+}  // namespace phos::shading
