@@ -219,7 +219,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& type_in, 
         }
         t.image = std::move(ti);
         t.filename = path;
-        t.invert_v = true;  // pbrt looks images up at (s, 1 - t): v = 0 is the bottom row
+        t.invert_v = false;  // pbrt looks images up at (s, 1 - t), i.e. v = 0 is the bottom row: our default
     } else {
         warn(loc, d + ": texture class \"" + cls + "\" is not supported; a constant 0.5 is used");
         params.mark_all_used();
