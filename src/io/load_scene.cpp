@@ -12,7 +12,8 @@ namespace phos::io {
 
 scene::Scene load_scene(const std::string& path, const LoadOptions& options) {
     std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
     if (!std::filesystem::exists(path)) throw ParseError(path, 0, 0, "cannot open scene file: no such file");
     if (std::filesystem::is_directory(path)) throw ParseError(path, 0, 0, "is a directory, not a scene file");
     if (ext == ".scn") return load_scn(path, ScnOptions{options.real, options.legacy_attenuation});
