@@ -395,18 +395,21 @@ struct Local {
 // interior) when that is a small move. Near an edge shared with another
 // face, the rounding of p to float could otherwise put it on the wrong side of the neighbour's
 // plane, and a ray spawned from there would slip out through the edge (a leak at box corners).
-D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, D3 cr, double inset) {
-    const double area2 = std::sqrt(detail::dot(cr, cr));
-    double need[3];
+D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, double area2, double inset) {
+    const D3 p = p0 * b0 + p1 * b1 + p2 * b2;
     const D3 opposite[3] = {p2 - p1, p0 - p2, p1 - p0};
-    double sum = 0;
+    double len2[3];
+    for (int i = 0; i < 3; ++i) len2[i] = detail::dot(opposite[i], opposite[i]);
+    // Fast path (almost every hit): the distance to each edge, b_i * area2 / len_i, exceeds inset.
+    const double bmin = std::min({b0, b1, b2});
+    if (bmin * area2 >= inset * std::sqrt(std::max({len2[0], len2[1], len2[2]}))) return p;
+    if (!(area2 > 0)) return p;
+    double need[3], sum = 0;
     for (int i = 0; i < 3; ++i) {
         // Barycentric coordinate i at distance `inset` from the opposite edge: inset / altitude.
-        const double len = std::sqrt(detail::dot(opposite[i], opposite[i]));
-        need[i] = area2 > 0 ? inset * len / area2 : 1.0;
+        need[i] = inset * std::sqrt(len2[i]) / area2;
         sum += need[i];
     }
-    const D3 p = p0 * b0 + p1 * b1 + p2 * b2;
     if (!(sum < 1)) return p;  // smaller than the inset: leave it
     // Shrink the triangle about the point with barycentrics need/sum: every b_i >= need_i. Slivers
     // would move the point far along the surface; they keep the plain point.
@@ -431,9 +434,10 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
     Local L;
     const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
     L.error = 16 * kUlp * mag;
-    const D3 cr = detail::cross(p1 - p0, p2 - p0);
-    L.p = inset_point(p0, p1, p2, b0, b1, b2, cr, L.error);
-    D3 n = normalized(cr);  // counter-clockwise = front
+    const D3 cr = detail::cross(p1 - p0, p2 - p0);  // counter-clockwise = front
+    const double area2 = std::sqrt(detail::dot(cr, cr));
+    L.p = inset_point(p0, p1, p2, b0, b1, b2, area2, L.error);
+    D3 n = area2 > 0 ? cr * (1.0 / area2) : cr;
     if (m.flip) n = n * -1.0;
     L.ng = L.ns = n;
     if (!m.normals.empty()) {
@@ -482,11 +486,6 @@ Local analytic_local(const Analytic& a, const CanonicalHit& h, double amplify) {
     return L;
 }
 
-Vec3 unit(D3 v) {
-    const Vec3 f = normalized(v).to_float();
-    return f / length(f);
-}
-
 }  // namespace
 
 bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
@@ -533,17 +532,18 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
         L.error = L.error * inst->norm + inst->error_term + 16 * kUlp * cond * max_abs(pw);
         L.p = pw;
         // Normals by the inverse transpose; an instance transform never flips orientation (pbrt).
-        L.ng = inst->to_object.transpose_vector(L.ng);
-        L.ns = inst->to_object.transpose_vector(L.ns);
-        L.dpdu = inst->to_world.vector(L.dpdu);
+        L.ng = normalized(inst->to_object.transpose_vector(L.ng));
+        L.ns = normalized(inst->to_object.transpose_vector(L.ns));
+        L.dpdu = normalized(inst->to_world.vector(L.dpdu));
     }
 
+    // ng, ns and dpdu are unit vectors in double here; rounding to float keeps them unit to 1e-7.
     hit.t = rh.ray.tfar;
     hit.p = L.p.to_float();
-    hit.ng = unit(L.ng);
-    hit.ns = unit(L.ns);
+    hit.ng = L.ng.to_float();
+    hit.ns = L.ns.to_float();
     hit.uv = L.uv;
-    hit.dpdu = unit(L.dpdu);
+    hit.dpdu = L.dpdu.to_float();
     hit.shape = shape_index;
     hit.instance = inst ? inst->instance : -1;
     hit.material = shape->material;

@@ -21,6 +21,21 @@ struct Bounds {
     }
 };
 
+// Conventions of the hits (pbrt's where pbrt has one):
+// - Triangles (meshes, and boxes as 12 triangles): ng is the counter-clockwise winding normal of
+//   the world-space triangle, flipped if reverse_orientation XOR to_world swaps handedness (so a
+//   box stays outward under mirroring). With per-vertex normals, ns is their interpolation (normal
+//   transform, flipped by reverse_orientation as in pbrt-v4) and ng is turned to ns's side.
+//   uv: mesh uvs, else the barycentrics (b1, b2).
+// - Analytic shapes: outward normal, flipped if reverse_orientation XOR to_world swaps handedness.
+//   Sphere: pole along Shape::axis (+y by default), u = phi / 2pi around it (phi = atan2(y, x) for
+//   a +z axis), v = theta / pi from the +axis pole. Disk: u = phi / 2pi, v = (r_out - r) /
+//   (r_out - r_in). Cylinder/cone side: v = 0 at the base (centre - axis h/2) to 1 at the top;
+//   caps: v = r / radius. Cone apex at centre + axis h/2; Shape::capped closes cylinder and cone.
+// - Instances: the instance transform carries p, normals and dpdu to world without any flip;
+//   `shape` is the index within the object and `instance` the index in Scene::instances.
+// - Degenerate shapes (zero radius, ...) are skipped with a warning; malformed meshes (index out of
+//   range, non-finite vertex) and instances of missing objects throw InputError.
 class EmbreeScene {
 public:
     // Keeps a reference to `scene`, which must outlive this object.
