@@ -3,15 +3,21 @@
 
 #include "core/error.h"
 #include "integrators/path.h"
+#include "integrators/photon_map.h"
+#include "integrators/ppm.h"
+#include "integrators/sppm.h"
 #include "integrators/whitted.h"
 
 namespace phos::integrators {
 
-std::vector<std::string> integrator_names() { return {"whitted", "path"}; }
+std::vector<std::string> integrator_names() { return {"whitted", "path", "photonmap", "ppm", "sppm"}; }
 
-std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& /*config*/) {
+std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config) {
     if (name == "whitted") return std::make_unique<WhittedIntegrator>();
     if (name == "path") return std::make_unique<PathIntegrator>();
+    if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map);
+    if (name == "ppm") return std::make_unique<PpmIntegrator>(config.progressive);
+    if (name == "sppm") return std::make_unique<SppmIntegrator>(config.progressive);
     throw InputError("unknown integrator '" + name + "'");
 }
 

@@ -21,7 +21,7 @@ void HitPointGrid::build(const std::vector<Vec3>& positions, const std::vector<f
     }
     if (count == 0) return;
     const float r_max = std::sqrt(max_r2);
-    const float cell = 2 * r_max;  // a sphere's box then spans at most 2 cells per axis
+    const float cell = cell_factor_ * r_max;
     inv_cell_ = 1 / cell;
     lo_ = lo - Vec3(r_max);
     const Vec3 ext = (hi + Vec3(r_max) - lo_) * inv_cell_;
@@ -36,14 +36,14 @@ void HitPointGrid::build(const std::vector<Vec3>& positions, const std::vector<f
         const float r = std::sqrt(r2[i]);
         const Vec3 a = (positions[i] - Vec3(r) - lo_) * inv_cell_;
         const Vec3 b = (positions[i] + Vec3(r) - lo_) * inv_cell_;
-        uint32_t seen[8];
+        uint32_t seen[64];
         int n = 0;
         for (int z = int(a.z); z <= int(b.z); ++z)
             for (int y = int(a.y); y <= int(b.y); ++y)
                 for (int x = int(a.x); x <= int(b.x); ++x) {
                     const uint32_t h = bucket(x, y, z);
                     if (std::find(seen, seen + n, h) != seen + n) continue;
-                    if (n < 8) seen[n++] = h;
+                    if (n < 64) seen[n++] = h;
                     f(h);
                 }
     };

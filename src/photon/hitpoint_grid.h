@@ -30,6 +30,10 @@ public:
         }
     }
 
+    // Cell edge in units of the largest radius (default 2: each point in at most 8 cells; smaller
+    // cells mean fewer candidates per photon but more entries). Must be >= 0.5.
+    void set_cell_factor(float f) { cell_factor_ = f; }
+
     size_t entry_count() const { return entries_.size(); }
     float cell_size() const { return inv_cell_ > 0 ? 1 / inv_cell_ : 0; }
 
@@ -45,6 +49,7 @@ private:
 
     Vec3 lo_{0.0f};
     float inv_cell_ = 0;
+    float cell_factor_ = 2;
     Vec3 dims_{0.0f};  // cells per axis (as floats, for the bounds test)
     uint32_t mask_ = 0;
     std::vector<uint32_t> start_;  // bucket b's entries are [start_[b], start_[b+1])

@@ -3,6 +3,41 @@
 
 namespace phos::app {
 
-void add_progressive_options(CLI::App& /*render*/, integrators::ProgressiveOptions& /*options*/) {}
+void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& o) {
+    render
+        .add_option("--alpha", o.alpha, "ppm/sppm: fraction of new photons kept per iteration (default 0.7)")
+        ->check(CLI::Range(0.01f, 1.0f));
+    render
+        .add_option("--photons-per-iter", o.photons_per_iter,
+                    "ppm/sppm: photons traced per iteration (default 200000)")
+        ->check(CLI::Range(uint64_t(1), uint64_t(1) << 32));
+    render
+        .add_option("--radius", o.radius,
+                    "ppm/sppm: initial gather radius in scene units (default: automatic)")
+        ->check(CLI::PositiveNumber);
+    render
+        .add_option("--radius-pixels", o.radius_pixels,
+                    "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 2)")
+        ->check(CLI::PositiveNumber);
+    render
+        .add_option("--ppm-direct-samples", o.direct_samples, "ppm: light samples per hit point (default 16)")
+        ->check(CLI::Range(1, 65536));
+    render.add_option("--ppm-eye-samples", o.eye_samples, "ppm: hit points per pixel (default 1)")
+        ->check(CLI::Range(1, 4096));
+    render.add_option("--iterations", o.iterations, "ppm/sppm: number of iterations (same as --spp)")
+        ->check(CLI::Range(1, 1 << 30));
+    render
+        .add_option("--time", o.time, "ppm/sppm: stop after the iteration that crosses SECONDS of wall time")
+        ->check(CLI::PositiveNumber);
+    render.add_option("--write-every", o.write_every, "ppm/sppm: write the current image every SECONDS")
+        ->check(CLI::PositiveNumber);
+    render.add_option("--checkpoint", o.checkpoint_path, "ppm/sppm: save the progressive state to FILE");
+    render
+        .add_option("--checkpoint-every", o.checkpoint_every,
+                    "ppm/sppm: iterations between checkpoints (default 8)")
+        ->check(CLI::Range(1, 1 << 30));
+    render.add_option("--resume", o.resume_path,
+                      "ppm/sppm: continue the render saved in checkpoint FILE (same scene and options)");
+}
 
 }  // namespace phos::app

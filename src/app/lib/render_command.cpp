@@ -4,12 +4,17 @@
 
 #include <tbb/global_control.h>
 
+#include <chrono>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sstream>
 
 #include "core/error.h"
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "film/checkpoint.h"
 #include "film/film.h"
 #include "integrators/factory.h"
 #include "integrators/prepared.h"
@@ -30,6 +35,59 @@ void check_output(const std::string& out) {
     if (std::filesystem::is_directory(out)) throw InputError("output '" + out + "' is a directory");
 }
 
+// Budgets, previews, checkpoints and resuming of the progressive integrators (ppm, sppm): fills
+// the hooks and the render identity that checkpoints carry, and turns --iterations / --time /
+// --resume into the iteration count.
+void setup_progressive(const RenderCommand& cmd, const std::string& integrator, const std::string& output,
+                       integrators::RenderOptions& opt, integrators::ProgressiveOptions& p) {
+    const bool progressive = integrator == "ppm" || integrator == "sppm";
+    if (!progressive) {
+        if (!p.checkpoint_path.empty() || !p.resume_path.empty() || p.time > 0 || p.write_every > 0 ||
+            p.iterations > 0)
+            throw InputError(
+                "--iterations, --time, --write-every, --checkpoint and --resume need --integrator ppm or "
+                "sppm");
+        return;
+    }
+    if (p.iterations > 0) {
+        if (cmd.spp && *cmd.spp != p.iterations) throw InputError("--spp and --iterations disagree");
+        opt.spp = p.iterations;
+    }
+    const bool count_given = p.iterations > 0 || cmd.spp.has_value() || cmd.aa.has_value();
+    if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
+
+    // The render's identity: scene bytes and every option that changes the image.
+    film::ProgressiveState& id = p.identity;
+    {
+        std::ifstream f(cmd.scene_path, std::ios::binary);
+        const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+        id.scene_hash = film::hash_bytes(bytes.data(), bytes.size());
+    }
+    std::ostringstream o;
+    o << opt.max_depth << ' ' << opt.dof_samples << ' ' << opt.ambient << ' ' << opt.background_light << ' '
+      << cmd.dof_distance << ' ' << cmd.dof_radius << ' ' << cmd.schlick << ' ' << cmd.real << ' '
+      << cmd.legacy_attenuation << ' ' << p.alpha << ' ' << integrators::photons_per_iteration(p) << ' '
+      << p.radius << ' ' << p.radius_pixels << ' ' << p.direct_samples << ' ' << p.eye_samples;
+    const std::string ostr = o.str();
+    id.options_hash = film::hash_bytes(ostr.data(), ostr.size());
+
+    if (!p.resume_path.empty()) {
+        auto saved = std::make_shared<film::ProgressiveState>(film::load_checkpoint(p.resume_path));
+        if (!count_given && p.time <= 0) opt.spp = int(std::min<uint64_t>(saved->target_iterations, 1 << 30));
+        p.resume = saved;
+    }
+    if (!p.checkpoint_path.empty()) {
+        const std::string path = p.checkpoint_path;
+        p.on_checkpoint = [path](const film::ProgressiveState& s) { film::save_checkpoint(path, s); };
+    }
+    if (p.write_every > 0) {
+        const float exposure = cmd.exposure;
+        p.on_preview = [output, exposure](const film::Film& f) {
+            io::write_image(output, f.image(), {exposure});
+        };
+    }
+}
+
 }  // namespace
 
 std::string layer_path(const std::string& output, const std::string& layer) {
@@ -38,6 +96,7 @@ std::string layer_path(const std::string& output, const std::string& layer) {
 }
 
 void run_render(const RenderCommand& cmd) {
+    const auto clock_start = std::chrono::steady_clock::now();
     log::set_quiet(cmd.quiet);
     std::optional<tbb::global_control> threads;
     if (cmd.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.threads));
@@ -72,7 +131,10 @@ void run_render(const RenderCommand& cmd) {
     if (cmd.dof_samples) opt.dof_samples = *cmd.dof_samples;
     if (opt.width <= 0 || opt.height <= 0) throw InputError("image size must be positive");
     const std::string integrator_name = cmd.integrator.value_or(scene.settings.integrator.value_or("path"));
-    auto integrator = integrators::make_integrator(integrator_name, cmd.config);
+    integrators::IntegratorConfig config = cmd.config;
+    setup_progressive(cmd, integrator_name, output, opt, config.progressive);
+    config.progressive.clock_start = clock_start;
+    auto integrator = integrators::make_integrator(integrator_name, config);
 
     if (cmd.dof_samples) {
         if (!scene.camera) scene.camera.emplace();  // replaced below by the framing camera if absent

@@ -1,0 +1,76 @@
+// PPM's orchestration: the single eye pass, then photon passes with grid rebuilds (radii shrink).
+#include "integrators/ppm.h"
+
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "integrators/pixel_loop.h"
+#include "integrators/sppm.h"
+#include "integrators/sppm_core.h"
+
+namespace phos::integrators {
+
+void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+    using namespace sppm;
+    const RenderOptions& ro = P.options;
+    const int eye = std::max(1, opt_.eye_samples);
+    const size_t slots = size_t(ro.width) * size_t(ro.height) * size_t(eye);
+    film::ProgressiveState state = opt_.identity;
+    state.integrator = "ppm";
+    state.width = uint32_t(ro.width);
+    state.height = uint32_t(ro.height);
+    state.slots_per_pixel = uint32_t(eye);
+    state.seed = ro.seed;
+    if (opt_.resume) {
+        film::check_resumable(*opt_.resume, state, opt_.resume_path);
+        state = *opt_.resume;
+    } else {
+        state.slots.assign(slots, {});
+    }
+    state.target_iterations = uint64_t(std::max(1, ro.spp));
+    if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+
+    // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
+    const PixelFootprint footprint(P);
+    const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    std::vector<VisiblePoint> vps(slots);
+    tbb::parallel_for(0, ro.height, [&](int y) {
+        RayCounts rays;
+        for (int x = 0; x < ro.width; ++x)
+            for (int s = 0; s < eye; ++s) {
+                const size_t i = (size_t(y) * size_t(ro.width) + size_t(x)) * size_t(eye) + size_t(s);
+                Sampler sampler(ro.seed, 0x70706d657965ULL, i);
+                const Vec2 jitter = eye == 1 ? Vec2{0.5f, 0.5f} : stratified_sample(s, eye, sampler.next2());
+                const Vec2 lens = sampler.next2();
+                const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                ++rays.camera;
+                const Rgb L = trace_eye_path(P, ray, sampler, opt_.direct_samples, vps[i], rays);
+                film::SlotStats& st = state.slots[i];
+                for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
+                if (vps[i].bsdf && st.r2 == 0) {
+                    const float r =
+                        opt_.radius > 0 ? opt_.radius : radius_pixels * footprint.at(vps[i].path_length);
+                    st.r2 = double(r) * double(r);
+                }
+            }
+        P.stats.add_rays(rays);
+    });
+
+    const uint64_t photons = photons_per_iteration(opt_);
+    PhotonAccumulator acc(slots);
+    photon::HitPointGrid grid;
+    auto iterate = [&](uint64_t it) {
+        build_grid(grid, vps, state.slots);
+        RayCounts prays;
+        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
+        P.stats.add_rays(prays);
+        state.photons_emitted += photons;
+        acc.update(state.slots, vps, opt_.alpha);
+    };
+    auto resolve_fn = [&](film::Film& f) { resolve(state.slots, eye, 1.0, state.photons_emitted, f); };
+    run_loop(P, opt_, state, film, progress, iterate, resolve_fn);
+    P.stats.add_value("ppm", std::to_string(state.iterations) + " iterations, " +
+                                 std::to_string(state.photons_emitted) + " photons");
+}
+
+}  // namespace phos::integrators

@@ -1,0 +1,81 @@
+// SPPM's orchestration: eye pass, hit-point grid, photon pass, update, once per iteration.
+#include "integrators/sppm.h"
+
+#include <tbb/parallel_for.h>
+
+#include "core/error.h"
+#include "film/tiles.h"
+#include "integrators/sppm_core.h"
+
+namespace phos::integrators {
+
+void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+    using namespace sppm;
+    const RenderOptions& ro = P.options;
+    const size_t pixels = size_t(ro.width) * size_t(ro.height);
+    film::ProgressiveState state = opt_.identity;
+    state.integrator = "sppm";
+    state.width = uint32_t(ro.width);
+    state.height = uint32_t(ro.height);
+    state.slots_per_pixel = 1;
+    state.seed = ro.seed;
+    if (opt_.resume) {
+        film::check_resumable(*opt_.resume, state, opt_.resume_path);
+        state = *opt_.resume;
+    } else {
+        state.slots.assign(pixels, {});
+    }
+    state.target_iterations = uint64_t(std::max(1, ro.spp));
+    if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+
+    const uint64_t photons = photons_per_iteration(opt_);
+    const PixelFootprint footprint(P);
+    const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    std::vector<VisiblePoint> vps(pixels);
+    PhotonAccumulator acc(pixels);
+    photon::HitPointGrid grid;
+    const auto tiles = film::make_tiles(ro.width, ro.height);
+
+    auto iterate = [&](uint64_t it) {
+        // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration).
+        tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+            const film::Tile& tile = tiles[t];
+            RayCounts rays;
+            for (int y = tile.y0; y < tile.y1; ++y)
+                for (int x = tile.x0; x < tile.x1; ++x) {
+                    const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
+                    Sampler sampler(ro.seed, 0x65796570617373ULL, i, it);
+                    const Vec2 jitter = sampler.next2();
+                    const Vec2 lens = sampler.next2();
+                    const accel::Ray ray =
+                        P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                    ++rays.camera;
+                    const Rgb L = sppm::trace_eye_path(P, ray, sampler, 1, vps[i], rays);
+                    film::SlotStats& st = state.slots[i];
+                    if (L.is_finite())
+                        for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);
+                    if (vps[i].bsdf && st.r2 == 0) {
+                        const float r =
+                            opt_.radius > 0 ? opt_.radius : radius_pixels * footprint.at(vps[i].path_length);
+                        st.r2 = double(r) * double(r);
+                    }
+                }
+            P.stats.add_rays(rays);
+        });
+        build_grid(grid, vps, state.slots);
+        RayCounts prays;
+        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
+        P.stats.add_rays(prays);
+        state.photons_emitted += photons;
+        acc.update(state.slots, vps, opt_.alpha);
+    };
+    auto resolve_fn = [&](film::Film& f) {
+        resolve(state.slots, 1, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
+                state.photons_emitted, f);
+    };
+    run_loop(P, opt_, state, film, progress, iterate, resolve_fn);
+    P.stats.add_value("sppm", std::to_string(state.iterations) + " iterations, " +
+                                  std::to_string(state.photons_emitted) + " photons");
+}
+
+}  // namespace phos::integrators

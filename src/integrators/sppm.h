@@ -1,0 +1,25 @@
+// Stochastic progressive photon mapping (Hachisuka & Jensen 2009): every iteration a new
+// stochastic eye pass (random position in the pixel, lens sample, random specular choices) finds
+// one visible point per pixel, direct light is sampled there by shadow rays, then a photon pass
+// adds photons to the visible points within the pixel's shrinking radius. Per-pixel statistics
+// (N, R, τ, direct sum) are shared by all iterations; see sppm_core.h for the estimator.
+#pragma once
+
+#include "integrators/integrator.h"
+#include "integrators/progressive_options.h"
+
+namespace phos::integrators {
+
+class SppmIntegrator : public Integrator {
+public:
+    explicit SppmIntegrator(ProgressiveOptions options) : opt_(std::move(options)) {}
+    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+
+private:
+    ProgressiveOptions opt_;
+};
+
+// Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
+constexpr float kDefaultRadiusPixels = 2.0f;
+
+}  // namespace phos::integrators

@@ -1,0 +1,228 @@
+// Shared machinery of PPM and SPPM (see sppm_core.h).
+#include "integrators/sppm_core.h"
+
+#include <tbb/parallel_for.h>
+
+#include <cmath>
+
+#include "integrators/direct_light.h"
+#include "photon/photon_path.h"
+
+namespace phos::integrators::sppm {
+
+using shading::Bsdf;
+
+Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
+                   RayCounts& rays) {
+    vp.bsdf.reset();
+    const scene::Scene& scene = P.scene;
+    Rgb L(0.0f), beta(1.0f);
+    float length = 0;
+    int crossings = 0;
+    for (int depth = 0;;) {
+        accel::SurfaceHit hit;
+        if (!P.accel.intersect(ray, hit)) {
+            // Every vertex so far was specular, so escaped light is seen directly.
+            L += beta * (scene.background + P.escaped(normalize(ray.dir)));
+            break;
+        }
+        length += hit.t * std::sqrt(dot(ray.dir, ray.dir));
+        if (P.passes_through(hit)) {
+            if (++crossings > 256) break;
+            ray = accel::spawn_ray(hit, ray.dir);
+            continue;
+        }
+        const Vec3 wo = -normalize(ray.dir);
+        const scene::Material& mat = scene.materials[size_t(hit.material)];
+        L += beta * (P.emitted(hit, wo) + mat.emission);
+        if (depth == 0 && P.options.ambient) L += beta * mat.ambient * scene.ambient;
+        if (depth == P.options.max_depth) break;
+        const Bsdf bsdf = P.bsdf(hit);
+        if (bsdf.flags() == 0) break;
+
+        // Split the lobes into the non-specular part (a visible point) and the delta part (follow).
+        float p_ns = 1;
+        uint32_t delta_mask = 0;
+        if (!bsdf.has_non_specular()) {
+            p_ns = 0;
+            delta_mask = ~0u;
+        } else if (bsdf.flags() & shading::kSpecular) {
+            const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
+            float ns = a.diffuse.average() + a.glossy.average(), d = a.specular.average();
+            if (a.specular.average() > 0) delta_mask |= shading::kSpecular;
+            if (a.transmission.average() > 0) {
+                // The dielectric is delta when smooth, glossy when frosted: ask it.
+                const auto s = bsdf.sample_lobes(shading::kTransmission, wo, 0.5f, {0.5f, 0.5f});
+                if (s && s->is_specular()) {
+                    d += a.transmission.average();
+                    delta_mask |= shading::kTransmission;
+                } else {
+                    ns += a.transmission.average();
+                }
+            }
+            p_ns = ns + d > 0 ? ns / (ns + d) : 1;
+        }
+        const float u = p_ns > 0 && p_ns < 1 ? sampler.next() : 0.5f;
+        if (p_ns >= 1 || (p_ns > 0 && u < p_ns)) {
+            const Rgb w = beta * (1 / p_ns);
+            Rgb direct(0.0f);
+            const int n = std::max(1, direct_samples);
+            for (int k = 0; k < n; ++k) direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false);
+            L += w * direct * (1.0f / float(n));
+            vp.p = hit.p;
+            vp.wo = wo;
+            vp.beta = w;
+            vp.depth = depth;
+            vp.path_length = length;
+            vp.bsdf.emplace(bsdf);
+            break;
+        }
+        const float u_lobe = sampler.next();
+        const auto s = bsdf.sample_lobes(delta_mask, wo, u_lobe, sampler.next2());
+        if (!s || s->weight.is_black() || !s->weight.is_finite()) break;
+        beta *= s->weight * (1 / (1 - p_ns));
+        ray = accel::spawn_ray(hit, s->wi);
+        ++rays.bounce;
+        ++depth;
+        if (!beta.is_finite() || beta.max() <= 0) break;
+    }
+    return L;
+}
+
+PixelFootprint::PixelFootprint(const Prepared& P) {
+    const float cx = 0.5f * float(P.options.width), cy = 0.5f * float(P.options.height);
+    const accel::Ray a = P.camera.generate_ray(cx, cy, {0.5f, 0.5f});
+    const accel::Ray b = P.camera.generate_ray(cx + 1, cy, {0.5f, 0.5f});
+    offset = length(a.origin - b.origin);
+    slope = length(normalize(a.dir) - normalize(b.dir));
+}
+
+PhotonAccumulator::PhotonAccumulator(size_t slots) : slots_(new Slot[slots]), count_(slots) {
+    for (size_t i = 0; i < slots; ++i) {
+        for (auto& p : slots_[i].phi) p.store(0, std::memory_order_relaxed);
+        slots_[i].m.store(0, std::memory_order_relaxed);
+    }
+}
+
+uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
+                                        const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass,
+                                        uint64_t count) {
+    const int max_depth = P.options.max_depth;
+    if (max_depth < 1 || grid.entry_count() == 0) return 0;
+    // Fixed point: 2^32 units per (total light power). Photon powers are of the order of the total
+    // power times albedos, so contributions keep ~30 significant bits and sums cannot overflow.
+    scale_ = 0x1p32 / std::max(double(P.lights.total_power().average()), 1e-30);
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
+    const photon::PhotonPathOptions popt{max_depth - 1};
+    constexpr uint64_t kBlock = 4096;
+    const uint64_t blocks = (count + kBlock - 1) / kBlock;
+    std::atomic<uint64_t> total_rays{0};
+    tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
+        uint64_t rays = 0;
+        const uint64_t end = std::min(count, (blk + 1) * kBlock);
+        for (uint64_t idx = blk * kBlock; idx < end; ++idx) {
+            rays += photon::trace_photon(ps, seed, pass, idx, popt, [&](const photon::PhotonHit& h) {
+                if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
+                grid.query(h.hit.p, [&](uint32_t i) {
+                    const VisiblePoint& vp = vps[i];
+                    if (h.bounces > max_depth - 1 - vp.depth) return;
+                    const Rgb c = vp.bsdf->eval(vp.wo, h.wi) * h.power;
+                    if (c.is_black() || !c.is_finite()) return;
+                    Slot& s = slots_[i];
+                    for (int k = 0; k < 3; ++k) {
+                        const double q = std::min(double(c[k]) * scale_, 0x1p52);
+                        s.phi[k].fetch_add(int64_t(std::llround(q)), std::memory_order_relaxed);
+                    }
+                    s.m.fetch_add(1, std::memory_order_relaxed);
+                });
+            });
+        }
+        total_rays.fetch_add(rays, std::memory_order_relaxed);
+    });
+    return total_rays.load();
+}
+
+void PhotonAccumulator::update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
+                               float alpha) {
+    tbb::parallel_for(size_t(0), count_, [&](size_t i) {
+        Slot& s = slots_[i];
+        const uint64_t m = s.m.exchange(0, std::memory_order_relaxed);
+        double phi[3];
+        for (int k = 0; k < 3; ++k) phi[k] = double(s.phi[k].exchange(0, std::memory_order_relaxed)) / scale_;
+        if (m == 0 || !vps[i].bsdf) return;
+        film::SlotStats& st = stats[i];
+        const double n_new = st.n + double(alpha) * double(m);
+        const double r2_new = st.r2 * n_new / (st.n + double(m));
+        const double shrink = r2_new / st.r2;
+        const Rgb& beta = vps[i].beta;
+        for (int k = 0; k < 3; ++k) st.tau[k] = (st.tau[k] + double(beta[k]) * phi[k]) * shrink;
+        st.n = n_new;
+        st.r2 = r2_new;
+    });
+}
+
+void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
+                const std::vector<film::SlotStats>& stats) {
+    std::vector<Vec3> pos(vps.size());
+    std::vector<float> r2(vps.size(), 0.0f);
+    for (size_t i = 0; i < vps.size(); ++i)
+        if (vps[i].bsdf) {
+            pos[i] = vps[i].p;
+            r2[i] = float(stats[i].r2);
+        }
+    grid.build(pos, r2);
+}
+
+void resolve(const std::vector<film::SlotStats>& stats, int slots_per_pixel, double direct_scale,
+             uint64_t photons_emitted, film::Film& film) {
+    const int w = film.width(), h = film.height();
+    const double inv_photons = photons_emitted > 0 ? 1.0 / double(photons_emitted) : 0.0;
+    tbb::parallel_for(0, h, [&](int y) {
+        for (int x = 0; x < w; ++x) {
+            double sum[3] = {0, 0, 0};
+            for (int s = 0; s < slots_per_pixel; ++s) {
+                const film::SlotStats& st =
+                    stats[(size_t(y) * size_t(w) + size_t(x)) * size_t(slots_per_pixel) + size_t(s)];
+                const double k = st.r2 > 0 ? inv_photons / (M_PI * st.r2) : 0.0;
+                for (int c = 0; c < 3; ++c) sum[c] += st.direct[c] * direct_scale + st.tau[c] * k;
+            }
+            const double inv = 1.0 / slots_per_pixel;
+            film.set_pixel(x, y, Rgb(float(sum[0] * inv), float(sum[1] * inv), float(sum[2] * inv)));
+        }
+    });
+}
+
+void run_loop(const Prepared& P, const ProgressiveOptions& opt, film::ProgressiveState& state,
+              film::Film& film, Progress& progress, const std::function<void(uint64_t)>& iterate,
+              const std::function<void(film::Film&)>& resolve_fn) {
+    using clock = std::chrono::steady_clock;
+    const auto t0 = opt.clock_start.value_or(clock::now());
+    auto last_preview = clock::now();
+    const uint64_t target = uint64_t(std::max(1, P.options.spp));
+    uint64_t last_checkpoint = state.iterations;
+    progress.start(state.integrator, target > state.iterations ? target - state.iterations : 0);
+    while (state.iterations < target) {
+        iterate(state.iterations);
+        ++state.iterations;
+        progress.advance();
+        if (opt.on_checkpoint && opt.checkpoint_every > 0 &&
+            state.iterations % uint64_t(opt.checkpoint_every) == 0) {
+            opt.on_checkpoint(state);
+            last_checkpoint = state.iterations;
+        }
+        const auto now = clock::now();
+        if (opt.time > 0 && std::chrono::duration<double>(now - t0).count() >= opt.time) break;
+        if (opt.on_preview && opt.write_every > 0 &&
+            std::chrono::duration<double>(now - last_preview).count() >= opt.write_every) {
+            resolve_fn(film);
+            opt.on_preview(film);
+            last_preview = clock::now();
+        }
+    }
+    progress.finish();
+    resolve_fn(film);
+    if (opt.on_checkpoint && last_checkpoint != state.iterations) opt.on_checkpoint(state);
+    if (opt.iterations_done) *opt.iterations_done = state.iterations;
+}
+
+}  // namespace phos::integrators::sppm

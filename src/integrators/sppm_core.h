@@ -1,0 +1,97 @@
+// The parts PPM and SPPM share: the eye path to a visible point, the photon pass that splats
+// photons into the hit points' integer accumulators, the progressive radius/flux update, the final
+// pixel estimate, and the budget loop (iterations, time, previews, checkpoints).
+//
+// Estimator (Hachisuka & Jensen 2009, eq. 9-12): per hit point i, after an iteration with M_i new
+// photons and flux sum Φ_i = Σ f(wo, wi_p) Φ_p,
+//   N_{i+1} = N_i + α M_i,   R²_{i+1} = R²_i (N_i + α M_i) / (N_i + M_i),
+//   τ_{i+1} = (τ_i + β_i Φ_i) R²_{i+1} / R²_i,
+// and the indirect radiance is τ / (π R² N_emitted). Photon powers are flux × (photons emitted in
+// a pass), so N_emitted counts every photon emitted over all iterations.
+//
+// Determinism: Φ_i and M_i are sums in 64-bit fixed point (integer atomics), exact and
+// order-independent, so the result is bit-identical for any thread count.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <vector>
+
+#include "core/progress.h"
+#include "core/rng.h"
+#include "film/checkpoint.h"
+#include "film/film.h"
+#include "integrators/prepared.h"
+#include "integrators/progressive_options.h"
+#include "photon/hitpoint_grid.h"
+#include "shading/bsdf.h"
+
+namespace phos::integrators::sppm {
+
+// Where a camera path met its first non-specular surface (after following specular bounces).
+struct VisiblePoint {
+    Vec3 p;
+    Vec3 wo;
+    Rgb beta;       // camera-path throughput (over the path's selection probabilities)
+    int depth = 0;  // specular bounces before it (limits photon bounces: total ≤ max_depth)
+    float path_length = 0;
+    std::optional<shading::Bsdf> bsdf;  // empty: no visible point this iteration
+};
+
+// Traces a camera ray: adds emission seen along the specular chain, and at the first non-specular
+// hit stores `vp` and adds the average of `direct_samples` light samples. Mixed materials choose
+// between their non-specular part (visible point) and specular part (continue) at random, in
+// proportion to the lobes' albedos. Returns emission + direct light (throughput included).
+Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
+                   RayCounts& rays);
+
+// Film footprint model for the automatic initial radius: footprint(d) = offset + slope × d for a
+// path of length d (one pixel's width across, measured at the image centre).
+struct PixelFootprint {
+    float offset = 0, slope = 0;
+    explicit PixelFootprint(const Prepared& P);
+    float at(float distance) const { return offset + slope * distance; }
+};
+
+// Per-hit-point photon statistics of one iteration, summed with integer atomics.
+class PhotonAccumulator {
+public:
+    explicit PhotonAccumulator(size_t slots);
+    // Traces photons [0, count) of pass `pass` on all cores, adding f(wo, wi) × power to each hit
+    // point within its radius (photons straight from a light excluded: direct light is computed by
+    // shadow rays). Returns the number of photon rays traced.
+    uint64_t photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
+                         const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass, uint64_t count);
+    // Applies the progressive update to `stats` (one per visible point) and clears the sums.
+    void update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
+
+private:
+    struct Slot {
+        std::atomic<int64_t> phi[3];
+        std::atomic<uint64_t> m;
+    };
+    std::unique_ptr<Slot[]> slots_;
+    size_t count_;
+    double scale_ = 1;  // fixed-point units per unit of flux contribution
+};
+
+// Builds the grid over the visible points with their current radii.
+void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
+                const std::vector<film::SlotStats>& stats);
+
+// Final radiance of each pixel: mean over its `slots_per_pixel` slots of
+// direct × direct_scale + τ / (π R² N_emitted).
+void resolve(const std::vector<film::SlotStats>& stats, int slots_per_pixel, double direct_scale,
+             uint64_t photons_emitted, film::Film& film);
+
+// Runs iterations state.iterations+1 ... until P.options.spp are done or `opt.time` has passed,
+// calling iterate(i) for iteration i (0-based), resolve_fn(film) for previews and at the end, and
+// the checkpoint hook every opt.checkpoint_every iterations and at the end.
+void run_loop(const Prepared& P, const ProgressiveOptions& opt, film::ProgressiveState& state,
+              film::Film& film, Progress& progress, const std::function<void(uint64_t)>& iterate,
+              const std::function<void(film::Film&)>& resolve_fn);
+
+}  // namespace phos::integrators::sppm
