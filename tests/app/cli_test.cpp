@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <vector>
 
 #include "test_util.h"
 
@@ -35,8 +36,7 @@ TEST(Cli, NonsenseOptionsExitWith2) {
     TempDir dir;
     const std::string scene = dir.write("s.scn", kTinyScene);
     const std::string out = dir.file("o.png");
-    for (const std::string bad :
-         {"render " + scene + " -o " + out + " --width 0", "render " + scene + " -o " + out + " --height -5",
+    const std::vector<std::string> bad_commands = {"render " + scene + " -o " + out + " --width 0", "render " + scene + " -o " + out + " --height -5",
           "render " + scene + " -o " + out + " --spp 0", "render " + scene + " -o " + out + " --spp",
           "render " + scene + " -o " + out + " --frobnicate", "render " + scene + " -o " + out + " --spp abc",
           "render " + scene + " -o " + out + " --integrator magic",
