@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/lib/diff_command.h"
 #include "app/lib/photon_map_cli.h"
 #include "app/lib/progressive_cli.h"
 #include "app/lib/render_command.h"
@@ -88,6 +89,14 @@ int run_cli(int argc, char** argv) {
     render->add_flag("--progress", progress_on, "always draw the progress bar");
     render->add_flag("--no-progress", progress_off, "never draw the progress bar");
 
+    DiffCommand dc;
+    CLI::App* diff =
+        app.add_subcommand("diff", "compare an image with a reference: relMSE, mean ratio, window means");
+    diff->add_option("image", dc.image, "rendered image (.exr, .pfm, ...)")->required();
+    diff->add_option("reference", dc.reference, "reference image")->required();
+    diff->add_option("--window", dc.window, "pixel window x0 x1 y0 y1 (half-open, y from the top)")
+        ->expected(4);
+
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
         for (const auto& n : o->get_lnames()) long_names.insert(n);
@@ -124,6 +133,7 @@ int run_cli(int argc, char** argv) {
             if (progress_off) rc.progress = 0;
             run_render(rc);
         }
+        if (diff->parsed()) run_diff(dc);
         return 0;
     } catch (const ParseError& e) {
         std::fprintf(stderr, "%s\n", e.what());
