@@ -1,0 +1,125 @@
+// Progressive-render checkpoints: exact round trip, and refusal (InputError with a clear reason)
+// of truncated, corrupted, foreign, other-version and other-render files.
+#include "film/checkpoint.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "core/error.h"
+
+namespace phos::film {
+namespace {
+
+ProgressiveState sample_state() {
+    ProgressiveState s;
+    s.integrator = "sppm";
+    s.width = 5;
+    s.height = 3;
+    s.slots_per_pixel = 2;
+    s.seed = 42;
+    s.scene_hash = 0x1234;
+    s.options_hash = 0x5678;
+    s.iterations = 17;
+    s.photons_emitted = 17 * 1000;
+    s.target_iterations = 64;
+    s.slots.resize(30);
+    for (size_t i = 0; i < s.slots.size(); ++i) {
+        s.slots[i].n = 0.1 * double(i) + 1e-17;
+        s.slots[i].r2 = 1.0 / (3.0 + double(i));
+        for (int c = 0; c < 3; ++c) {
+            s.slots[i].tau[c] = std::sqrt(double(i + c));
+            s.slots[i].direct[c] = -1.0 / 7.0 * double(c + 1);
+        }
+    }
+    return s;
+}
+
+std::string error_of(const std::string& bytes) {
+    try {
+        decode_checkpoint(bytes, "'x'");
+    } catch (const InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+TEST(Checkpoint, RoundTripIsExact) {
+    const ProgressiveState s = sample_state();
+    const std::string path = (std::filesystem::temp_directory_path() / "phos-checkpoint-test.ckpt").string();
+    save_checkpoint(path, s);
+    const ProgressiveState t = load_checkpoint(path);
+    std::filesystem::remove(path);
+    EXPECT_EQ(t.integrator, s.integrator);
+    EXPECT_EQ(t.width, s.width);
+    EXPECT_EQ(t.height, s.height);
+    EXPECT_EQ(t.slots_per_pixel, s.slots_per_pixel);
+    EXPECT_EQ(t.seed, s.seed);
+    EXPECT_EQ(t.scene_hash, s.scene_hash);
+    EXPECT_EQ(t.options_hash, s.options_hash);
+    EXPECT_EQ(t.iterations, s.iterations);
+    EXPECT_EQ(t.photons_emitted, s.photons_emitted);
+    EXPECT_EQ(t.target_iterations, s.target_iterations);
+    ASSERT_EQ(t.slots.size(), s.slots.size());
+    EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(SlotStats)), 0);
+}
+
+TEST(Checkpoint, TruncatedFilesAreRefused) {
+    const std::string bytes = encode_checkpoint(sample_state());
+    for (size_t n : {size_t(0), size_t(4), size_t(12), size_t(40), bytes.size() / 2, bytes.size() - 1}) {
+        const std::string e = error_of(bytes.substr(0, n));
+        EXPECT_FALSE(e.empty()) << n;
+    }
+    EXPECT_NE(error_of(bytes.substr(0, bytes.size() / 2)).find("checksum"), std::string::npos);
+}
+
+TEST(Checkpoint, EveryFlippedByteIsDetected) {
+    const std::string bytes = encode_checkpoint(sample_state());
+    for (size_t i = 0; i < bytes.size(); i += 7) {
+        std::string b = bytes;
+        b[i] = char(b[i] ^ 0x10);
+        EXPECT_FALSE(error_of(b).empty()) << "byte " << i;
+    }
+}
+
+TEST(Checkpoint, ForeignFileAndOtherVersion) {
+    EXPECT_NE(error_of("P6\n2 2\n255\nabcdefghijkl").find("not a phos checkpoint"), std::string::npos);
+    std::string b = encode_checkpoint(sample_state());
+    b[8] = char(99);  // version field
+    EXPECT_NE(error_of(b).find("version 99"), std::string::npos);
+    EXPECT_THROW(load_checkpoint("/nonexistent/dir/x.ckpt"), InputError);
+}
+
+TEST(Checkpoint, OtherRenderIsRefused) {
+    const ProgressiveState s = sample_state();
+    EXPECT_NO_THROW(check_resumable(s, s, "f"));
+    auto expect_refused = [&](ProgressiveState other, const char* word) {
+        try {
+            check_resumable(s, other, "f");
+            ADD_FAILURE() << word;
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(word), std::string::npos) << e.what();
+        }
+    };
+    ProgressiveState o = s;
+    o.scene_hash ^= 1;
+    expect_refused(o, "scene");
+    o = s;
+    o.options_hash ^= 1;
+    expect_refused(o, "options");
+    o = s;
+    o.seed = 7;
+    expect_refused(o, "seed");
+    o = s;
+    o.width = 6;
+    expect_refused(o, "image size");
+    o = s;
+    o.integrator = "ppm";
+    expect_refused(o, "integrator");
+}
+
+}  // namespace
+}  // namespace phos::film
