@@ -26,9 +26,9 @@ struct PhotonScene {
 struct PhotonHit {
     const accel::SurfaceHit& hit;
     const shading::Bsdf& bsdf;
-    Vec3 wi;     // unit direction towards where the photon came from
-    Rgb power;   // flux in W times the number of photons emitted (divide by N emitted)
-    int bounces;  // scattering events before this hit (0 = straight from the light)
+    Vec3 wi;              // unit direction towards where the photon came from
+    Rgb power;            // flux in W times the number of photons emitted (divide by N emitted)
+    int bounces;          // scattering events before this hit (0 = straight from the light)
     bool after_diffuse;   // some earlier bounce was non-specular (path L{S|D}*D D...)
     bool after_specular;  // the bounces so far were all specular and there was at least one (L S+ D)
 };
@@ -80,7 +80,8 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
         }
         const shading::Bsdf bsdf(mat, hit, ps.scene, ps.bsdf_options);
         if (bsdf.flags() == 0) break;
-        if (bsdf.has_non_specular()) visit(PhotonHit{hit, bsdf, wo, power, bounces, after_diffuse, after_specular});
+        if (bsdf.has_non_specular())
+            visit(PhotonHit{hit, bsdf, wo, power, bounces, after_diffuse, after_specular});
         if (bounces == options.max_bounces) break;
         Vec3 wi;
         bool specular = false;

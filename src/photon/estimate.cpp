@@ -1,0 +1,89 @@
+// Photon density estimates (see estimate.h).
+#include "photon/estimate.h"
+
+#include <vector>
+
+namespace phos::photon {
+namespace {
+
+// Per-thread neighbour buffer: estimates run inside the parallel pixel loop and must not allocate.
+Neighbour* scratch(uint32_t k) {
+    thread_local std::vector<Neighbour> buf;
+    if (buf.size() < k) buf.resize(k);
+    return buf.data();
+}
+
+// Runs the kNN query with the surface test and calls g(photon, weight) for every accepted photon,
+// weight including the filter and the 1 / (mean_w pi r^2) normalisation.
+template <class G>
+uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, G&& g) {
+    if (map.empty() || o.k == 0) return 0;
+    Neighbour* nb = scratch(o.k);
+    const float max_r2 = o.max_radius * o.max_radius;
+    const KnnResult r =
+        map.knn_if(q.p, o.k, max_r2, nb, [&](const Photon& ph) { return accept_photon(ph, q, o); });
+    if (r.count == 0) return 0;
+    // With fewer than k photons the search covered the whole max-radius disk; using the farthest
+    // photon's distance instead would overestimate sparse regions (one photon very close -> huge).
+    const float r2 = r.count < o.k ? max_r2 : r.max_dist2;
+    if (!(r2 > 0)) return 0;
+    const float norm = 1.0f / (o.filter.mean_weight() * kPi * r2);
+    const bool box = o.filter.kind == FilterKind::Box;
+    for (uint32_t i = 0; i < r.count; ++i) {
+        const float w = box ? norm : o.filter.weight(nb[i].dist2, r2) * norm;
+        g(map.photon(nb[i].index), w);
+    }
+    return r.count;
+}
+
+}  // namespace
+
+SurfaceQuery make_query(Vec3 p, Vec3 ng, Vec3 wo, const shading::Bsdf& bsdf) {
+    SurfaceQuery q;
+    q.p = p;
+    q.n = dot(ng, wo) >= 0 ? ng : -ng;
+    // Lambertian transmission (and frosted glass) receive light through the surface.
+    const uint32_t f = bsdf.flags();
+    q.accept_back = (f & shading::kTransmission) && (f & (shading::kDiffuse | shading::kGlossy));
+    return q;
+}
+
+bool accept_photon(const Photon& ph, const SurfaceQuery& q, const EstimateOptions& o) {
+    if (ph.has_normal()) {
+        const float c = dot(ph.normal(), q.n);
+        if (!(c >= o.normal_cos || (q.accept_back && -c >= o.normal_cos))) return false;
+    }
+    if (o.flatness > 0) {
+        const Vec3 d = ph.position - q.p;
+        const float h = dot(d, q.n);
+        if (h * h > o.flatness * o.flatness * length_squared(d)) return false;
+    }
+    return true;
+}
+
+Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, Vec3 wo,
+                      const shading::Bsdf& bsdf, uint32_t* n_used) {
+    using namespace shading;
+    Rgb sum(0.0f);
+    uint32_t n;
+    if ((bsdf.flags() & ~(kDiffuse | kReflection)) == 0) {
+        // Lambert only: f = kd / pi for every photon on wo's side, which the normal test ensures.
+        n = gather(map, o, q, [&](const Photon& ph, float w) { sum += ph.power() * w; });
+        sum *= bsdf.diffuse_albedo() * kInvPi;
+    } else {
+        n = gather(map, o, q,
+                   [&](const Photon& ph, float w) { sum += bsdf.eval(wo, ph.wi()) * ph.power() * w; });
+    }
+    if (n_used) *n_used = n;
+    return sum;
+}
+
+Rgb irradiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q,
+                        uint32_t* n_used) {
+    Rgb sum(0.0f);
+    const uint32_t n = gather(map, o, q, [&](const Photon& ph, float w) { sum += ph.power() * w; });
+    if (n_used) *n_used = n;
+    return sum;
+}
+
+}  // namespace phos::photon

@@ -1,0 +1,37 @@
+// Precomputed irradiance at photon positions (see irradiance_cache.h).
+#include "photon/irradiance_cache.h"
+
+#include <tbb/parallel_for.h>
+
+#include <vector>
+
+namespace phos::photon {
+
+void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, uint32_t stride) {
+    stride = std::max<uint32_t>(stride, 1);
+    const size_t n = (map.size() + stride - 1) / stride;
+    std::vector<Photon> pts(n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
+        for (size_t i = r.begin(); i < r.end(); ++i) {
+            const Photon& ph = map.photon(uint32_t(i * stride));
+            SurfaceQuery q;
+            q.p = ph.position;
+            q.n = ph.normal();
+            const Rgb E = ph.has_normal() ? irradiance_estimate(map, o, q) : Rgb(0.0f);
+            pts[i] = Photon(ph.position, E, q.n, q.n);
+        }
+    });
+    points_.build(pts);
+}
+
+bool IrradianceCache::lookup(const SurfaceQuery& q, float max_radius, float normal_cos,
+                             Rgb& irradiance) const {
+    Neighbour nb;
+    const KnnResult r = points_.knn_if(q.p, 1, max_radius * max_radius, &nb,
+                                       [&](const Photon& ph) { return dot(ph.normal(), q.n) >= normal_cos; });
+    if (r.count == 0) return false;
+    irradiance = points_.photon(nb.index).power();
+    return true;
+}
+
+}  // namespace phos::photon

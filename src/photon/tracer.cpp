@@ -1,0 +1,135 @@
+// Photon tracing in deterministic batches and rounds (see tracer.h).
+#include "photon/tracer.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace phos::photon {
+namespace {
+
+// What one batch of photon indices stored: per map, the photons (power not yet set), their raw
+// power (flux x N, see PhotonHit) and the index of the emitted photon within the batch (so a map
+// can be cut exactly after the emission that met its target).
+struct Slice {
+    std::vector<Photon> photons[kMapCount];
+    std::vector<Rgb> power[kMapCount];
+    std::vector<uint32_t> emission[kMapCount];
+    uint64_t rays = 0;
+};
+
+void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t first,
+                 uint64_t count, Slice& s) {
+    PhotonPathOptions po;
+    po.max_bounces = o.max_depth;
+    for (uint64_t j = 0; j < count; ++j) {
+        s.rays += trace_photon(ps, o.seed, 0, first + j, po, [&](const PhotonHit& h) {
+            // Normal on the side the photon arrived from: the estimate compares it with the
+            // query's normal turned towards the viewer.
+            const Vec3 n = dot(h.hit.ng, h.wi) >= 0 ? h.hit.ng : -h.hit.ng;
+            const Photon ph(h.hit.p, Rgb(0.0f), h.wi, n);
+            const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse};
+            for (int m = 0; m < kMapCount; ++m) {
+                if (!active[m] || !into[m]) continue;
+                s.photons[m].push_back(ph);
+                s.power[m].push_back(h.power);
+                s.emission[m].push_back(uint32_t(j));
+            }
+        });
+    }
+}
+
+}  // namespace
+
+const char* map_name(int kind) {
+    switch (kind) {
+        case kGlobalMap:
+            return "global";
+        case kCausticMap:
+            return "caustic";
+        case kIndirectMap:
+            return "indirect";
+    }
+    return "?";
+}
+
+TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
+    TracedPhotons out;
+    std::vector<Rgb> raw[kMapCount];
+    bool active[kMapCount];
+    bool any = false;
+    for (int m = 0; m < kMapCount; ++m) {
+        active[m] = o.wanted[m] && (o.target[m] > 0 || o.emit > 0);
+        any |= active[m];
+    }
+    const uint64_t cap =
+        std::min<uint64_t>(o.emit > 0 ? o.emit : ~0ull, o.max_emit > 0 ? o.max_emit : 0xffffffffull);
+    const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
+    uint64_t next = 0;  // first photon index of the next round
+    uint64_t round_batches = 4;
+    std::vector<Slice> slices;
+    while (any && next < cap && ps.lights.size() > 0) {
+        const uint64_t n_round = std::min(round_batches * B, cap - next);
+        const uint64_t nb = (n_round + B - 1) / B;
+        slices.assign(nb, Slice{});
+        tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
+            const uint64_t first = next + b * B;
+            trace_batch(ps, o, active, first, std::min(B, next + n_round - first), slices[b]);
+        });
+        // Concatenate in batch order; a map that meets its target stops after that emission.
+        for (int m = 0; m < kMapCount; ++m) {
+            if (!active[m]) continue;
+            for (uint64_t b = 0; b < nb && active[m]; ++b) {
+                const Slice& s = slices[b];
+                const size_t n = s.photons[m].size();
+                size_t end = n;
+                if (o.target[m] > 0 && out.photons[m].size() + n >= o.target[m]) {
+                    end = size_t(o.target[m] - out.photons[m].size()) - 1;  // the photon meeting the target
+                    const uint32_t e = s.emission[m][end];
+                    while (end < n && s.emission[m][end] == e) ++end;
+                    out.emitted[m] = next + b * B + e + 1;
+                    out.reached[m] = true;
+                    active[m] = false;
+                }
+                out.photons[m].insert(out.photons[m].end(), s.photons[m].begin(), s.photons[m].begin() + end);
+                raw[m].insert(raw[m].end(), s.power[m].begin(), s.power[m].begin() + end);
+            }
+        }
+        for (const Slice& s : slices) out.rays += s.rays;
+        next += n_round;
+        // Size the next round from the storage rate so far (counts only: deterministic): enough
+        // emissions to meet the farthest target with 5 % to spare, between 1 and 256 batches.
+        double need = 0;
+        any = false;
+        for (int m = 0; m < kMapCount; ++m) {
+            if (!active[m]) continue;
+            any = true;
+            if (o.target[m] == 0) {
+                need = double(cap - next);
+                continue;
+            }
+            const double have = double(out.photons[m].size());
+            need = std::max(
+                need, have > 0 ? double(o.target[m] - out.photons[m].size()) * double(next) / have * 1.05
+                               : 2.0 * double(next));
+        }
+        round_batches = std::clamp<uint64_t>(uint64_t(std::ceil(need / double(B))), 1, 256);
+    }
+    out.total_emitted = next;
+    // Maps still active ran to the emission cap: their N is everything emitted.
+    for (int m = 0; m < kMapCount; ++m)
+        if (active[m]) out.emitted[m] = next, out.reached[m] = o.target[m] == 0;
+    for (int m = 0; m < kMapCount; ++m) {
+        std::vector<Photon>& P = out.photons[m];
+        if (P.empty()) continue;
+        const float inv = 1.0f / float(out.emitted[m]);
+        tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
+                          [&](const tbb::blocked_range<size_t>& r) {
+                              for (size_t i = r.begin(); i < r.end(); ++i) P[i].set_power(raw[m][i] * inv);
+                          });
+    }
+    return out;
+}
+
+}  // namespace phos::photon

@@ -1,0 +1,48 @@
+// The photon-tracing pass of the two-pass photon mapper: emits photons (photon_path.h) on all cores
+// in fixed batches of photon indices and sorts the non-specular hits into the global (L{S|D}*D),
+// caustic (LS+D) and indirect (L{S|D}*DD) maps, each up to its own budget of stored photons.
+//
+// Determinism: photon i's random numbers depend only on (seed, i); batch b (indices
+// [b * batch_size, (b + 1) * batch_size)) writes its own slice, slices are concatenated in batch
+// order, and the number of batches per round depends only on the counts stored so far. So the
+// maps are bit-identical at any thread count.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "photon/photon.h"
+#include "photon/photon_path.h"
+
+namespace phos::photon {
+
+enum MapKind : int { kGlobalMap = 0, kCausticMap = 1, kIndirectMap = 2, kMapCount = 3 };
+const char* map_name(int kind);  // "global", "caustic", "indirect"
+
+struct TraceOptions {
+    // Per map: wanted = false leaves the map empty (no photon is stored in it). A wanted map with
+    // target > 0 stores photons until it holds `target` of them (the photons of the emission that
+    // crossed the target included) and then stops; target == 0 means "every photon of the
+    // `emit` emitted ones".
+    bool wanted[kMapCount] = {true, true, false};
+    uint64_t target[kMapCount] = {0, 0, 0};
+    uint64_t emit = 0;      // photons to emit; 0 = until every target is met
+    uint64_t max_emit = 0;  // stop emitting here even if a target is not met (0 = 2^32 - 1)
+    int max_depth = 16;     // scattering events per photon path
+    uint64_t seed = 0;
+    uint32_t batch_size = 4096;
+};
+
+struct TracedPhotons {
+    std::vector<Photon> photons[kMapCount];           // power already divided by emitted[m]
+    uint64_t emitted[kMapCount] = {0, 0, 0};          // N of each map (photon power = flux share / N)
+    bool reached[kMapCount] = {false, false, false};  // the target was met (false if capped by max_emit)
+    uint64_t total_emitted = 0;                       // photon paths traced
+    uint64_t rays = 0;
+    uint64_t stored() const { return photons[0].size() + photons[1].size() + photons[2].size(); }
+};
+
+// Traces photons in the calling thread's oneTBB arena. A scene without lights gives empty maps.
+TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& options);
+
+}  // namespace phos::photon
