@@ -1,0 +1,112 @@
+// Checkpoint and resume of progressive renders through the phos binary: a render killed with
+// SIGKILL mid-way and resumed from its last checkpoint writes exactly the bytes of an uninterrupted
+// render with the same total iterations; corrupt, truncated or foreign checkpoints exit 2.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "film/checkpoint.h"
+#include "test_util.h"
+
+namespace phos::testing {
+namespace {
+
+const std::string kScene = shared_path("bench/scn/caustic-point.scn");
+const std::string kArgs =
+    " --integrator sppm --width 64 --height 64 --photons-per-iter 30000 --seed 5 --threads 2 -q";
+
+TEST(Resume, KilledRenderResumesToTheSameImage) {
+    TempDir dir;
+    const std::string ckpt = dir.file("r.ckpt");
+    const auto full = run_phos("render " + kScene + kArgs + " --iterations 40 -o " + dir.file("full.pfm"));
+    ASSERT_EQ(full.exit_code, 0) << full.output;
+
+    const std::string cmd = "exec " + std::string(PHOS_BINARY) + " render " + kScene + kArgs +
+                            " --iterations 40 --checkpoint " + ckpt + " --checkpoint-every 2 -o " +
+                            dir.file("killed.pfm") + " >/dev/null 2>&1";
+    const pid_t pid = fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+        execl("/bin/sh", "sh", "-c", cmd.c_str(), static_cast<char*>(nullptr));
+        _exit(127);
+    }
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+    while (!std::filesystem::exists(ckpt) && std::chrono::steady_clock::now() < deadline)
+        std::this_thread::sleep_for(std::chrono::milliseconds(2));
+    kill(pid, SIGKILL);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "the render finished before it could be killed";
+    EXPECT_FALSE(std::filesystem::exists(dir.file("killed.pfm")));
+    const film::ProgressiveState saved = film::load_checkpoint(ckpt);
+    EXPECT_GT(saved.iterations, 0u);
+    EXPECT_LT(saved.iterations, 40u);
+    std::printf("killed after checkpoint of iteration %llu\n",
+                static_cast<unsigned long long>(saved.iterations));
+
+    const auto resumed = run_phos("render " + kScene + kArgs + " --iterations 40 --resume " + ckpt + " -o " +
+                                  dir.file("resumed.pfm"));
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.output;
+    const std::string a = read_bytes(dir.file("full.pfm")), b = read_bytes(dir.file("resumed.pfm"));
+    EXPECT_GT(a.size(), 64u * 64u * 12u);
+    EXPECT_TRUE(a == b) << "resumed image differs from the uninterrupted render";
+}
+
+TEST(Resume, BadCheckpointsAreRefusedWithExit2) {
+    TempDir dir;
+    const std::string ckpt = dir.file("c.ckpt");
+    ASSERT_EQ(run_phos("render " + kScene + kArgs + " --iterations 2 --checkpoint " + ckpt + " -o " +
+                       dir.file("a.pfm"))
+                  .exit_code,
+              0);
+    const std::string good = read_bytes(ckpt);
+    std::string corrupt = good;
+    corrupt[corrupt.size() / 2] = char(corrupt[corrupt.size() / 2] ^ 0x55);
+    const std::string truncated = dir.write("t.ckpt", good.substr(0, good.size() - 100));
+    const std::string corrupted = dir.write("x.ckpt", corrupt);
+    const std::string other_scene = dir.write("other.scn", read_bytes(kScene) + "\n# changed\n");
+    const std::string out = dir.file("o.pfm");
+    struct Case {
+        std::string args, expect;
+    };
+    for (const Case& c : std::vector<Case>{
+             {kScene + kArgs + " --resume " + truncated, "checksum"},
+             {kScene + kArgs + " --resume " + corrupted, "checksum"},
+             {kScene + kArgs + " --resume " + dir.file("missing.ckpt"), "cannot open"},
+             {kScene + kArgs + " --resume " + kScene, "not a phos checkpoint"},
+             {other_scene + kArgs + " --resume " + ckpt, "scene file contents"},
+             {kScene + kArgs + " --alpha 0.5 --resume " + ckpt, "render options"},
+             {kScene + kArgs + " --width 32 --resume " + ckpt, "image size"},
+             {kScene +
+                  " --integrator ppm --width 64 --height 64 --photons-per-iter 30000 --seed 5 --resume " +
+                  ckpt,
+              "integrator"},
+         }) {
+        const auto r = run_phos("render " + c.args + " -o " + out);
+        EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.expect), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_FALSE(std::filesystem::exists(out)) << c.args;
+    }
+    // The intact checkpoint resumes.
+    const auto ok = run_phos("render " + kScene + kArgs + " --iterations 3 --resume " + ckpt + " -o " + out);
+    EXPECT_EQ(ok.exit_code, 0) << ok.output;
+}
+
+TEST(Resume, TimeBudgetAndPreviews) {
+    TempDir dir;
+    const std::string out = dir.file("p.pfm");
+    const auto r = run_phos("render " + kScene + kArgs + " --time 1.5 --write-every 0.2 -o " + out + " -v");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
+    const auto bad = run_phos("render " + kScene + " --integrator path --time 2 -o " + out);
+    EXPECT_EQ(bad.exit_code, 2);
+}
+
+}  // namespace
+}  // namespace phos::testing
