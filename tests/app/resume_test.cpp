@@ -81,7 +81,10 @@ TEST(Resume, BadCheckpointsAreRefusedWithExit2) {
              {kScene + kArgs + " --resume " + kScene, "not a phos checkpoint"},
              {other_scene + kArgs + " --resume " + ckpt, "scene file contents"},
              {kScene + kArgs + " --alpha 0.5 --resume " + ckpt, "render options"},
-             {kScene + kArgs + " --width 32 --resume " + ckpt, "image size"},
+             {kScene +
+                  " --integrator sppm --width 32 --height 64 --photons-per-iter 30000 --seed 5 --resume " +
+                  ckpt,
+              "image size"},
              {kScene +
                   " --integrator ppm --width 64 --height 64 --photons-per-iter 30000 --seed 5 --resume " +
                   ckpt,
