@@ -271,6 +271,26 @@ TEST(KdTree, AllOnAPlaneAndOnALine) {
     }
 }
 
+TEST(KdTree, SortedInputAndHeavyTies) {
+    // Presorted input (a common worst case for quickselect pivots) and coordinates taking only a
+    // few distinct values (long runs of equal keys in every partition).
+    Sampler rng(16);
+    std::vector<Photon> sorted = random_cube(30000, 17), ties;
+    std::sort(sorted.begin(), sorted.end(),
+              [](const Photon& a, const Photon& b) { return a.position.x < b.position.x; });
+    for (int i = 0; i < 30000; ++i)
+        ties.push_back(
+            make_photon(Vec3(float(rng.next_index(3)), float(rng.next_index(4)) * 0.1f, rng.next())));
+    for (const auto* input : {&sorted, &ties}) {
+        const PhotonKdTree tree(*input, with_index(8));
+        for (int i = 0; i < 100; ++i) {
+            const Vec3 q = (*input)[rng.next_index(30000)].position + Vec3(0.001f * rng.next());
+            expect_same_knn(*input, tree, q, 20, kInf);
+            ASSERT_EQ(tree_range(tree, q, 0.002f), brute_range(*input, q, 0.002f));
+        }
+    }
+}
+
 TEST(KdTree, FilteredKnnMatchesBruteForceOnFilteredSet) {
     // A thin wall: photons on both faces of the plane x = 0.5, 1e-3 apart. A normal test must
     // return k photons of the query's side only.
