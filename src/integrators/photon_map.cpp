@@ -1,0 +1,176 @@
+// Orchestration of the two-pass photon mapper (see photon_map.h): option checks, pass 1 (tracing,
+// k-d trees, irradiance cache, -v statistics) and pass 2's deterministic tile loop.
+#include "integrators/photon_map.h"
+
+#include <tbb/parallel_for.h>
+
+#include <chrono>
+#include <cstdio>
+
+#include "core/error.h"
+#include "core/log.h"
+#include "film/tiles.h"
+#include "integrators/photon_map_radiance.h"
+#include "integrators/pixel_loop.h"
+
+namespace phos::integrators {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::string fmt(const char* f, double v) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, f, v);
+    return buf;
+}
+
+// Fills automatic radii from the scene's size.
+PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
+    PhotonMapOptions r = o;
+    const float scene_radius = shading::SceneSphere::from_bounds(P.accel.bounds()).radius;
+    for (PhotonMapSettings* s : {&r.global, &r.caustic, &r.indirect})
+        if (!(s->radius > 0)) s->radius = std::max(s->radius_fraction * scene_radius, 1e-6f);
+    return r;
+}
+
+}  // namespace
+
+void PhotonMapOptions::validate() const {
+    const std::pair<const char*, const PhotonMapSettings*> maps[] = {
+        {"global", &global}, {"caustic", &caustic}, {"indirect", &indirect}};
+    for (const auto& [name, s] : maps) {
+        const std::string n = name;
+        if (s->samples == 0) throw InputError("--" + n + "-samples must be at least 1");
+        if (!(s->radius >= 0) || !std::isfinite(s->radius))
+            throw InputError("--" + n + "-radius must be >= 0");
+        if (s->filter == photon::FilterKind::Cone && !(s->cone_k >= 1))
+            throw InputError("--" + n + "-cone-k must be >= 1");
+    }
+    if (max_photon_depth < 0) throw InputError("--max-photon-depth must be >= 0");
+    if (gather_rays < 1) throw InputError("--gather-rays must be at least 1");
+    if (cache_stride < 1) throw InputError("--irradiance-cache-stride must be at least 1");
+    if (!(normal_cos >= -1 && normal_cos <= 1))
+        throw InputError("photon normal test cosine must be in [-1, 1]");
+}
+
+PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options) : options_(options) {
+    options_.validate();
+}
+
+PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
+    const PhotonMapOptions o = resolve(options_, P);
+    PhotonMaps maps;
+    photon::TraceOptions to;
+    // Only the maps pass 2 will read are traced.
+    to.wanted[photon::kGlobalMap] = o.photon_viz || (o.indirect_light && !o.fast_global);
+    to.wanted[photon::kCausticMap] = !o.photon_viz && o.caustics;
+    to.wanted[photon::kIndirectMap] = !o.photon_viz && o.indirect_light && o.fast_global;
+    to.target[photon::kGlobalMap] = o.global.photons;
+    to.target[photon::kCausticMap] = o.caustic.photons;
+    to.target[photon::kIndirectMap] = o.indirect.photons;
+    to.emit = o.photons;
+    uint64_t largest = 0;
+    for (int m = 0; m < photon::kMapCount; ++m)
+        if (to.wanted[m]) largest = std::max(largest, to.target[m]);
+    // Without --photons, a map whose photons are rare (a caustic from a small glass object) stops
+    // after this many emissions rather than tracing forever.
+    to.max_emit = o.max_emitted > 0 ? o.max_emitted : std::max<uint64_t>(200 * largest, 1000000);
+    to.max_depth = o.max_photon_depth;
+    to.seed = P.options.seed;
+
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
+    auto t0 = std::chrono::steady_clock::now();
+    photon::TracedPhotons traced = photon::trace_photons(ps, to);
+    const double trace_s = seconds_since(t0);
+    P.stats.add_time("photon trace", trace_s);
+    RayCounts rc;
+    rc.photon = traced.rays;
+    P.stats.add_rays(rc);
+
+    t0 = std::chrono::steady_clock::now();
+    const uint64_t stored = traced.stored();
+    for (int m = 0; m < photon::kMapCount; ++m) {
+        maps.map[m].build(traced.photons[m]);
+        maps.emitted[m] = traced.emitted[m];
+        std::vector<photon::Photon>().swap(traced.photons[m]);
+    }
+    const double build_s = seconds_since(t0);
+    P.stats.add_time("photon map build", build_s);
+
+    P.stats.add_value("photons emitted", std::to_string(traced.total_emitted));
+    for (int m = 0; m < photon::kMapCount; ++m) {
+        if (!to.wanted[m]) continue;
+        P.stats.add_value(std::string(photon::map_name(m)) + " map",
+                          std::to_string(maps.map[m].size()) + " photons from " +
+                              std::to_string(maps.emitted[m]) + " emitted" +
+                              (traced.reached[m] ? "" : " (emission cap reached before the budget)"));
+        if (!traced.reached[m] && to.target[m] > 0)
+            log::warn_once(std::string("pm-cap-") + photon::map_name(m),
+                           std::string("photon map: the ") + photon::map_name(m) + " map got " +
+                               std::to_string(maps.map[m].size()) + " of " + std::to_string(to.target[m]) +
+                               " photons before the emission cap (--max-emitted)");
+    }
+    P.stats.add_value("bytes per photon", std::to_string(sizeof(photon::Photon)));
+    P.stats.add_value("photon tracing rate",
+                      fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
+    P.stats.add_value("photon map build rate",
+                      fmt("%.3g photons/s", build_s > 0 ? double(stored) / build_s : 0.0));
+
+    if (o.irradiance_cache && to.wanted[photon::kGlobalMap] && !o.photon_viz) {
+        t0 = std::chrono::steady_clock::now();
+        PhotonMapRadiance R(P, o, maps);
+        maps.cache.build(maps.global(), R.estimate_options(photon::kGlobalMap), o.cache_stride);
+        P.stats.add_time("irradiance cache", seconds_since(t0));
+        P.stats.add_value("irradiance cache points", std::to_string(maps.cache.size()));
+    }
+    return maps;
+}
+
+void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps, film::Film& film,
+                                      Progress& progress) const {
+    const PhotonMapOptions o = resolve(options_, P);
+    const PhotonMapRadiance R(P, o, maps);
+    // Layers are created before the parallel loop (creation is not thread-safe).
+    film::Layer* layers[4] = {&film.layer("direct"), &film.layer("caustic"), &film.layer("indirect"),
+                              &film.layer("specular")};
+    const RenderOptions& opt = P.options;
+    const auto tiles = film::make_tiles(opt.width, opt.height);
+    const int n = std::max(1, opt.spp) * std::max(1, opt.dof_samples);
+    progress.start("photonmap", tiles.size());
+    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+        const film::Tile& tile = tiles[t];
+        RayCounts rays;
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const uint64_t pixel = uint64_t(y) * uint64_t(opt.width) + uint64_t(x);
+                for (int s = 0; s < n; ++s) {
+                    Sampler sampler(opt.seed, pixel, uint64_t(s));
+                    const Vec2 jitter = stratified_sample(s, n, sampler.next2());
+                    const Vec2 lens = sampler.next2();
+                    const accel::Ray ray =
+                        P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                    ++rays.camera;
+                    const RadianceParts parts = R.camera_ray(ray, sampler, rays);
+                    film.add_sample(x, y, parts.total());
+                    layers[0]->add(x, y, parts.direct);
+                    layers[1]->add(x, y, parts.caustic);
+                    layers[2]->add(x, y, parts.indirect);
+                    layers[3]->add(x, y, parts.specular);
+                }
+            }
+        P.stats.add_rays(rays);
+        progress.advance();
+    });
+    progress.finish();
+}
+
+void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+    const PhotonMaps maps = build_maps(P);
+    const auto t0 = std::chrono::steady_clock::now();
+    render_with(P, maps, film, progress);
+    P.stats.add_time("photon map render pass", seconds_since(t0));
+}
+
+}  // namespace phos::integrators

@@ -1,0 +1,47 @@
+// Jensen's two-pass photon mapping (--integrator photonmap): pass 1 traces photons into the global,
+// caustic and (for --fast-global) indirect maps; pass 2 renders each pixel sample by following
+// mirrors and glass from the camera and, at the first non-specular hit, adding direct light (shadow
+// rays), caustics (caustic map) and indirect light (final gather into the global map, optionally
+// through the precomputed irradiance cache). Components also go to the film layers "direct",
+// "caustic", "indirect" and "specular" (see docs/photon-mapping.md).
+#pragma once
+
+#include <memory>
+
+#include "integrators/integrator.h"
+#include "integrators/photon_map_options.h"
+#include "photon/irradiance_cache.h"
+#include "photon/kdtree.h"
+#include "photon/tracer.h"
+
+namespace phos::integrators {
+
+// The photon maps built by pass 1 (kd-trees with powers already divided by their emission count).
+struct PhotonMaps {
+    photon::PhotonKdTree map[photon::kMapCount];
+    uint64_t emitted[photon::kMapCount] = {0, 0, 0};
+    photon::IrradianceCache cache;  // empty unless --irradiance-cache
+    const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }
+    const photon::PhotonKdTree& caustic() const { return map[photon::kCausticMap]; }
+    const photon::PhotonKdTree& indirect() const { return map[photon::kIndirectMap]; }
+};
+
+class PhotonMapIntegrator : public Integrator {
+public:
+    explicit PhotonMapIntegrator(const PhotonMapOptions& options);
+    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+
+    // Pass 1 alone (photon tracing, k-d trees, irradiance cache), reporting to prepared.stats.
+    // Exposed for tests and benchmarks.
+    PhotonMaps build_maps(const Prepared& prepared) const;
+    // Pass 2 with given maps.
+    void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film,
+                     Progress& progress) const;
+
+    const PhotonMapOptions& options() const { return options_; }
+
+private:
+    PhotonMapOptions options_;
+};
+
+}  // namespace phos::integrators

@@ -1,0 +1,170 @@
+// Pass 2 of the photon mapper (see photon_map_radiance.h). The radiance leaving the first
+// non-specular surface x seen by the camera (directly or through mirrors and glass) is split as in
+// Jensen 2001, sec. 9.1, so that every light path is counted exactly once:
+//   direct    L -> x             shadow rays towards every light (emitters hit by any other ray of
+//                                this pass contribute nothing)
+//   caustic   L S+ -> x          the caustic map's estimate at x
+//   indirect  L ... D S* -> x    final gathering: rays sampled from x's non-delta lobes, followed
+//                                through delta bounces to their first non-specular hit y, where the
+//                                global map's estimate (all light leaving y except emission) is
+//                                taken; with --fast-global, the indirect map's estimate at x
+// Light arriving at x through glossy lobes is covered by the same split (the lobes are sampled by
+// the gather and evaluated by the direct and caustic estimates), so there is no separate glossy
+// recursion to double count.
+#include "integrators/photon_map_radiance.h"
+
+#include "integrators/direct_light.h"
+#include "integrators/pixel_loop.h"
+
+namespace phos::integrators {
+
+using photon::kCausticMap;
+using photon::kGlobalMap;
+using photon::kIndirectMap;
+
+LobeSplit split_lobes(const shading::Bsdf& bsdf, Vec3 wo) {
+    using namespace shading;
+    const uint32_t f = bsdf.flags();
+    const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
+    // A material's ks is either a mirror (kSpecular) or Phong (kGlossy), its kt either smooth
+    // glass (kSpecular) or frosted (kGlossy); the albedos say which lobe set which flag.
+    const bool mirror = a.specular.max() > 0;
+    const bool phong = a.glossy.max() > 0;
+    const bool dielectric = a.transmission.max() > 0;
+    const bool smooth = (f & kSpecular) && !(mirror && (f & kGlossy) && !phong);
+    LobeSplit s;
+    if (mirror) s.delta |= kSpecular;
+    if (dielectric) (smooth ? s.delta : s.non_delta) |= kTransmission;
+    if (f & kDiffuse) s.non_delta |= kDiffuse;
+    if (phong) s.non_delta |= kGlossy;
+    return s;
+}
+
+PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps)
+    : P_(P), o_(o), maps_(maps) {
+    const PhotonMapSettings* s[photon::kMapCount] = {&o.global, &o.caustic, &o.indirect};
+    for (int m = 0; m < photon::kMapCount; ++m) {
+        est_[m].k = s[m]->samples;
+        est_[m].max_radius = s[m]->radius;
+        est_[m].filter.kind = s[m]->filter;
+        est_[m].filter.cone_k = s[m]->cone_k;
+        est_[m].normal_cos = o.normal_cos;
+        est_[m].flatness = o.flatness;
+    }
+}
+
+RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
+    RadianceParts out;
+    Rgb beta(1.0f);
+    bool via_delta = false;
+    int crossings = 0;
+    for (int depth = 0;;) {
+        Rgb& seen = via_delta ? out.specular : out.direct;
+        accel::SurfaceHit hit;
+        if (!P_.accel.intersect(ray, hit)) {
+            seen += beta * (P_.scene.background + P_.escaped(normalize(ray.dir)));
+            break;
+        }
+        if (P_.passes_through(hit)) {
+            if (++crossings > 256) break;
+            ray = accel::spawn_ray(hit, ray.dir);
+            continue;
+        }
+        const Vec3 wo = -normalize(ray.dir);
+        const scene::Material& mat = P_.scene.materials[size_t(hit.material)];
+        seen += beta * (P_.emitted(hit, wo) + mat.emission);
+        if (depth == 0 && P_.options.ambient) seen += beta * mat.ambient * P_.scene.ambient;
+
+        const shading::Bsdf bsdf = P_.bsdf(hit);
+        if (bsdf.has_non_specular()) {
+            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
+            if (o_.photon_viz) {
+                seen += beta * photon::radiance_estimate(maps_.global(), est_[kGlobalMap], q, wo, bsdf);
+            } else {
+                Rgb& d = via_delta ? out.specular : out.direct;
+                Rgb& c = via_delta ? out.specular : out.caustic;
+                Rgb& i = via_delta ? out.specular : out.indirect;
+                if (o_.direct) d += beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays);
+                if (o_.caustics)
+                    c += beta * photon::radiance_estimate(maps_.caustic(), est_[kCausticMap], q, wo, bsdf);
+                if (o_.indirect_light) {
+                    if (o_.fast_global)
+                        i += beta *
+                             photon::radiance_estimate(maps_.indirect(), est_[kIndirectMap], q, wo, bsdf);
+                    else
+                        i += beta * final_gather(hit, bsdf, wo, sampler, rays);
+                }
+            }
+        }
+        // Mirrors and glass: one stochastically chosen delta branch per sample (unbiased).
+        if (depth >= P_.options.max_depth) break;
+        const LobeSplit ls = split_lobes(bsdf, wo);
+        if (!ls.delta) break;
+        const auto s = bsdf.sample_lobes(ls.delta, wo, sampler.next(), sampler.next2());
+        if (!s || s->weight.is_black()) break;
+        if ((s->flags & shading::kTransmission) ? !o_.transmissive : !o_.specular) break;
+        beta *= s->weight;
+        if (!beta.is_finite() || beta.max() < 1e-6f) break;
+        via_delta = true;
+        ray = accel::spawn_ray(hit, s->wi);
+        ++rays.bounce;
+        ++depth;
+    }
+    return out;
+}
+
+Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
+                                    Sampler& sampler, RayCounts& rays) const {
+    const LobeSplit ls = split_lobes(bsdf, wo);
+    const int n = std::max(o_.gather_rays, 1);
+    if (!ls.non_delta) return Rgb(0.0f);
+    Rgb sum(0.0f);
+    for (int i = 0; i < n; ++i) {
+        // Stratified over the hemisphere (sqrt(n) x sqrt(n) cells of the lobe's sample square).
+        const Vec2 u = stratified_sample(i, n, sampler.next2());
+        const float u_lobe = sampler.next();
+        const auto s = bsdf.sample_lobes(ls.non_delta, wo, u_lobe, u);
+        if (!s || s->is_specular() || s->weight.is_black()) continue;
+        ++rays.bounce;
+        sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi), sampler, rays);
+    }
+    return sum * (1.0f / float(n));
+}
+
+Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
+    Rgb L(0.0f), beta(1.0f);
+    int crossings = 0;
+    for (int depth = 0; depth <= P_.options.max_depth;) {
+        accel::SurfaceHit hit;
+        if (!P_.accel.intersect(ray, hit)) break;  // sky light arriving this way is direct light
+        if (P_.passes_through(hit)) {
+            if (++crossings > 256) break;
+            ray = accel::spawn_ray(hit, ray.dir);
+            continue;
+        }
+        const Vec3 wo = -normalize(ray.dir);
+        const shading::Bsdf bsdf = P_.bsdf(hit);
+        if (bsdf.has_non_specular()) {
+            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
+            Rgb E;
+            const bool lambert = (bsdf.flags() & ~(shading::kDiffuse | shading::kReflection)) == 0;
+            if (lambert && !maps_.cache.empty() &&
+                maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E))
+                L += beta * bsdf.diffuse_albedo() * kInvPi * E;
+            else
+                L += beta * photon::radiance_estimate(maps_.global(), est_[kGlobalMap], q, wo, bsdf);
+        }
+        const LobeSplit ls = split_lobes(bsdf, wo);
+        if (!ls.delta) break;
+        const auto s = bsdf.sample_lobes(ls.delta, wo, sampler.next(), sampler.next2());
+        if (!s || s->weight.is_black()) break;
+        beta *= s->weight;
+        if (!beta.is_finite() || beta.max() < 1e-6f) break;
+        ray = accel::spawn_ray(hit, s->wi);
+        ++rays.bounce;
+        ++depth;
+    }
+    return L;
+}
+
+}  // namespace phos::integrators

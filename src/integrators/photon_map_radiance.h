@@ -1,0 +1,50 @@
+// Pass 2 of the photon mapper, per camera ray: the split of the radiance into direct, caustic,
+// indirect and specular components (Jensen 2001, ch. 9), and final gathering.
+#pragma once
+
+#include "core/rng.h"
+#include "core/stats.h"
+#include "integrators/photon_map.h"
+#include "integrators/prepared.h"
+#include "photon/estimate.h"
+
+namespace phos::integrators {
+
+// Radiance along a camera ray split by component. `specular` holds everything that reached the
+// camera after at least one mirror/glass (delta) bounce; the other three are what the first
+// surface seen directly reflects (emission seen directly counts as direct).
+struct RadianceParts {
+    Rgb direct{0.0f}, caustic{0.0f}, indirect{0.0f}, specular{0.0f};
+    Rgb total() const { return direct + caustic + indirect + specular; }
+};
+
+class PhotonMapRadiance {
+public:
+    PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps);
+    RadianceParts camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const;
+
+    // Indirect radiance reflected at a non-specular hit towards wo by final gathering.
+    Rgb final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler,
+                     RayCounts& rays) const;
+    // Radiance along `ray` as the global map sees it: follows delta bounces, then takes the
+    // global estimate (or the irradiance cache) at each non-specular hit; emitters give nothing.
+    Rgb gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const;
+
+    const photon::EstimateOptions& estimate_options(int map) const { return est_[map]; }
+
+private:
+    const Prepared& P_;
+    const PhotonMapOptions& o_;
+    const PhotonMaps& maps_;
+    photon::EstimateOptions est_[photon::kMapCount];
+};
+
+// The lobe kinds (sample_lobes masks) of a BSDF split into delta lobes (mirror, smooth glass),
+// followed by ray tracing, and non-delta ones (Lambert, Phong, frosted glass), handled by the
+// photon maps.
+struct LobeSplit {
+    uint32_t delta = 0, non_delta = 0;
+};
+LobeSplit split_lobes(const shading::Bsdf& bsdf, Vec3 wo);
+
+}  // namespace phos::integrators
