@@ -347,11 +347,17 @@ ShapeSample ShapeSampler::sample_area(Vec2 u) const {
     return s;
 }
 
+// Cone sampling needs a reference point strictly outside the sphere. A point ON the sphere (a hit on
+// the emitter itself, whose position is only accurate to a few ulps and may land just outside)
+// would see a "cap" of almost a hemisphere and find its own surface, losing all its light; such
+// points, and points inside, use area sampling, which is valid everywhere.
+constexpr float kConeSamplingMargin = 1.0001f;
+
 ShapeSample ShapeSampler::sample(Vec3 ref, Vec2 u) const {
     if (sphere_cone_) {
         const Vec3 to_c = sphere_center_ - ref;
         const float dc2 = length_squared(to_c), r2 = sphere_radius_ * sphere_radius_;
-        if (dc2 > r2) {
+        if (dc2 > r2 * kConeSamplingMargin) {
             // Uniform over the cone of the visible cap; the point is found from the angle alpha at
             // the centre between (centre -> ref) and (centre -> point).
             const float dc = std::sqrt(dc2);
@@ -392,7 +398,7 @@ float ShapeSampler::pdf(Vec3 ref, Vec3 wi, Vec3 p, Vec3 n) const {
     if (patches_.empty()) return 0;
     if (sphere_cone_) {
         const float dc2 = length_squared(sphere_center_ - ref), r2 = sphere_radius_ * sphere_radius_;
-        if (dc2 > r2) return 1 / (2 * kPi * one_minus_cos_max(r2 / dc2));
+        if (dc2 > r2 * kConeSamplingMargin) return 1 / (2 * kPi * one_minus_cos_max(r2 / dc2));
     }
     const float dist2 = length_squared(p - ref);
     const float cos_l = std::fabs(dot(n, wi));
