@@ -20,6 +20,6 @@ private:
 };
 
 // Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
-constexpr float kDefaultRadiusPixels = 2.0f;
+constexpr float kDefaultRadiusPixels = 4.0f;
 
 }  // namespace phos::integrators

@@ -17,7 +17,7 @@ void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& 
         ->check(CLI::PositiveNumber);
     render
         .add_option("--radius-pixels", o.radius_pixels,
-                    "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 2)")
+                    "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 4)")
         ->check(CLI::PositiveNumber);
     render
         .add_option("--ppm-direct-samples", o.direct_samples, "ppm: light samples per hit point (default 16)")
