@@ -35,6 +35,19 @@ PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
     return r;
 }
 
+// True if some material has a delta lobe (mirror or smooth glass): only then can there be
+// caustic photons (L S+ D), and only then is the caustic map worth tracing.
+bool has_delta_materials(const scene::Scene& scene) {
+    for (const scene::Material& m : scene.materials) {
+        if (m.interface_only) continue;
+        if (!m.specular.is_black() && m.shininess >= scene::Material::kMirrorShininess) return true;
+        const bool sharp =
+            m.thin || m.ior == 1 || m.transmission_shininess >= scene::Material::kMirrorShininess;
+        if (!m.transmission.is_black() && sharp) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 void PhotonMapOptions::validate() const {
@@ -65,7 +78,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     photon::TraceOptions to;
     // Only the maps pass 2 will read are traced.
     to.wanted[photon::kGlobalMap] = o.photon_viz || (o.indirect_light && !o.fast_global);
-    to.wanted[photon::kCausticMap] = !o.photon_viz && o.caustics;
+    to.wanted[photon::kCausticMap] = !o.photon_viz && o.caustics && has_delta_materials(P.scene);
     to.wanted[photon::kIndirectMap] = !o.photon_viz && o.indirect_light && o.fast_global;
     to.target[photon::kGlobalMap] = o.global.photons;
     to.target[photon::kCausticMap] = o.caustic.photons;

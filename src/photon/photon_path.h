@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "accel/embree_scene.h"
 #include "core/rng.h"
@@ -39,7 +40,8 @@ struct PhotonPathOptions {
 
 // Traces photon `index` of pass `pass` (random numbers keyed by (seed, pass, index)), calling
 // `visit(const PhotonHit&)` at every surface hit that has a non-specular component, before the
-// photon scatters on. Returns the number of rays traced.
+// photon scatters on (a visitor that returns bool ends the path by returning false). Returns the number of
+// rays traced.
 template <class Visitor>
 uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
                       const PhotonPathOptions& options, Visitor&& visit);
@@ -80,8 +82,16 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
         }
         const shading::Bsdf bsdf(mat, hit, ps.scene, ps.bsdf_options);
         if (bsdf.flags() == 0) break;
-        if (bsdf.has_non_specular())
-            visit(PhotonHit{hit, bsdf, wo, power, bounces, after_diffuse, after_specular});
+        if (bsdf.has_non_specular()) {
+            const PhotonHit ph{hit, bsdf, wo, power, bounces, after_diffuse, after_specular};
+            // A visitor returning bool may end the path (false): e.g. once no map it fills can
+            // take this photon any more.
+            if constexpr (std::is_same_v<std::invoke_result_t<Visitor&, const PhotonHit&>, bool>) {
+                if (!visit(ph)) break;
+            } else {
+                visit(ph);
+            }
+        }
         if (bounces == options.max_bounces) break;
         Vec3 wi;
         bool specular = false;

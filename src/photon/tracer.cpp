@@ -36,6 +36,10 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
                 s.power[m].push_back(h.power);
                 s.emission[m].push_back(uint32_t(j));
             }
+            // Only the caustic map still filling: a path that went diffuse can never store a
+            // caustic photon again, so stop it here (most of the caustic map's rounds).
+            return active[kGlobalMap] || active[kIndirectMap] ||
+                   (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
         });
     }
 }

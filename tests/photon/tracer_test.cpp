@@ -1,0 +1,148 @@
+// Photon tracing (photon/tracer.h): power conservation in a closed grey box (global and indirect
+// maps), budget bookkeeping, map classification and thread-count independence.
+#include "photon/tracer.h"
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "accel/embree_scene.h"
+#include "scene/scene.h"
+#include "shading/lights.h"
+
+namespace phos::photon {
+namespace {
+
+// A closed box [-1, 1]^3 of Lambertian albedo `rho` with an isotropic point light of intensity I at
+// its centre, plus optionally a mirror sphere (so caustic photons exist).
+struct BoxScene {
+    scene::Scene s;
+    std::unique_ptr<accel::EmbreeScene> accel;
+    std::unique_ptr<shading::LightSet> lights;
+    BoxScene(float rho, float intensity, bool mirror_sphere) {
+        scene::Material grey;
+        grey.diffuse = Rgb(rho);
+        s.materials.push_back(grey);
+        scene::Shape box;
+        box.kind = scene::Shape::Kind::Box;
+        box.box_min = Vec3(-1.0f);
+        box.box_max = Vec3(1.0f);
+        box.material = 0;
+        s.shapes.push_back(box);
+        if (mirror_sphere) {
+            scene::Material m;
+            m.specular = Rgb(1.0f);
+            m.shininess = 1e6f;
+            s.materials.push_back(m);
+            scene::Shape sp;
+            sp.kind = scene::Shape::Kind::Sphere;
+            sp.center = Vec3(0.0f, -0.6f, 0.0f);
+            sp.radius = 0.3f;
+            sp.material = 1;
+            s.shapes.push_back(sp);
+        }
+        scene::Light l;
+        l.kind = scene::Light::Kind::Point;
+        l.color = Rgb(intensity);
+        l.position = Vec3(0.0f, 0.5f, 0.0f);
+        s.lights.push_back(l);
+        accel = std::make_unique<accel::EmbreeScene>(s);
+        lights = std::make_unique<shading::LightSet>(s, accel->bounds());
+    }
+    PhotonScene ps() const { return {s, *accel, *lights, {}}; }
+};
+
+Rgb total_power(const std::vector<Photon>& v) {
+    double r = 0, g = 0, b = 0;
+    for (const Photon& p : v) {
+        const Rgb c = p.power();
+        r += c.r, g += c.g, b += c.b;
+    }
+    return {float(r), float(g), float(b)};
+}
+
+TEST(PhotonTracer, ClosedBoxPowerSumsToFluxOverOneMinusAlbedo) {
+    // Every photon bounces until Russian roulette absorbs it (survival probability rho, power
+    // unchanged), so the stored count per emitted photon is geometric: mean 1 / (1 - rho), variance
+    // rho / (1 - rho)^2. The global map's total power is Phi / (1 - rho), the indirect map's (no
+    // direct photons) Phi rho / (1 - rho). With rho = 0.5 and N emitted, the relative standard
+    // deviation of the global sum is sqrt(rho) / sqrt(N) = 0.5 % at N = 20000; we allow 5 sigma
+    // plus the RGBE rounding (unbiased, < 0.4 % per photon, averages out).
+    const float rho = 0.5f, I = 2.0f;
+    BoxScene box(rho, I, false);
+    TraceOptions o;
+    o.wanted[kGlobalMap] = o.wanted[kIndirectMap] = true;
+    o.wanted[kCausticMap] = false;
+    o.target[kGlobalMap] = 40000;
+    o.target[kIndirectMap] = 20000;
+    o.seed = 7;
+    const TracedPhotons t = trace_photons(box.ps(), o);
+    const double flux = 4 * kPi * I;
+    const double N = double(t.emitted[kGlobalMap]);
+    ASSERT_TRUE(t.reached[kGlobalMap]);
+    ASSERT_TRUE(t.reached[kIndirectMap]);
+    EXPECT_GT(N, 15000);
+    const double tol_g = 5 * std::sqrt(rho / N) + 0.002;
+    EXPECT_NEAR(total_power(t.photons[kGlobalMap]).average() / (flux / (1 - rho)), 1.0, tol_g);
+    // Indirect: mean rho / (1 - rho) per emission, variance rho / (1 - rho)^2 -> relative std
+    // 1 / sqrt(rho N).
+    const double Ni = double(t.emitted[kIndirectMap]);
+    const double tol_i = 5 / std::sqrt(rho * Ni) + 0.002;
+    EXPECT_NEAR(total_power(t.photons[kIndirectMap]).average() / (flux * rho / (1 - rho)), 1.0, tol_i);
+    EXPECT_TRUE(t.photons[kCausticMap].empty());
+}
+
+TEST(PhotonTracer, BudgetsStopJustAfterTheTarget) {
+    BoxScene box(0.5f, 1.0f, true);
+    TraceOptions o;
+    o.target[kGlobalMap] = 10000;
+    o.target[kCausticMap] = 3000;
+    const TracedPhotons t = trace_photons(box.ps(), o);
+    for (int m : {kGlobalMap, kCausticMap}) {
+        EXPECT_TRUE(t.reached[m]);
+        // Only the photons of the emission that crossed the target are added beyond it.
+        EXPECT_GE(t.photons[m].size(), o.target[m]);
+        EXPECT_LE(t.photons[m].size(), o.target[m] + 17);
+    }
+    // The caustic map needs more emissions than the global one, and both were counted.
+    EXPECT_GT(t.emitted[kCausticMap], t.emitted[kGlobalMap]);
+    EXPECT_GE(t.total_emitted, t.emitted[kCausticMap]);
+    // Every caustic photon is also a global photon of some path: the caustic map's power per
+    // emission cannot exceed the global map's.
+    EXPECT_LT(total_power(t.photons[kCausticMap]).average(), total_power(t.photons[kGlobalMap]).average());
+}
+
+TEST(PhotonTracer, FixedEmissionCountFillsEveryWantedMap) {
+    BoxScene box(0.5f, 1.0f, true);
+    TraceOptions o;
+    o.emit = 5000;
+    o.wanted[kIndirectMap] = true;
+    const TracedPhotons t = trace_photons(box.ps(), o);
+    EXPECT_EQ(t.total_emitted, 5000u);
+    for (int m = 0; m < kMapCount; ++m) EXPECT_EQ(t.emitted[m], 5000u);
+    // Direct photons are in the global map but not in the indirect one.
+    EXPECT_GT(t.photons[kGlobalMap].size(), t.photons[kIndirectMap].size() + 4000);
+    EXPECT_GT(t.photons[kCausticMap].size(), 0u);
+}
+
+TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
+    BoxScene box(0.6f, 1.0f, true);
+    TraceOptions o;
+    o.target[kGlobalMap] = 30000;
+    o.target[kCausticMap] = 5000;
+    o.batch_size = 1024;
+    TracedPhotons a, b;
+    tbb::task_arena(1).execute([&] { a = trace_photons(box.ps(), o); });
+    tbb::task_arena(2).execute([&] { b = trace_photons(box.ps(), o); });
+    for (int m = 0; m < kMapCount; ++m) {
+        ASSERT_EQ(a.photons[m].size(), b.photons[m].size());
+        EXPECT_EQ(a.emitted[m], b.emitted[m]);
+        EXPECT_EQ(
+            0, std::memcmp(a.photons[m].data(), b.photons[m].data(), a.photons[m].size() * sizeof(Photon)));
+    }
+}
+
+}  // namespace
+}  // namespace phos::photon
