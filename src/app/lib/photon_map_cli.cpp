@@ -76,14 +76,14 @@ void add_photon_map_options(CLI::App& render, integrators::PhotonMapOptions& o) 
         ->check(CLI::Range(0, 100000));
     render
         .add_option("--gather-rays", o.gather_rays,
-                    "photonmap: final-gather rays per camera sample (default 16)")
+                    "photonmap: final-gather rays per camera sample (default 8)")
         ->check(CLI::Range(1, 1 << 20));
     render.add_flag("--fast-global", o.fast_global,
                     "photonmap: indirect light from the indirect map at the first hit, no final gather");
     render.add_flag("--photon-viz", o.photon_viz,
                     "photonmap: show the global map's radiance estimate at the first hit (debug view)");
-    render.add_flag("--irradiance-cache", o.irradiance_cache,
-                    "photonmap: precompute irradiance at global photons for the final gather");
+    render.add_flag("--irradiance-cache,!--no-irradiance-cache", o.irradiance_cache,
+                    "photonmap: precomputed irradiance at global photons for the final gather (default on)");
     render
         .add_option("--irradiance-cache-stride", o.cache_stride,
                     "photonmap: one irradiance cache point per this many global photons (default 4)")
