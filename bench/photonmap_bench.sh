@@ -1,0 +1,30 @@
+#!/bin/sh
+# Benchmark of the two-pass photon mapper (--integrator photonmap) on the three bench scenes at
+# 256x256 with the recommended defaults (plus any extra options given): wall time, photon tracing
+# rate and map build time (from -v), relMSE, mean ratio and caustic window against the reference.
+# Usage: bench/photonmap_bench.sh [BUILD_DIR] [extra phos options...]
+# Needs BUILD_DIR/phos and a metrics tool (BUILD_DIR/sppm_metrics, built with PHOS_BUILD_BENCH=ON).
+set -eu
+here=$(cd "$(dirname "$0")" && pwd)
+build=${1:-$here/../build}
+[ $# -gt 0 ] && shift
+phos=$build/phos
+metrics=${METRICS:-$build/sppm_metrics}
+shared=$here/../../shared/bench
+out=$(mktemp -d)
+trap 'rm -rf "$out"' EXIT
+printf '%-22s %7s %12s %8s %9s %7s %8s\n' scene wall trace-rate build-s relMSE ratio window
+for spec in "cornell-diffuse - - - -" "cornell-glass-mirror 168 200 226 242" "caustic-point 104 128 132 156"; do
+    set -- $spec "$@"
+    scene=$1
+    if [ "$2" = "-" ]; then win=""; else win="$2 $3 $4 $5"; fi
+    shift 5
+    start=$(date +%s.%N)
+    "$phos" render "$shared/scn/$scene.scn" --integrator photonmap --width 256 --height 256 --no-progress -q -v \
+        -o "$out/$scene.pfm" "$@" 2> "$out/$scene.log"
+    end=$(date +%s.%N)
+    rate=$(sed -n 's/.*photon tracing rate: \([^ ]*\).*/\1/p' "$out/$scene.log")
+    build_s=$(sed -n 's/.*time photon map build: *\([^ ]*\) s/\1/p' "$out/$scene.log")
+    printf '%-22s %7.2f %12s %8s %s\n' "$scene" "$(echo "$end - $start" | bc)" "$rate" "$build_s" \
+        "$("$metrics" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win)"
+done
