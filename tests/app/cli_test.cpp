@@ -36,17 +36,23 @@ TEST(Cli, NonsenseOptionsExitWith2) {
     TempDir dir;
     const std::string scene = dir.write("s.scn", kTinyScene);
     const std::string out = dir.file("o.png");
-    const std::vector<std::string> bad_commands = {"render " + scene + " -o " + out + " --width 0", "render " + scene + " -o " + out + " --height -5",
-          "render " + scene + " -o " + out + " --spp 0", "render " + scene + " -o " + out + " --spp",
-          "render " + scene + " -o " + out + " --frobnicate", "render " + scene + " -o " + out + " --spp abc",
-          "render " + scene + " -o " + out + " --integrator magic",
-          "render " + scene + " -o " + out + " --threads -1",
-          "render " + scene + " -o " + out + " -resolution 10",
-          "render " + scene + " -o " + out + " --dof 0 1 0.1",
-          "render " + scene + " -o " + out + " --dof 4 -1 0.1",
-          "render " + scene + " -o " + dir.file("x.tiff"),
-          "render " + scene + " -o " + dir.file("nodir/x.png"), "render " + scene, "render",
-          "bogus-command"}) {
+    const std::vector<std::string> bad_commands = {"render " + scene + " -o " + out + " --width 0",
+                                                   "render " + scene + " -o " + out + " --height -5",
+                                                   "render " + scene + " -o " + out + " --spp 0",
+                                                   "render " + scene + " -o " + out + " --spp",
+                                                   "render " + scene + " -o " + out + " --frobnicate",
+                                                   "render " + scene + " -o " + out + " --spp abc",
+                                                   "render " + scene + " -o " + out + " --integrator magic",
+                                                   "render " + scene + " -o " + out + " --threads -1",
+                                                   "render " + scene + " -o " + out + " -resolution 10",
+                                                   "render " + scene + " -o " + out + " --dof 0 1 0.1",
+                                                   "render " + scene + " -o " + out + " --dof 4 -1 0.1",
+                                                   "render " + scene + " -o " + dir.file("x.tiff"),
+                                                   "render " + scene + " -o " + dir.file("nodir/x.png"),
+                                                   "render " + scene,
+                                                   "render",
+                                                   "bogus-command"};
+    for (const std::string& bad : bad_commands) {
         const auto r = run_phos(bad);
         EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
         EXPECT_FALSE(r.output.empty()) << bad;
