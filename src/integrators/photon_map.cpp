@@ -12,6 +12,7 @@
 #include "film/tiles.h"
 #include "integrators/photon_map_radiance.h"
 #include "integrators/pixel_loop.h"
+#include "photon/projection_map.h"
 
 namespace phos::integrators {
 namespace {
@@ -38,13 +39,8 @@ PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
 // True if some material has a delta lobe (mirror or smooth glass): only then can there be
 // caustic photons (L S+ D), and only then is the caustic map worth tracing.
 bool has_delta_materials(const scene::Scene& scene) {
-    for (const scene::Material& m : scene.materials) {
-        if (m.interface_only) continue;
-        if (!m.specular.is_black() && m.shininess >= scene::Material::kMirrorShininess) return true;
-        const bool sharp =
-            m.thin || m.ior == 1 || m.transmission_shininess >= scene::Material::kMirrorShininess;
-        if (!m.transmission.is_black() && sharp) return true;
-    }
+    for (const scene::Material& m : scene.materials)
+        if (photon::has_delta_lobe(m)) return true;
     return false;
 }
 
@@ -92,6 +88,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     to.max_emit = o.max_emitted > 0 ? o.max_emitted : std::max<uint64_t>(200 * largest, 1000000);
     to.max_depth = o.max_photon_depth;
     to.seed = P.options.seed;
+    to.caustic_projection = o.projection_maps;
 
     const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
     auto t0 = std::chrono::steady_clock::now();
@@ -125,6 +122,14 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
                                std::to_string(maps.map[m].size()) + " of " + std::to_string(to.target[m]) +
                                " photons before the emission cap (--max-emitted)");
     }
+    if (to.wanted[photon::kCausticMap] && o.projection_maps)
+        P.stats.add_value(
+            "caustic projection maps",
+            fmt("%.3g %% of the emitted power aimed at specular objects", 100.0 * traced.caustic_fraction) +
+                fmt(", built in %.3f s", traced.projection_seconds) +
+                fmt(", caustic tracing %.3g stored photons/s",
+                    traced.caustic_seconds > 0 ? double(maps.caustic().size()) / traced.caustic_seconds
+                                               : 0.0));
     P.stats.add_value("bytes per photon", std::to_string(sizeof(photon::Photon)));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));

@@ -30,6 +30,7 @@ struct PhotonMapOptions {
     bool fast_global = false;      // indirect map estimate at the first hit instead of final gather
     bool photon_viz = false;       // debug view: global map's radiance estimate at the first hit
     bool irradiance_cache = true;  // precomputed irradiance for final-gather lookups (Lambertian hits)
+    bool projection_maps = true;   // caustic photons emitted only towards specular objects
     uint32_t cache_stride = 4;     // one cache point per this many global photons
     float normal_cos = 0.9f;       // surface test: min cosine between photon and query normals
     float flatness = 0.2f;         // surface test: max |h| / d off the tangent plane

@@ -34,8 +34,12 @@ struct PhotonHit {
     bool after_specular;  // the bounces so far were all specular and there was at least one (L S+ D)
 };
 
+class ProjectionMap;  // photon/projection_map.h
+
 struct PhotonPathOptions {
     int max_bounces = 16;  // scattering events after emission
+    // Non-null: emit only towards the specular objects this projection map marks (caustic photons).
+    const ProjectionMap* projection = nullptr;
 };
 
 // Traces photon `index` of pass `pass` (random numbers keyed by (seed, pass, index)), calling
@@ -52,6 +56,9 @@ namespace detail {
 // Emits the photon: picks a light by power and samples a ray from it. Returns false when the
 // scene has no light with power. `power` is the sample weight divided by the light's pmf.
 bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power);
+// The same through a projection map (defined in projection_map.cpp).
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
+                    Rgb& power);
 // Russian roulette on the lobe kinds at a hit, then sampling of the chosen kind in Importance
 // mode. Returns false when the photon is absorbed; otherwise updates `power` (per-channel exact
 // expectation) and sets `wi_out` and whether the chosen lobe was specular.
@@ -65,7 +72,9 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
     Sampler sampler(seed, 0x70686f746f6eULL ^ pass, index);
     accel::Ray ray;
     Rgb power;
-    if (!detail::emit_photon(ps, sampler, ray, power)) return 0;
+    if (!(options.projection ? detail::emit_projected(*options.projection, ps, sampler, ray, power)
+                             : detail::emit_photon(ps, sampler, ray, power)))
+        return 0;
     uint32_t rays = 0;
     bool after_diffuse = false, after_specular = false;
     int crossings = 0;

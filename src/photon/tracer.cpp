@@ -4,7 +4,10 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+
+#include "photon/projection_map.h"
 
 namespace phos::photon {
 namespace {
@@ -19,12 +22,13 @@ struct Slice {
     uint64_t rays = 0;
 };
 
-void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t first,
-                 uint64_t count, Slice& s) {
+void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t pass,
+                 const ProjectionMap* projection, uint64_t first, uint64_t count, Slice& s) {
     PhotonPathOptions po;
     po.max_bounces = o.max_depth;
+    po.projection = projection;
     for (uint64_t j = 0; j < count; ++j) {
-        s.rays += trace_photon(ps, o.seed, 0, first + j, po, [&](const PhotonHit& h) {
+        s.rays += trace_photon(ps, o.seed, pass, first + j, po, [&](const PhotonHit& h) {
             // Normal on the side the photon arrived from: the estimate compares it with the
             // query's normal turned towards the viewer.
             const Vec3 n = dot(h.hit.ng, h.wi) >= 0 ? h.hit.ng : -h.hit.ng;
@@ -58,13 +62,17 @@ const char* map_name(int kind) {
     return "?";
 }
 
-TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
-    TracedPhotons out;
+namespace {
+
+// One emission stream (photon indices 0, 1, 2... of `pass`) filling the maps in `wanted` into
+// `out` (see tracer.h for the rounds and the cut at a target).
+void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[kMapCount], uint64_t pass,
+                const ProjectionMap* projection, TracedPhotons& out) {
     std::vector<Rgb> raw[kMapCount];
     bool active[kMapCount];
     bool any = false;
     for (int m = 0; m < kMapCount; ++m) {
-        active[m] = o.wanted[m] && (o.target[m] > 0 || o.emit > 0);
+        active[m] = wanted[m] && (o.target[m] > 0 || o.emit > 0);
         any |= active[m];
     }
     const uint64_t cap =
@@ -79,7 +87,8 @@ TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
         slices.assign(nb, Slice{});
         tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
             const uint64_t first = next + b * B;
-            trace_batch(ps, o, active, first, std::min(B, next + n_round - first), slices[b]);
+            trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
+                        slices[b]);
         });
         // Concatenate in batch order; a map that meets its target stops after that emission.
         for (int m = 0; m < kMapCount; ++m) {
@@ -120,18 +129,46 @@ TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
         }
         round_batches = std::clamp<uint64_t>(uint64_t(std::ceil(need / double(B))), 1, 256);
     }
-    out.total_emitted = next;
+    out.total_emitted += next;
     // Maps still active ran to the emission cap: their N is everything emitted.
     for (int m = 0; m < kMapCount; ++m)
         if (active[m]) out.emitted[m] = next, out.reached[m] = o.target[m] == 0;
     for (int m = 0; m < kMapCount; ++m) {
         std::vector<Photon>& P = out.photons[m];
-        if (P.empty()) continue;
+        if (P.empty() || !wanted[m]) continue;
         const float inv = 1.0f / float(out.emitted[m]);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
                           [&](const tbb::blocked_range<size_t>& r) {
                               for (size_t i = r.begin(); i < r.end(); ++i) P[i].set_power(raw[m][i] * inv);
                           });
+    }
+}
+
+}  // namespace
+
+TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
+    TracedPhotons out;
+    bool wanted[kMapCount];
+    for (int m = 0; m < kMapCount; ++m) wanted[m] = o.wanted[m];
+    if (!(o.caustic_projection && wanted[kCausticMap])) {
+        run_stream(ps, o, wanted, 0, nullptr, out);
+        return out;
+    }
+    // Caustic photons through projection maps in their own stream (pass 1, its own N emitted);
+    // the global and indirect maps keep the full emission (pass 0).
+    wanted[kCausticMap] = false;
+    run_stream(ps, o, wanted, 0, nullptr, out);
+    auto t0 = std::chrono::steady_clock::now();
+    const ProjectionMap pm(ps, o.projection_resolution);
+    out.caustic_fraction = pm.fraction();
+    out.projection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const bool caustic_only[kMapCount] = {false, true, false};
+    if (!pm.empty()) {
+        t0 = std::chrono::steady_clock::now();
+        run_stream(ps, o, caustic_only, 1, &pm, out);
+        out.caustic_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    } else {
+        out.reached[kCausticMap] = true;  // no light can reach a specular object: nothing to store
     }
     return out;
 }

@@ -2,6 +2,9 @@
 // in fixed batches of photon indices and sorts the non-specular hits into the global (L{S|D}*D),
 // caustic (LS+D) and indirect (L{S|D}*DD) maps, each up to its own budget of stored photons.
 //
+// With projection maps (the default) the caustic map has its own emission stream: photons leave
+// the lights only towards specular objects (projection_map.h); its N counts those emissions.
+//
 // Determinism: photon i's random numbers depend only on (seed, i); batch b (indices
 // [b * batch_size, (b + 1) * batch_size)) writes its own slice, slices are concatenated in batch
 // order, and the number of batches per round depends only on the counts stored so far. So the
@@ -31,6 +34,10 @@ struct TraceOptions {
     int max_depth = 16;     // scattering events per photon path
     uint64_t seed = 0;
     uint32_t batch_size = 4096;
+    // Caustic map through projection maps (projection_map.h): its photons come from a second
+    // stream emitted only towards specular objects. Off: one stream fills every map.
+    bool caustic_projection = true;
+    int projection_resolution = 128;  // cells per side of each light's direction map
 };
 
 struct TracedPhotons {
@@ -39,6 +46,9 @@ struct TracedPhotons {
     bool reached[kMapCount] = {false, false, false};  // the target was met (false if capped by max_emit)
     uint64_t total_emitted = 0;                       // photon paths traced
     uint64_t rays = 0;
+    double caustic_fraction = 1;    // share of the emitted power the projection maps sample
+    double projection_seconds = 0;  // building the projection maps
+    double caustic_seconds = 0;     // tracing the caustic stream (projection maps only)
     uint64_t stored() const { return photons[0].size() + photons[1].size() + photons[2].size(); }
 };
 

@@ -99,6 +99,7 @@ TEST(PhotonTracer, BudgetsStopJustAfterTheTarget) {
     TraceOptions o;
     o.target[kGlobalMap] = 10000;
     o.target[kCausticMap] = 3000;
+    o.caustic_projection = false;  // one stream: the caustic map's emissions compare with the global's
     const TracedPhotons t = trace_photons(box.ps(), o);
     for (int m : {kGlobalMap, kCausticMap}) {
         EXPECT_TRUE(t.reached[m]);
@@ -119,6 +120,7 @@ TEST(PhotonTracer, FixedEmissionCountFillsEveryWantedMap) {
     TraceOptions o;
     o.emit = 5000;
     o.wanted[kIndirectMap] = true;
+    o.caustic_projection = false;  // one stream for every map
     const TracedPhotons t = trace_photons(box.ps(), o);
     EXPECT_EQ(t.total_emitted, 5000u);
     for (int m = 0; m < kMapCount; ++m) EXPECT_EQ(t.emitted[m], 5000u);

@@ -84,6 +84,9 @@ void add_photon_map_options(CLI::App& render, integrators::PhotonMapOptions& o) 
                     "photonmap: show the global map's radiance estimate at the first hit (debug view)");
     render.add_flag("--irradiance-cache,!--no-irradiance-cache", o.irradiance_cache,
                     "photonmap: precomputed irradiance at global photons for the final gather (default on)");
+    render.add_flag("--projection-maps,!--no-projection-maps", o.projection_maps,
+                    "photonmap: emit caustic photons only towards mirrors and glass, weighted by the "
+                    "share of emission aimed there (default on)");
     render
         .add_option("--irradiance-cache-stride", o.cache_stride,
                     "photonmap: one irradiance cache point per this many global photons (default 4)")

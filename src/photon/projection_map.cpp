@@ -1,0 +1,237 @@
+// Projection maps for caustic photons (see projection_map.h).
+#include "photon/projection_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace phos::photon {
+namespace {
+
+// Object-space bounding box of a shape (analytic shapes conservatively).
+accel::Bounds object_bounds(const scene::Shape& s) {
+    accel::Bounds b;
+    using K = scene::Shape::Kind;
+    switch (s.kind) {
+        case K::Mesh:
+            for (const Vec3& p : s.mesh.positions) b.extend(p);
+            break;
+        case K::Box:
+            b.extend(s.box_min);
+            b.extend(s.box_max);
+            break;
+        case K::Sphere:
+        case K::Disk:
+            b.extend(s.center - Vec3(s.radius));
+            b.extend(s.center + Vec3(s.radius));
+            break;
+        case K::Cylinder:
+        case K::Cone: {
+            const float e = s.radius + 0.5f * s.height;
+            b.extend(s.center - Vec3(e));
+            b.extend(s.center + Vec3(e));
+            break;
+        }
+    }
+    return b;
+}
+
+// Bounding sphere of a shape under the world transform t: exact for spheres, vertex-based for
+// meshes, the box corners for the other shapes.
+BoundingSphere world_sphere(const scene::Shape& s, const Transform& t) {
+    if (s.kind == scene::Shape::Kind::Sphere) {
+        const Vec3 c[3] = {t.vector({1, 0, 0}), t.vector({0, 1, 0}), t.vector({0, 0, 1})};
+        const float l[3] = {length(c[0]), length(c[1]), length(c[2])};
+        // Largest stretch: the largest column for a rotation x scale, the Frobenius norm otherwise.
+        const float tol = 1e-4f * (l[0] * l[1] + l[1] * l[2] + l[0] * l[2]);
+        const bool orthogonal = std::fabs(dot(c[0], c[1])) <= tol && std::fabs(dot(c[1], c[2])) <= tol &&
+                                std::fabs(dot(c[0], c[2])) <= tol;
+        const float stretch = orthogonal ? std::max(l[0], std::max(l[1], l[2]))
+                                         : std::sqrt(l[0] * l[0] + l[1] * l[1] + l[2] * l[2]);
+        return {t.point(s.center), s.radius * stretch * 1.001f + 1e-6f};
+    }
+    std::vector<Vec3> pts;
+    if (s.kind == scene::Shape::Kind::Mesh) {
+        pts.reserve(s.mesh.positions.size());
+        for (const Vec3& p : s.mesh.positions) pts.push_back(t.point(p));
+    } else {
+        const accel::Bounds b = object_bounds(s);
+        for (int i = 0; i < 8; ++i)
+            pts.push_back(
+                t.point(Vec3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z)));
+    }
+    accel::Bounds w;
+    for (const Vec3& p : pts) w.extend(p);
+    if (w.empty()) return {Vec3(0.0f), -1};
+    const Vec3 c = w.center();
+    float r2 = 0;
+    for (const Vec3& p : pts) r2 = std::max(r2, length_squared(p - c));
+    return {c, std::sqrt(r2) * 1.001f + 1e-6f};
+}
+
+BoundingSphere sphere_of(const accel::Bounds& b) {
+    return {b.center(), 0.5f * length(b.extent()) * 1.001f + 1e-6f};
+}
+
+float angle_between(Vec3 a, Vec3 b) {  // unit vectors; atan2 form is accurate at small angles
+    return std::atan2(length(cross(a, b)), dot(a, b));
+}
+
+bool same(Vec3 a, Vec3 b, float tol) { return length(a - b) <= tol; }
+
+}  // namespace
+
+bool has_delta_lobe(const scene::Material& m) {
+    if (m.interface_only) return false;
+    if (!m.specular.is_black() && m.shininess >= scene::Material::kMirrorShininess) return true;
+    const bool sharp = m.thin || m.ior == 1 || m.transmission_shininess >= scene::Material::kMirrorShininess;
+    return !m.transmission.is_black() && sharp;
+}
+
+// The tracer's caustic paths (L S+ D) start at a delta lobe: frosted glass scatters as a glossy
+// (non-specular) lobe and ends them, so it casts no caustic-map photons.
+bool is_caustic_caster(const scene::Material& m) { return has_delta_lobe(m); }
+
+std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene) {
+    auto caster = [&](const scene::Shape& s) {
+        return s.material >= 0 && size_t(s.material) < scene.materials.size() &&
+               is_caustic_caster(scene.materials[size_t(s.material)]);
+    };
+    std::vector<BoundingSphere> out;
+    auto add = [&](const BoundingSphere& b) {
+        if (b.radius >= 0) out.push_back(b);
+    };
+    for (const scene::Shape& s : scene.shapes)
+        if (caster(s)) add(world_sphere(s, s.to_world));
+    for (const scene::Instance& inst : scene.instances) {
+        if (inst.object < 0 || size_t(inst.object) >= scene.objects.size()) continue;
+        for (const scene::Shape& s : scene.objects[size_t(inst.object)].shapes)
+            if (caster(s)) add(world_sphere(s, inst.to_world * s.to_world));
+    }
+    return out;
+}
+
+ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::max(resolution, 1)) {
+    const std::vector<BoundingSphere> casters = caustic_caster_bounds(ps.scene);
+    const int R = res_;
+    const uint32_t n_cells = uint32_t(R) * uint32_t(R);
+    const float below_one = std::nextafter(1.0f, 0.0f);
+    std::vector<float> weights;
+    double total_power = 0, marked_power = 0;
+    for (size_t li = 0; li < ps.lights.size(); ++li) {
+        const shading::Light& L = ps.lights[li];
+        LightCells lc;
+        const double power = std::max(0.0f, L.power().average());
+        if (!casters.empty()) {
+            // The light must emit from a small region with directions set by u_dir alone: probe a
+            // lattice of u_pos for a few u_dir values.
+            const Vec2 dir_probes[3] = {{0.13f, 0.21f}, {0.71f, 0.87f}, {0.42f, 0.58f}};
+            constexpr int P = 17;
+            accel::Bounds origins;
+            bool separable = !L.is_infinite();
+            Vec3 ref_dir[3];
+            for (int k = 0; k < 3; ++k) ref_dir[k] = L.sample_Le({0.5f, 0.5f}, dir_probes[k]).ray.dir;
+            for (int y = 0; y < P && separable; ++y)
+                for (int x = 0; x < P && separable; ++x) {
+                    const Vec2 up(std::min(float(x) / (P - 1), below_one),
+                                  std::min(float(y) / (P - 1), below_one));
+                    for (int k = 0; k < 3; ++k) {
+                        const shading::LightLeSample s = L.sample_Le(up, dir_probes[k]);
+                        if (!same(s.ray.dir, ref_dir[k], 1e-4f)) separable = false;
+                        origins.extend(s.ray.origin);
+                    }
+                }
+            if (separable && !origins.empty()) {
+                // 10 % margin: the lattice need not hit the light's extreme points exactly.
+                BoundingSphere light = sphere_of(origins);
+                light.radius *= 1.1f;
+                const Vec2 up_ref(0.5f, 0.5f);
+                constexpr int M = 5;  // probes per cell side
+                Vec3 d[M * M];
+                for (uint32_t c = 0; c < n_cells; ++c) {
+                    const float x0 = float(c % uint32_t(R)) / float(R),
+                                y0 = float(c / uint32_t(R)) / float(R);
+                    const float span = 1.0f / float(R) - 1e-6f;
+                    Vec3 axis(0.0f);
+                    for (int j = 0; j < M; ++j)
+                        for (int i = 0; i < M; ++i) {
+                            const Vec2 ud(std::min(x0 + span * float(i) / (M - 1), below_one),
+                                          std::min(y0 + span * float(j) / (M - 1), below_one));
+                            d[j * M + i] = normalize(L.sample_Le(up_ref, ud).ray.dir);
+                            axis += d[j * M + i];
+                        }
+                    if (!(length_squared(axis) > 0)) {
+                        lc.cells.push_back(c);  // degenerate cell: keep it (conservative)
+                        continue;
+                    }
+                    axis = normalize(axis);
+                    // Half-angle of the cell's cone: farthest probe from the axis plus the largest
+                    // gap between neighbouring probes (every direction of the cell lies within
+                    // that gap of some probe).
+                    float half = 0, gap = 0;
+                    for (int j = 0; j < M; ++j)
+                        for (int i = 0; i < M; ++i) {
+                            const Vec3 v = d[j * M + i];
+                            half = std::max(half, angle_between(axis, v));
+                            if (i + 1 < M) gap = std::max(gap, angle_between(v, d[j * M + i + 1]));
+                            if (j + 1 < M) gap = std::max(gap, angle_between(v, d[(j + 1) * M + i]));
+                        }
+                    half += gap;
+                    bool hit = false;
+                    for (const BoundingSphere& b : casters) {
+                        const Vec3 to = b.center - light.center;
+                        const float dist = length(to), r = b.radius + light.radius;
+                        if (dist <= r || angle_between(axis, to / dist) <= half + std::asin(r / dist)) {
+                            hit = true;
+                            break;
+                        }
+                    }
+                    if (hit) lc.cells.push_back(c);
+                }
+                lc.fraction = float(lc.cells.size()) / float(n_cells);
+            } else {
+                lc.full = true;
+                lc.fraction = 1;
+                lc.cells.resize(n_cells);
+                for (uint32_t c = 0; c < n_cells; ++c) lc.cells[c] = c;
+            }
+        }
+        total_power += power;
+        marked_power += power * lc.fraction;
+        weights.push_back(float(power * lc.fraction));
+        lights_.push_back(std::move(lc));
+    }
+    fraction_ = total_power > 0 ? marked_power / total_power : 0;
+    if (fraction_ > 0) choose_ = shading::Distribution1D(weights);
+}
+
+bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power) const {
+    if (empty()) return false;
+    float pmf = 0;
+    const size_t li = choose_.sample_discrete(sampler.next(), &pmf);
+    const LightCells& lc = lights_[li];
+    if (!(pmf > 0) || lc.cells.empty()) return false;
+    const uint32_t c = lc.cells[sampler.next_index(uint32_t(lc.cells.size()))];
+    const Vec2 j = sampler.next2();
+    const Vec2 u_pos = sampler.next2();
+    const float below_one = std::nextafter(1.0f, 0.0f);
+    const Vec2 u_dir(std::min((float(c % uint32_t(res_)) + j.x) / float(res_), below_one),
+                     std::min((float(c / uint32_t(res_)) + j.y) / float(res_), below_one));
+    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
+    if (s.weight.is_black() || !s.weight.is_finite()) return false;
+    ray = s.ray;
+    // As in detail::emit_photon: skip the emitting surface itself.
+    const Vec3 o = ray.origin;
+    ray.tmin = 1e-5f * (1 + std::max(std::fabs(o.x), std::max(std::fabs(o.y), std::fabs(o.z)))) /
+               std::max(length(ray.dir), 1e-20f);
+    power = s.weight * (lc.fraction / pmf);
+    return true;
+}
+
+namespace detail {
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
+                    Rgb& power) {
+    return map.emit(ps, sampler, ray, power);
+}
+}  // namespace detail
+
+}  // namespace phos::photon
