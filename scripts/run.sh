@@ -4,7 +4,7 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 out="${1:-$here/out/default.png}"
-"$here/scripts/setup.sh" "$here/build"
+"$here/scripts/setup.sh" "$here/build" phos
 mkdir -p "$(dirname "$out")"
 "$here/build/phos" render "$here/scenes/default.scn" -o "$out"
 echo "phos: wrote $out"

@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
 # Installs the Debian packages phos needs (only the missing ones) and builds it in Release mode.
-# Usage: scripts/setup.sh [build-dir]   (default: build)
+# Usage: scripts/setup.sh [build-dir [cmake targets...]]   (default: build, all targets)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="${1:-$here/build}"
+shift || true
+targets=()
+for t in "$@"; do targets+=(--target "$t"); done
 
 packages=(build-essential cmake pkg-config libembree-dev libtbb-dev libopenexr-dev libpng-dev libstb-dev
           libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev libtinyobjloader-dev)
@@ -20,4 +23,4 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
-cmake --build "$build" -j"$(nproc)"
+cmake --build "$build" -j"$(nproc)" "${targets[@]}"
