@@ -23,17 +23,18 @@ struct PhotonMapOptions {
     PhotonMapSettings global{200000, 100, 0, 0.1f, photon::FilterKind::Box, 1.1f};
     PhotonMapSettings caustic{100000, 60, 0, 0.05f, photon::FilterKind::Cone, 1.1f};
     PhotonMapSettings indirect{200000, 100, 0, 0.1f, photon::FilterKind::Box, 1.1f};
-    uint64_t photons = 0;          // --photons: photons to emit (0 = until the map budgets are met)
-    uint64_t max_emitted = 0;      // stop emitting here even if a budget is unmet (0 = automatic)
-    int max_photon_depth = 16;     // scattering events per photon path
-    int gather_rays = 8;           // final-gather rays per camera sample
-    bool fast_global = false;      // indirect map estimate at the first hit instead of final gather
-    bool photon_viz = false;       // debug view: global map's radiance estimate at the first hit
-    bool irradiance_cache = true;  // precomputed irradiance for final-gather lookups (Lambertian hits)
-    bool projection_maps = true;   // caustic photons emitted only towards specular objects
-    uint32_t cache_stride = 4;     // one cache point per this many global photons
-    float normal_cos = 0.9f;       // surface test: min cosine between photon and query normals
-    float flatness = 0.2f;         // surface test: max |h| / d off the tangent plane
+    uint64_t photons = 0;             // --photons: photons to emit (0 = until the map budgets are met)
+    uint64_t max_emitted = 0;         // stop emitting here even if a budget is unmet (0 = automatic)
+    int max_photon_depth = 16;        // scattering events per photon path
+    int gather_rays = 8;              // final-gather rays per camera sample
+    bool fast_global = false;         // indirect map estimate at the first hit instead of final gather
+    bool photon_viz = false;          // debug view: global map's radiance estimate at the first hit
+    bool irradiance_cache = true;     // precomputed irradiance for final-gather lookups (Lambertian hits)
+    float caustic_min_pixels = 1.0f;  // caustic estimate radius >= this many pixel footprints
+    bool projection_maps = true;      // caustic photons emitted only towards specular objects
+    uint32_t cache_stride = 4;        // one cache point per this many global photons
+    float normal_cos = 0.9f;          // surface test: min cosine between photon and query normals
+    float flatness = 0.2f;            // surface test: max |h| / d off the tangent plane
     // Components (the --no-* switches clear them).
     bool direct = true, caustics = true, indirect_light = true, specular = true, transmissive = true;
 

@@ -37,6 +37,9 @@ private:
     const PhotonMapOptions& o_;
     const PhotonMaps& maps_;
     photon::EstimateOptions est_[photon::kMapCount];
+    // The caustic estimate's minimum radius at distance d along a camera path: offset + slope d
+    // (pixel footprints measured at the image centre, times the option's pixel count).
+    float footprint_offset_ = 0, footprint_slope_ = 0;
 };
 
 // The lobe kinds (sample_lobes masks) of a BSDF split into delta lobes (mirror, smooth glass),

@@ -1,6 +1,7 @@
 // Photon density estimates (see estimate.h).
 #include "photon/estimate.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace phos::photon {
@@ -26,6 +27,19 @@ uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const Surface
     // With fewer than k photons the search covered the whole max-radius disk; using the farthest
     // photon's distance instead would overestimate sparse regions (one photon very close -> huge).
     const float r2 = r.count < o.k ? max_r2 : r.max_dist2;
+    const float min_r2 = std::min(q.min_radius * q.min_radius, max_r2);
+    if (r.count == o.k && r2 < min_r2) {
+        // Dense region: every accepted photon within the minimum radius instead of the k nearest.
+        const float norm = 1.0f / (o.filter.mean_weight() * kPi * min_r2);
+        uint32_t n = 0;
+        map.for_each_in_radius(q.p, min_r2, [&](uint32_t i, float d2) {
+            const Photon& ph = map.photon(i);
+            if (!accept_photon(ph, q, o)) return;
+            g(ph, o.filter.weight(d2, min_r2) * norm);
+            ++n;
+        });
+        return n;
+    }
     if (!(r2 > 0)) return 0;
     const float norm = 1.0f / (o.filter.mean_weight() * kPi * r2);
     const bool box = o.filter.kind == FilterKind::Box;

@@ -30,6 +30,11 @@ struct SurfaceQuery {
     Vec3 p;                    // the surface point
     Vec3 n;                    // geometric normal, oriented towards the side light is reflected to (wo)
     bool accept_back = false;  // also accept photons that arrived on the other side (diffuse transmission)
+    // The estimate's radius never shrinks below this (capped at max_radius): where photons are
+    // very dense (a caustic's focus) k photons fit in a disk far smaller than a pixel, and the
+    // estimate becomes a narrow spike that a few pixel samples hit or miss. Gathering every photon
+    // within about a pixel footprint instead averages the spike over the pixel, as the film does.
+    float min_radius = 0;
 };
 
 // Builds the query for a hit seen from direction wo (unit, pointing away from the surface).

@@ -73,6 +73,35 @@ TEST(PhotonEstimate, UniformDensityIsUnbiasedForEveryFilter) {
     }
 }
 
+TEST(PhotonEstimate, MinimumRadiusAveragesADenseSpotOverItsDisk) {
+    // 1000 photons of power 1e-3 in a 1 mm spot at the origin on a sparse uniform background: the
+    // k = 50 estimate at the spot sees only the spot (huge, ~1/mm^2); with a minimum radius of
+    // 0.05 it is the spot's power plus the background's over that disk.
+    auto photons = uniform_plane(20000, 1.0f, 0.0f, Vec3(0, 0, 1), 1e-5f, 5);
+    const auto spot = uniform_plane(1000, 0.0005f, 0.0f, Vec3(0, 0, 1), 1e-3f, 6);
+    photons.insert(photons.end(), spot.begin(), spot.end());
+    const PhotonKdTree tree(photons);
+    EstimateOptions o;
+    o.k = 50;
+    o.max_radius = 0.5f;
+    SurfaceQuery q;
+    q.p = Vec3(0.0f);
+    q.n = Vec3(0, 0, 1);
+    const double plain = irradiance_estimate(tree, o, q).average();
+    q.min_radius = 0.05f;
+    uint32_t n = 0;
+    const double wide = irradiance_estimate(tree, o, q, &n).average();
+    const double expected = (1000 * 1e-3 + 20000 * 1e-5 / 4.0 * kPi * 0.05 * 0.05) / (kPi * 0.05 * 0.05);
+    EXPECT_GT(plain, 10 * expected);
+    EXPECT_NEAR(wide / expected, 1.0, 0.02);
+    EXPECT_GT(n, 1000u);
+    // Where k photons need more than the minimum radius, it changes nothing.
+    q.p = Vec3(0.6f, 0.6f, 0.0f);
+    const double far_wide = irradiance_estimate(tree, o, q).average();
+    q.min_radius = 0;
+    EXPECT_EQ(far_wide, irradiance_estimate(tree, o, q).average());
+}
+
 TEST(PhotonEstimate, SurfaceTestRejectsThinWallsAndCorners) {
     // The query's floor (z = 0, normal +z) has a sparse density; 1 mm below lies the underside of
     // a thin wall lit from below (normal -z), and a perpendicular wall (x = 0.01, normal -x)

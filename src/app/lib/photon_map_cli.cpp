@@ -84,6 +84,11 @@ void add_photon_map_options(CLI::App& render, integrators::PhotonMapOptions& o) 
                     "photonmap: show the global map's radiance estimate at the first hit (debug view)");
     render.add_flag("--irradiance-cache,!--no-irradiance-cache", o.irradiance_cache,
                     "photonmap: precomputed irradiance at global photons for the final gather (default on)");
+    render
+        .add_option("--caustic-min-radius-pixels", o.caustic_min_pixels,
+                    "photonmap: the caustic estimate's radius never shrinks below this many pixel "
+                    "footprints (default 1, 0 = plain k nearest)")
+        ->check(CLI::Range(0.0f, 1e6f));
     render.add_flag("--projection-maps,!--no-projection-maps", o.projection_maps,
                     "photonmap: emit caustic photons only towards mirrors and glass, weighted by the "
                     "share of emission aimed there (default on)");
