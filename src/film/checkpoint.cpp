@@ -1,7 +1,8 @@
 // Binary checkpoint format (see checkpoint.h). Layout, little-endian as the machine stores it:
 //   "PHOSCKPT" | u32 version | u32 integrator-name length | name bytes | u32 width, height,
 //   slots_per_pixel | u64 seed, scene_hash, options_hash, iterations, photons_emitted,
-//   target_iterations, slot count | slot count x SlotStats (8 doubles) | u64 checksum of all
+//   target_iterations | u32 argument count, then per argument u32 length + bytes | u64 slot count |
+//   slot count x SlotStats (8 doubles) | u64 checksum of all
 //   preceding bytes.
 #include "film/checkpoint.h"
 
@@ -76,9 +77,15 @@ std::string encode_checkpoint(const ProgressiveState& s) {
     put(out, s.width);
     put(out, s.height);
     put(out, s.slots_per_pixel);
-    for (uint64_t v : {s.seed, s.scene_hash, s.options_hash, s.iterations, s.photons_emitted,
-                       s.target_iterations, uint64_t(s.slots.size())})
+    for (uint64_t v :
+         {s.seed, s.scene_hash, s.options_hash, s.iterations, s.photons_emitted, s.target_iterations})
         put(out, v);
+    put(out, uint32_t(s.command_line.size()));
+    for (const std::string& a : s.command_line) {
+        put(out, uint32_t(a.size()));
+        out.append(a);
+    }
+    put(out, uint64_t(s.slots.size()));
     out.append(reinterpret_cast<const char*>(s.slots.data()), s.slots.size() * sizeof(SlotStats));
     put(out, hash_bytes(out.data(), out.size()));
     return out;
@@ -115,6 +122,15 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
     s.iterations = r.get<uint64_t>();
     s.photons_emitted = r.get<uint64_t>();
     s.target_iterations = r.get<uint64_t>();
+    const auto argc = r.get<uint32_t>();
+    if (argc > 4096) r.fail("bad argument count");
+    for (uint32_t i = 0; i < argc; ++i) {
+        const auto len = r.get<uint32_t>();
+        if (len > r.remaining()) r.fail("file is truncated");
+        std::string a(len, '\0');
+        r.get_bytes(a.data(), len);
+        s.command_line.push_back(std::move(a));
+    }
     const auto count = r.get<uint64_t>();
     if (count != uint64_t(s.width) * s.height * s.slots_per_pixel)
         r.fail("slot count does not match the image size");

@@ -19,7 +19,7 @@ struct SlotStats {
 };
 
 struct ProgressiveState {
-    static constexpr uint32_t kVersion = 1;
+    static constexpr uint32_t kVersion = 2;
 
     // What the render was made from: refused on resume when any differs.
     std::string integrator;  // "ppm" or "sppm"
@@ -33,6 +33,10 @@ struct ProgressiveState {
     uint64_t iterations = 0;         // completed iterations
     uint64_t photons_emitted = 0;    // total photons emitted over those iterations
     uint64_t target_iterations = 0;  // what the interrupted run was asked for (for a bare --resume)
+
+    // The `phos render` arguments that started the render (scene path made absolute, without
+    // --resume), so a bare `phos render --resume FILE` can continue it.
+    std::vector<std::string> command_line;
 
     std::vector<SlotStats> slots;  // width * height * slots_per_pixel, row-major
 };

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <vector>
@@ -14,6 +15,7 @@
 #include "app/lib/progressive_cli.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
+#include "film/checkpoint.h"
 #include "integrators/factory.h"
 
 namespace phos::app {
@@ -29,6 +31,54 @@ std::vector<std::string> normalise_args(int argc, char** argv, const std::set<st
     return args;
 }
 
+// `saved` arguments overridden by `user` ones: every option the user gives replaces the saved
+// occurrences of the same option (with their values).
+std::vector<std::string> merge_arguments(CLI::App& render, const std::vector<std::string>& saved,
+                                         const std::vector<std::string>& user) {
+    auto option_of = [&](const std::string& token) -> const CLI::Option* {
+        if (token.size() < 2 || token[0] != '-' || (token[1] >= '0' && token[1] <= '9') || token[1] == '.')
+            return nullptr;
+        return render.get_option_no_throw(token.substr(0, token.find('=')));
+    };
+    std::set<const CLI::Option*> overridden;
+    for (const std::string& t : user)
+        if (const CLI::Option* o = option_of(t)) overridden.insert(o);
+    std::vector<std::string> out;
+    for (size_t i = 0; i < saved.size(); ++i) {
+        const CLI::Option* o = option_of(saved[i]);
+        if (o && overridden.count(o)) {
+            if (saved[i].find('=') == std::string::npos)
+                i += size_t(std::max(0, o->get_items_expected_max()));
+            continue;
+        }
+        out.push_back(saved[i]);
+    }
+    out.insert(out.end(), user.begin(), user.end());
+    return out;
+}
+
+// What a checkpoint records of this render's arguments: without --resume, the scene made absolute.
+std::vector<std::string> checkpoint_arguments(const std::vector<std::string>& render_args,
+                                              const std::string& scene) {
+    std::vector<std::string> out;
+    bool scene_done = false;
+    for (size_t i = 0; i < render_args.size(); ++i) {
+        const std::string& a = render_args[i];
+        if (a == "--resume") {
+            ++i;
+            continue;
+        }
+        if (a.rfind("--resume=", 0) == 0) continue;
+        if (!scene_done && a == scene) {
+            out.push_back(std::filesystem::absolute(a).string());
+            scene_done = true;
+            continue;
+        }
+        out.push_back(a);
+    }
+    return out;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
@@ -38,7 +88,9 @@ int run_cli(int argc, char** argv) {
 
     RenderCommand rc;
     CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt) to an image");
-    render->add_option("scene", rc.scene_path, "scene file (.scn or .pbrt)")->required();
+    render->add_option("scene", rc.scene_path,
+                       "scene file (.scn or .pbrt); may be omitted with --resume, which replays the "
+                       "checkpointed render's arguments");
     render->add_option("-o,--output", rc.output,
                        "output image: .exr (linear float), .pfm (linear), .png / .bmp (sRGB 8-bit); "
                        "default: the scene file's Film filename");
@@ -100,25 +152,46 @@ int run_cli(int argc, char** argv) {
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
         for (const auto& n : o->get_lnames()) long_names.insert(n);
-    std::vector<std::string> args = normalise_args(argc, argv, long_names);
-    std::reverse(args.begin(), args.end());  // CLI11 takes the arguments reversed
-
-    try {
-        app.parse(args);
-    } catch (const CLI::CallForHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForAllHelp& e) {
-        return app.exit(e);
-    } catch (const CLI::CallForVersion& e) {
-        return app.exit(e);
-    } catch (const CLI::ParseError& e) {
-        std::fprintf(stderr, "phos: %s\n", e.what());
-        std::fprintf(stderr, "Run 'phos --help' or 'phos render --help' for the options.\n");
-        return 2;
-    }
+    const std::vector<std::string> args = normalise_args(argc, argv, long_names);
+    // Returns -1 when parsing succeeded, else the exit code.
+    auto parse = [&](std::vector<std::string> a) {
+        std::reverse(a.begin(), a.end());  // CLI11 takes the arguments reversed
+        try {
+            app.parse(a);
+            return -1;
+        } catch (const CLI::CallForHelp& e) {
+            return app.exit(e);
+        } catch (const CLI::CallForAllHelp& e) {
+            return app.exit(e);
+        } catch (const CLI::CallForVersion& e) {
+            return app.exit(e);
+        } catch (const CLI::ParseError& e) {
+            std::fprintf(stderr, "phos: %s\n", e.what());
+            std::fprintf(stderr, "Run 'phos --help' or 'phos render --help' for the options.\n");
+            return 2;
+        }
+    };
+    if (const int code = parse(args); code >= 0) return code;
 
     try {
         if (render->parsed()) {
+            const auto render_at = std::find(args.begin(), args.end(), "render");
+            std::vector<std::string> render_args(render_at + 1, args.end());
+            if (rc.scene_path.empty()) {
+                // A bare `phos render --resume FILE [overrides]`: replay the checkpointed arguments.
+                const std::string& resume = rc.config.progressive.resume_path;
+                if (resume.empty())
+                    throw InputError(
+                        "render: give a scene file (or --resume CHECKPOINT to continue a render)");
+                const film::ProgressiveState saved = film::load_checkpoint(resume);
+                if (saved.command_line.empty())
+                    throw InputError("checkpoint " + resume + ": it does not record its render's arguments");
+                render_args = merge_arguments(*render, saved.command_line, render_args);
+                std::vector<std::string> replay{"render"};
+                replay.insert(replay.end(), render_args.begin(), render_args.end());
+                if (const int code = parse(replay); code >= 0) return code;
+            }
+            rc.command_line = checkpoint_arguments(render_args, rc.scene_path);
             if (!resolution.empty()) rc.width = resolution[0], rc.height = resolution[1];
             if (!dof.empty()) {
                 if (!(dof[0] >= 1 && dof[0] <= 4096 && dof[0] == float(int(dof[0]))))

@@ -70,6 +70,7 @@ void setup_progressive(const RenderCommand& cmd, const std::string& integrator, 
       << p.radius << ' ' << p.radius_pixels << ' ' << p.direct_samples << ' ' << p.eye_samples;
     const std::string ostr = o.str();
     id.options_hash = film::hash_bytes(ostr.data(), ostr.size());
+    id.command_line = cmd.command_line;
 
     if (!p.resume_path.empty()) {
         auto saved = std::make_shared<film::ProgressiveState>(film::load_checkpoint(p.resume_path));

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "integrators/factory.h"
 #include "integrators/options.h"
@@ -32,6 +33,8 @@ struct RenderCommand {
     // also write every film layer (direct, indirect, caustic, specular...) next to the output
     bool layers = false;
     integrators::IntegratorConfig config;
+    // The arguments of this render (for checkpoints: a bare --resume replays them).
+    std::vector<std::string> command_line;
     // progress bar: -1 auto (when stderr is a terminal), 0 off, 1 on
     int progress = -1;
 };
