@@ -1,7 +1,8 @@
 #!/bin/sh
 # Benchmark of the two-pass photon mapper (--integrator photonmap) on the three bench scenes at
-# 256x256 with the recommended defaults (plus any extra options given): wall time, photon tracing
-# rate and map build time (from -v), relMSE, mean ratio and caustic window against the reference.
+# 256x256 with the recommended defaults (plus any extra options given, applied to every scene):
+# wall time of the whole `phos render` command, relMSE, mean ratio and caustic window against the
+# reference, photon tracing rate, map build time and render-pass time (from -v).
 # Usage: bench/photonmap_bench.sh [BUILD_DIR] [extra phos options...]
 # Needs BUILD_DIR/phos and a metrics tool (BUILD_DIR/sppm_metrics, built with PHOS_BUILD_BENCH=ON).
 set -eu
@@ -13,7 +14,8 @@ metrics=${METRICS:-$build/sppm_metrics}
 shared=$here/../../shared/bench
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-printf '%-22s %7s %12s %8s %9s %7s %8s\n' scene wall trace-rate build-s relMSE ratio window
+echo "load: $(cat /proc/loadavg)"
+printf '%-21s %7s %9s %7s %8s %14s %8s %8s\n' scene wall-s relMSE ratio window trace-rate build-s render-s
 for spec in "cornell-diffuse - - - -" "cornell-glass-mirror 168 200 226 242" "caustic-point 104 128 132 156"; do
     set -- $spec "$@"
     scene=$1
@@ -25,6 +27,13 @@ for spec in "cornell-diffuse - - - -" "cornell-glass-mirror 168 200 226 242" "ca
     end=$(date +%s.%N)
     rate=$(sed -n 's/.*photon tracing rate: \([^ ]*\).*/\1/p' "$out/$scene.log")
     build_s=$(sed -n 's/.*time photon map build: *\([^ ]*\) s/\1/p' "$out/$scene.log")
-    printf '%-22s %7.2f %12s %8s %s\n' "$scene" "$(echo "$end - $start" | bc)" "$rate" "$build_s" \
-        "$("$metrics" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win)"
+    render_s=$(sed -n 's/.*time photon map render pass: *\([^ ]*\) s/\1/p' "$out/$scene.log")
+    # sppm_metrics prints relMSE, mean ratio and (with a window) the window mean.
+    m=$(echo $("$metrics" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win))
+    e=$(echo "$m" | cut -d' ' -f1)
+    ratio=$(echo "$m" | cut -d' ' -f2)
+    w=-
+    [ -n "$win" ] && w=$(echo "$m" | cut -d' ' -f3)
+    printf '%-21s %7.2f %9s %7s %8s %14s %8s %8s\n' "$scene" "$(echo "$end - $start" | bc)" "$e" "$ratio" "$w" \
+        "$rate" "$build_s" "$render_s"
 done
