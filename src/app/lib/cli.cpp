@@ -126,6 +126,9 @@ int run_cli(int argc, char** argv) {
                      "depth of field: SAMPLES DISTANCE RADIUS (lens samples per pixel sample, focal "
                      "distance, aperture radius)")
         ->expected(3);
+    render->add_flag(
+        "--emission-lights", rc.emission_lights,
+        ".scn: surfaces with emission e become area lights (they light the scene and emit photons)");
     render->add_flag("--legacy-attenuation", rc.legacy_attenuation,
                      ".scn: honour (ca, la, qa) light attenuation in direct light");
     render->add_flag("--real", rc.real, ".scn: scale material lobes so kd + ks + kt <= 1 (the seed's -real)");

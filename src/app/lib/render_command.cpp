@@ -20,6 +20,7 @@
 #include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "scene/emission_lights.h"
 
 namespace phos::app {
 namespace {
@@ -66,8 +67,9 @@ void setup_progressive(const RenderCommand& cmd, const std::string& integrator, 
     std::ostringstream o;
     o << opt.max_depth << ' ' << opt.dof_samples << ' ' << opt.ambient << ' ' << opt.background_light << ' '
       << cmd.dof_distance << ' ' << cmd.dof_radius << ' ' << cmd.schlick << ' ' << cmd.real << ' '
-      << cmd.legacy_attenuation << ' ' << p.alpha << ' ' << integrators::photons_per_iteration(p) << ' '
-      << p.radius << ' ' << p.radius_pixels << ' ' << p.direct_samples << ' ' << p.eye_samples;
+      << cmd.legacy_attenuation << ' ' << cmd.emission_lights << ' ' << p.alpha << ' '
+      << integrators::photons_per_iteration(p) << ' ' << p.radius << ' ' << p.radius_pixels << ' '
+      << p.direct_samples << ' ' << p.eye_samples;
     const std::string ostr = o.str();
     id.options_hash = film::hash_bytes(ostr.data(), ostr.size());
     id.command_line = cmd.command_line;
@@ -107,6 +109,10 @@ void run_render(const RenderCommand& cmd) {
     {
         ScopedTimer t(stats, "load");
         scene = io::load_scene(cmd.scene_path, {cmd.real, cmd.legacy_attenuation, cmd.strict});
+        if (cmd.emission_lights) {
+            const int n = scene::emissive_shapes_to_lights(scene);
+            if (n == 0) log::warn("--emission-lights: the scene has no emissive surfaces");
+        }
     }
 
     // Resolve settings: command line, then the scene file, then defaults.

@@ -23,6 +23,7 @@ struct RenderCommand {
     float exposure = 0;
     bool schlick = false;
     bool legacy_attenuation = false;
+    bool emission_lights = false;  // glowing .scn surfaces become area lights
     bool real = false;
     bool ambient = false;
     bool background_light = false;
