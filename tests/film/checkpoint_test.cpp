@@ -3,6 +3,7 @@
 #include "film/checkpoint.h"
 
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
 #include <cstring>
@@ -26,6 +27,7 @@ ProgressiveState sample_state() {
     s.iterations = 17;
     s.photons_emitted = 17 * 1000;
     s.target_iterations = 64;
+    s.command_line = {"/abs/scene.scn", "--integrator", "sppm", "-o", "out file.exr", ""};
     s.slots.resize(30);
     for (size_t i = 0; i < s.slots.size(); ++i) {
         s.slots[i].n = 0.1 * double(i) + 1e-17;
@@ -49,11 +51,14 @@ std::string error_of(const std::string& bytes) {
 
 TEST(Checkpoint, RoundTripIsExact) {
     const ProgressiveState s = sample_state();
-    const std::string path = (std::filesystem::temp_directory_path() / "phos-checkpoint-test.ckpt").string();
+    const std::string path = (std::filesystem::temp_directory_path() /
+                              ("phos-checkpoint-test-" + std::to_string(getpid()) + ".ckpt"))
+                                 .string();
     save_checkpoint(path, s);
     const ProgressiveState t = load_checkpoint(path);
     std::filesystem::remove(path);
     EXPECT_EQ(t.integrator, s.integrator);
+    EXPECT_EQ(t.command_line, s.command_line);
     EXPECT_EQ(t.width, s.width);
     EXPECT_EQ(t.height, s.height);
     EXPECT_EQ(t.slots_per_pixel, s.slots_per_pixel);

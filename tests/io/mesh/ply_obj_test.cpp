@@ -1,5 +1,6 @@
 // Round-trip and malformed-input tests of the PLY and OBJ mesh readers and writers.
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -15,7 +16,8 @@ namespace {
 namespace fs = std::filesystem;
 
 fs::path temp_dir() {
-    const fs::path d = fs::temp_directory_path() / "phos_ply_obj_test";
+    // One directory per test process: ctest runs the parameterised cases in parallel.
+    const fs::path d = fs::temp_directory_path() / ("phos_ply_obj_test_" + std::to_string(getpid()));
     fs::create_directories(d);
     return d;
 }
