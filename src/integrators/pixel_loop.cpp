@@ -7,12 +7,12 @@
 
 namespace phos::integrators {
 
-void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
-                   const RadianceFn& radiance) {
+void render_samples(const Prepared& prepared, const std::string& label, Progress& progress,
+                    const SampleFn& sample) {
     const RenderOptions& opt = prepared.options;
     const auto tiles = film::make_tiles(opt.width, opt.height);
     const int n = std::max(1, opt.spp) * std::max(1, opt.dof_samples);
-    progress.start("render", tiles.size());
+    progress.start(label, tiles.size());
     tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
         const film::Tile& tile = tiles[t];
         RayCounts rays;
@@ -26,13 +26,21 @@ void render_pixels(const Prepared& prepared, film::Film& film, Progress& progres
                     const accel::Ray ray =
                         prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                     ++rays.camera;
-                    film.add_sample(x, y, radiance(ray, sampler, rays));
+                    sample(x, y, ray, sampler, rays);
                 }
             }
         prepared.stats.add_rays(rays);
         progress.advance();
     });
     progress.finish();
+}
+
+void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
+                   const RadianceFn& radiance) {
+    render_samples(prepared, "render", progress,
+                   [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+                       film.add_sample(x, y, radiance(ray, sampler, rays));
+                   });
 }
 
 }  // namespace phos::integrators
