@@ -23,6 +23,13 @@ using RadianceFn = std::function<Rgb(const accel::Ray& ray, Sampler& sampler, Ra
 void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
                    const RadianceFn& radiance);
 
+// One camera sample of pixel (x, y): the function traces `ray` and records the result itself
+// (main image and any layers). Only the task owning the pixel calls it.
+using SampleFn = std::function<void(int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays)>;
+// The same loop for integrators that record more than one value per sample (layers).
+void render_samples(const Prepared& prepared, const std::string& label, Progress& progress,
+                    const SampleFn& sample);
+
 // Film position of sample `s` of `n` in the pixel: jittered on a sqrt(n) x sqrt(n) grid for the
 // first floor(sqrt(n))^2 samples, uniform for the rest.
 inline Vec2 stratified_sample(int s, int n, Vec2 u) {
