@@ -2,14 +2,11 @@
 // k-d trees, irradiance cache, -v statistics) and pass 2's deterministic tile loop.
 #include "integrators/photon_map.h"
 
-#include <tbb/parallel_for.h>
-
 #include <chrono>
 #include <cstdio>
 
 #include "core/error.h"
 #include "core/log.h"
-#include "film/tiles.h"
 #include "integrators/photon_map_radiance.h"
 #include "integrators/pixel_loop.h"
 #include "photon/projection_map.h"
@@ -153,35 +150,15 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
     // Layers are created before the parallel loop (creation is not thread-safe).
     film::Layer* layers[4] = {&film.layer("direct"), &film.layer("caustic"), &film.layer("indirect"),
                               &film.layer("specular")};
-    const RenderOptions& opt = P.options;
-    const auto tiles = film::make_tiles(opt.width, opt.height);
-    const int n = std::max(1, opt.spp) * std::max(1, opt.dof_samples);
-    progress.start("photonmap", tiles.size());
-    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-        const film::Tile& tile = tiles[t];
-        RayCounts rays;
-        for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) {
-                const uint64_t pixel = uint64_t(y) * uint64_t(opt.width) + uint64_t(x);
-                for (int s = 0; s < n; ++s) {
-                    Sampler sampler(opt.seed, pixel, uint64_t(s));
-                    const Vec2 jitter = stratified_sample(s, n, sampler.next2());
-                    const Vec2 lens = sampler.next2();
-                    const accel::Ray ray =
-                        P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
-                    ++rays.camera;
-                    const RadianceParts parts = R.camera_ray(ray, sampler, rays);
-                    film.add_sample(x, y, parts.total());
-                    layers[0]->add(x, y, parts.direct);
-                    layers[1]->add(x, y, parts.caustic);
-                    layers[2]->add(x, y, parts.indirect);
-                    layers[3]->add(x, y, parts.specular);
-                }
-            }
-        P.stats.add_rays(rays);
-        progress.advance();
-    });
-    progress.finish();
+    render_samples(P, "photonmap", progress,
+                   [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+                       const RadianceParts parts = R.camera_ray(ray, sampler, rays);
+                       film.add_sample(x, y, parts.total());
+                       layers[0]->add(x, y, parts.direct);
+                       layers[1]->add(x, y, parts.caustic);
+                       layers[2]->add(x, y, parts.indirect);
+                       layers[3]->add(x, y, parts.specular);
+                   });
 }
 
 void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
