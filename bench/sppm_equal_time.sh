@@ -1,32 +1,54 @@
 #!/bin/sh
 # Equal-time benchmark of phos's SPPM against pbrt-v4's (figures in ../shared/bench/README.md):
 # renders each bench scene at 256x256 with a wall-time budget (--time bounds the whole command,
-# load included; the render stops at the end of the iteration that crosses it) and prints the
-# measured wall time, iterations, relMSE, mean ratio and caustic window against the reference.
-# Usage: bench/sppm_equal_time.sh [BUILD_DIR] [extra phos options...]
+# load included; the render stops at the end of the iteration that crosses it) and prints one table
+# row per run: wall time, iterations, relMSE, mean ratio, caustic window, pbrt-v4's relMSE at that
+# time and the goal (a third of pbrt-v4's). Run it on an idle machine: iterations scale with the
+# CPU time the render actually gets (the load average at the start is printed).
+# Usage: bench/sppm_equal_time.sh [BUILD_DIR] [COLUMNS] [extra phos options...]
+#   COLUMNS: which of pbrt's time columns to run, a subset of "1 2 3 4" (default "3": 15/16/24 s;
+#   "1 2 3 4" runs the whole table, about 6.5 minutes).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
+columns=${1:-3}
+[ $# -gt 0 ] && shift
+extra="$*"  # extra phos options (word-split when used)
 phos=$build/phos
-diff_tool=$build/sppm_metrics
+metrics_tool=$build/sppm_metrics
 shared=$here/../../shared/bench
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
-printf '%-22s %6s %7s %6s %9s %7s %8s %s\n' scene budget wall iters relMSE ratio window pbrt-relMSE
-for spec in "cornell-diffuse 15.0 0.0013 - - - -" "cornell-glass-mirror 16.0 0.0026 168 200 226 242" \
-            "caustic-point 24.0 0.0072 104 128 132 156" \
-            "cornell-diffuse 4.5 0.0033 - - - -" "cornell-glass-mirror 6.5 0.0063 168 200 226 242" \
-            "caustic-point 6.0 0.024 104 128 132 156"; do
-    set -- $spec "$@"
-    scene=$1 budget=$2 pbrt=$3
-    start=$(date +%s.%N)
-    iters=$("$phos" render "$shared/scn/$scene.scn" --integrator sppm --width 256 --height 256 \
-        --time "$budget" -o "$out/$scene.pfm" -v 2>&1 | sed -n 's/.*sppm: \([0-9]*\) iterations.*/\1/p')
-    end=$(date +%s.%N)
-    wall=$(echo "$end - $start" | bc)
-    if [ "$4" = "-" ]; then win=""; else win="$4 $5 $6 $7"; fi
-    metrics=$("$diff_tool" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win)
-    printf '%-22s %6s %7.2f %6s %s %s\n' "$scene" "$budget" "$wall" "$iters" "$metrics" "$pbrt"
-    shift 7
+echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; options: --integrator sppm $extra"
+printf '| %-20s | %6s | %6s | %5s | %8s | %6s | %-14s | %8s | %8s |\n' scene budget wall iters relMSE ratio \
+    "window (ref)" pbrt goal
+printf '| %-20s | %6s | %6s | %5s | %8s | %6s | %-14s | %8s | %8s |\n' --- --- --- --- --- --- --- --- ---
+# scene, window (x0 x1 y0 y1, "-" = none), reference window mean, then per column: budget s, pbrt relMSE.
+for col in $columns; do
+    for spec in "cornell-diffuse - - - - - 1.5 0.0088 4.5 0.0033 15.0 0.0013 57.6 0.00062" \
+        "cornell-glass-mirror 168 200 226 242 0.680 2.3 0.020 6.5 0.0063 16.0 0.0026 70.5 0.0013" \
+        "caustic-point 104 128 132 156 4.58 0.8 0.32 1.8 0.087 6.0 0.024 24.0 0.0072"; do
+        set -- $spec
+        scene=$1 x0=$2 x1=$3 y0=$4 y1=$5 wref=$6
+        shift 6
+        i=1
+        while [ $i -lt "$col" ]; do shift 2; i=$((i + 1)); done
+        budget=$1 pbrt=$2
+        start=$(date +%s.%N)
+        iters=$("$phos" render "$shared/scn/$scene.scn" --integrator sppm --width 256 --height 256 \
+            --time "$budget" $extra -o "$out/$scene.pfm" -v 2>&1 | sed -n 's/.*sppm: \([0-9]*\) iterations.*/\1/p')
+        end=$(date +%s.%N)
+        wall=$(echo "$end - $start" | bc)
+        if [ "$x0" = "-" ]; then
+            set -- $("$metrics_tool" "$out/$scene.pfm" "$shared/ref/$scene.pfm")
+            win="-"
+        else
+            set -- $("$metrics_tool" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
+            win="$3 ($wref)"
+        fi
+        goal=$(echo "scale=6; $pbrt / 3" | bc | sed 's/^\./0./')
+        printf '| %-20s | %6s | %6.2f | %5s | %8s | %6s | %-14s | %8s | %8s |\n' "$scene" "$budget" "$wall" \
+            "$iters" "$1" "$2" "$win" "$pbrt" "$goal"
+    done
 done

@@ -31,6 +31,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
+    const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kPpmDirectSamples;
     const PixelFootprint footprint(P);
     const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
     std::vector<VisiblePoint> vps(slots);
@@ -44,7 +45,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 const Vec2 lens = sampler.next2();
                 const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                 ++rays.camera;
-                const Rgb L = trace_eye_path(P, ray, sampler, opt_.direct_samples, vps[i], rays);
+                const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
                 film::SlotStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
                 if (vps[i].bsdf && st.r2 == 0) {

@@ -29,6 +29,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
 
     const uint64_t photons = photons_per_iteration(opt_);
+    const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kSppmDirectSamples;
     const PixelFootprint footprint(P);
     const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
     std::vector<VisiblePoint> vps(pixels);
@@ -50,7 +51,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                     const accel::Ray ray =
                         P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                     ++rays.camera;
-                    const Rgb L = sppm::trace_eye_path(P, ray, sampler, 1, vps[i], rays);
+                    const Rgb L = sppm::trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
                     film::SlotStats& st = state.slots[i];
                     if (L.is_finite())
                         for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);

@@ -21,5 +21,11 @@ private:
 
 // Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
 constexpr float kDefaultRadiusPixels = 4.0f;
+// Light samples per visible point per iteration (--direct-samples). One leaves the direct light's
+// noise dominant on area-lit scenes; 4 cost ~10 % more time per iteration and cut cornell-diffuse's
+// relMSE at 60 iterations from 0.00095 to 0.00074 (8: 0.00071 for +25 %).
+constexpr int kSppmDirectSamples = 4;
+// PPM computes direct light once, so it takes many more samples.
+constexpr int kPpmDirectSamples = 16;
 
 }  // namespace phos::integrators

@@ -56,10 +56,23 @@ struct PixelFootprint {
     float at(float distance) const { return offset + slope * distance; }
 };
 
-// Per-hit-point photon statistics of one iteration, summed with integer atomics.
+// What the photon pass reads of a visible point, compact (48 bytes) so the per-photon loop touches
+// one cache line per matched point instead of a whole VisiblePoint with its Bsdf.
+struct GatherPoint {
+    Vec3 ng;               // geometric normal turned to wo's side (zero: no visible point)
+    int max_bounces = -1;  // photons that bounced more often would make the path exceed max_depth
+    Vec3 ns;               // shading normal turned like ng
+    uint32_t lambert = 0;  // 1: the BSDF is one Lambert lobe, f = kd_pi when wi is above ng and ns
+    Rgb kd_pi;             // kd / π of a Lambert-only point
+};
+
+// Per-hit-point photon statistics of one iteration, summed in 64-bit fixed point: per-thread
+// arrays reduced in update() (no atomics in the photon loop), or integer atomics when per-thread
+// copies would take too much memory. Integer sums are exact, so both are order-independent.
 class PhotonAccumulator {
 public:
     explicit PhotonAccumulator(size_t slots);
+    ~PhotonAccumulator();
     // Traces photons [0, count) of pass `pass` on all cores, adding f(wo, wi) × power to each hit
     // point within its radius (photons straight from a light excluded: direct light is computed by
     // shadow rays). Returns the number of photon rays traced.
@@ -73,7 +86,14 @@ private:
         std::atomic<int64_t> phi[3];
         std::atomic<uint64_t> m;
     };
+    struct LocalSlot {
+        int64_t phi[3] = {0, 0, 0};
+        uint64_t m = 0;
+    };
+    struct Locals;  // per-thread LocalSlot arrays (tbb::enumerable_thread_specific)
     std::unique_ptr<Slot[]> slots_;
+    std::unique_ptr<Locals> locals_;  // null: atomics
+    std::vector<GatherPoint> gather_;
     size_t count_;
     double scale_ = 1;  // fixed-point units per unit of flux contribution
 };

@@ -31,19 +31,19 @@ void HitPointGrid::build(const std::vector<Vec3>& positions, const std::vector<f
     mask_ = buckets - 1;
     start_.assign(size_t(buckets) + 1, 0);
 
+    std::vector<uint32_t> seen;  // a vector, not a fixed array: small cell factors give > 64 cells
     // The distinct buckets of the cells point i's sphere overlaps (cells hashing alike merge).
     auto for_each_bucket = [&](size_t i, auto&& f) {
         const float r = std::sqrt(r2[i]);
         const Vec3 a = (positions[i] - Vec3(r) - lo_) * inv_cell_;
         const Vec3 b = (positions[i] + Vec3(r) - lo_) * inv_cell_;
-        uint32_t seen[64];
-        int n = 0;
+        seen.clear();
         for (int z = int(a.z); z <= int(b.z); ++z)
             for (int y = int(a.y); y <= int(b.y); ++y)
                 for (int x = int(a.x); x <= int(b.x); ++x) {
                     const uint32_t h = bucket(x, y, z);
-                    if (std::find(seen, seen + n, h) != seen + n) continue;
-                    if (n < 64) seen[n++] = h;
+                    if (std::find(seen.begin(), seen.end(), h) != seen.end()) continue;
+                    seen.push_back(h);
                     f(h);
                 }
     };

@@ -20,7 +20,8 @@ void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& 
                     "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 4)")
         ->check(CLI::PositiveNumber);
     render
-        .add_option("--ppm-direct-samples", o.direct_samples, "ppm: light samples per hit point (default 16)")
+        .add_option("--direct-samples,--ppm-direct-samples", o.direct_samples,
+                    "ppm/sppm: light samples per visible point (default: sppm 4 per iteration, ppm 16)")
         ->check(CLI::Range(1, 65536));
     render.add_option("--ppm-eye-samples", o.eye_samples, "ppm: hit points per pixel (default 1)")
         ->check(CLI::Range(1, 4096));
