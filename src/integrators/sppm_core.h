@@ -56,7 +56,7 @@ struct PixelFootprint {
     float at(float distance) const { return offset + slope * distance; }
 };
 
-// What the photon pass reads of a visible point, compact (48 bytes) so the per-photon loop touches
+// What the photon pass reads of a visible point, compact (44 bytes) so the per-photon loop touches
 // one cache line per matched point instead of a whole VisiblePoint with its Bsdf.
 struct GatherPoint {
     Vec3 ng;               // geometric normal turned to wo's side (zero: no visible point)
