@@ -1,7 +1,26 @@
 // Command-line options of the progressive integrators (registered on `phos render`).
 #include "app/lib/progressive_cli.h"
 
+#include <cmath>
+#include <string>
+
 namespace phos::app {
+namespace {
+
+// A finite number > 0 (CLI11's PositiveNumber reports its range up to the largest double).
+const CLI::Validator kPositive(
+    [](std::string& text) -> std::string {
+        try {
+            size_t used = 0;
+            const double v = std::stod(text, &used);
+            if (used == text.size() && v > 0 && std::isfinite(v)) return {};
+        } catch (const std::exception&) {
+        }
+        return "'" + text + "' is not a positive number";
+    },
+    "POSITIVE");
+
+}  // namespace
 
 void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& o) {
     render
@@ -14,11 +33,11 @@ void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& 
     render
         .add_option("--radius", o.radius,
                     "ppm/sppm: initial gather radius in scene units (default: automatic)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     render
         .add_option("--radius-pixels", o.radius_pixels,
                     "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 4)")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     render
         .add_option("--direct-samples,--ppm-direct-samples", o.direct_samples,
                     "ppm/sppm: light samples per visible point (default: sppm 4 per iteration, ppm 16)")
@@ -29,9 +48,9 @@ void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& 
         ->check(CLI::Range(1, 1 << 30));
     render
         .add_option("--time", o.time, "ppm/sppm: stop after the iteration that crosses SECONDS of wall time")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     render.add_option("--write-every", o.write_every, "ppm/sppm: write the current image every SECONDS")
-        ->check(CLI::PositiveNumber);
+        ->check(kPositive);
     render.add_option("--checkpoint", o.checkpoint_path, "ppm/sppm: save the progressive state to FILE");
     render
         .add_option("--checkpoint-every", o.checkpoint_every,
