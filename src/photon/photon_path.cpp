@@ -16,11 +16,6 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& 
     const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
-    // sample_Le starts area-light rays exactly on the emitting surface: skip that surface (a
-    // relative epsilon, as for spawned rays) so the photon does not "hit" its own light at t = 0.
-    const Vec3 o = ray.origin;
-    ray.tmin = 1e-5f * (1 + std::max(std::fabs(o.x), std::max(std::fabs(o.y), std::fabs(o.z)))) /
-               std::max(length(ray.dir), 1e-20f);
     power = s.weight * (1.0f / pmf);
     return true;
 }

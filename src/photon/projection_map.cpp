@@ -219,10 +219,6 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ra
     const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
-    // As in detail::emit_photon: skip the emitting surface itself.
-    const Vec3 o = ray.origin;
-    ray.tmin = 1e-5f * (1 + std::max(std::fabs(o.x), std::max(std::fabs(o.y), std::fabs(o.z)))) /
-               std::max(length(ray.dir), 1e-20f);
     power = s.weight * (lc.fraction / pmf);
     return true;
 }

@@ -2,6 +2,7 @@
 // direction rules (one- or two-sided) and the cosine-weighted photon emission.
 #include "shading/area_light.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/frame.h"
@@ -54,7 +55,10 @@ LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
     }
     const Vec3 local = warp::cosine_hemisphere(u_dir);
     const Vec3 w = Frame(n).to_world(local);
-    s.ray = {ss.p, w};
+    // The ray starts on the emitting surface: skip that surface itself (a relative epsilon, as for
+    // spawned rays), or the photon would "hit" its own light at t = 0.
+    const float extent = std::max(std::fabs(ss.p.x), std::max(std::fabs(ss.p.y), std::fabs(ss.p.z)));
+    s.ray = {ss.p, w, 1e-5f * (1 + extent)};
     s.n = n;
     s.Le = radiance_;
     s.pdf_pos = ss.pdf;

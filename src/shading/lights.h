@@ -34,7 +34,7 @@ struct LightLiSample {
 };
 
 struct LightLeSample {
-    accel::Ray ray;  // leaves the light (unit direction)
+    accel::Ray ray;  // leaves the light (unit direction); tmin skips the emitting surface itself
     Vec3 n;          // surface normal at the origin (area lights), else the direction
     Rgb Le;          // emitted radiance (area) or intensity (point/spot) along the ray
     float pdf_pos = 1, pdf_dir = 1;
