@@ -1,6 +1,8 @@
 // Helpers shared by end-to-end tests: run the phos binary, temporary directories, file bytes.
 #pragma once
 
+#include <gtest/gtest.h>
+#include <stdlib.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -8,8 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <random>
+#include <stdexcept>
 #include <string>
+
+#include "core/error.h"
 
 namespace phos::testing {
 
@@ -32,28 +36,56 @@ inline CommandResult run_phos(const std::string& args) {
     return r;
 }
 
-// A fresh directory removed at the end of the test.
+// A fresh directory (mkdtemp) under the system temp dir, removed with its contents at the end
+// of the test. Shared by every test folder.
 class TempDir {
 public:
     TempDir() {
-        std::random_device rd;
-        path_ = std::filesystem::temp_directory_path() /
-                ("phos-test-" + std::to_string(rd()) + std::to_string(rd()));
-        std::filesystem::create_directories(path_);
+        std::string pattern = (std::filesystem::temp_directory_path() / "phos-test-XXXXXX").string();
+        if (!::mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed");
+        path_ = pattern;
     }
     ~TempDir() {
         std::error_code ec;
         std::filesystem::remove_all(path_, ec);
     }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+
+    bool ok() const { return !path_.empty(); }
+    const std::filesystem::path& path() const { return path_; }
     std::string file(const std::string& name) const { return (path_ / name).string(); }
+    // Writes `text` (bytes as given) to `name`, which may contain sub-directories; returns its path.
     std::string write(const std::string& name, const std::string& text) const {
-        std::ofstream(path_ / name, std::ios::binary) << text;
-        return file(name);
+        const std::filesystem::path p = path_ / name;
+        std::filesystem::create_directories(p.parent_path());
+        std::ofstream(p, std::ios::binary) << text;
+        return p.string();
     }
 
 private:
     std::filesystem::path path_;
 };
+
+// Runs `load` and checks it throws a ParseError at `file` (any file if empty), `line`, `col`, with
+// `message` in its text.
+template <class Load>
+void expect_parse_error_from(Load&& load, const std::string& file, int line, int col,
+                             const std::string& message) {
+    try {
+        load();
+        ADD_FAILURE() << "expected a ParseError (" << message << ")";
+    } catch (const ParseError& e) {
+        if (!file.empty()) {
+            EXPECT_EQ(e.file, file) << e.what();
+        }
+        EXPECT_EQ(e.line, line) << e.what();
+        EXPECT_EQ(e.column, col) << e.what();
+        EXPECT_NE(e.message.find(message), std::string::npos) << "message: " << e.message;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "expected a ParseError, got: " << e.what();
+    }
+}
 
 inline std::string read_bytes(const std::string& path) {
     std::ifstream f(path, std::ios::binary);

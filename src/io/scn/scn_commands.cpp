@@ -176,7 +176,8 @@ void Parser::cmd_tri(const Token& cmd) {
     for (uint32_t k = 0; k < 3; ++k) mesh.indices.push_back(base + k);
     if (merge) {
         // "file:first-last" names the run of `tri` lines merged into this mesh.
-        const std::string first = s.origin.substr(0, s.origin.find('-'));
+        // The file name may itself contain '-': look for it only after the last ':'.
+        const std::string first = s.origin.substr(0, s.origin.find('-', s.origin.rfind(':')));
         s.origin = first + "-" + std::to_string(cmd.line);
     }
 }
