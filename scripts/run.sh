@@ -7,4 +7,3 @@ out="${1:-$here/out/default.png}"
 "$here/scripts/setup.sh" "$here/build" phos
 mkdir -p "$(dirname "$out")"
 "$here/build/phos" render "$here/scenes/default.scn" --integrator photonmap -o "$out"
-echo "phos: wrote $out"
