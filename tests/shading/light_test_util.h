@@ -15,6 +15,7 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "support/shapes.h"
 
 namespace phos::shading::test {
 
@@ -54,23 +55,8 @@ inline scene::Shape rectangle_y(float x0, float x1, float z0, float z1, float y)
     return s;
 }
 
-inline scene::Shape disk(Vec3 c, Vec3 n, float r, float inner = 0) {
-    scene::Shape s;
-    s.kind = scene::Shape::Kind::Disk;
-    s.center = c;
-    s.normal = n;
-    s.radius = r;
-    s.inner_radius = inner;
-    return s;
-}
-
-inline scene::Shape sphere(Vec3 c, float r) {
-    scene::Shape s;
-    s.kind = scene::Shape::Kind::Sphere;
-    s.center = c;
-    s.radius = r;
-    return s;
-}
+using phos::testing::disk;
+using phos::testing::sphere;
 
 inline scene::Light area_light_record(Rgb L, bool two_sided = false) {
     scene::Light l;

@@ -6,6 +6,7 @@
 
 #include "core/log.h"
 #include "io/scn/scn_loader.h"
+#include "support/bench_checks.h"
 
 namespace phos::io {
 namespace {
@@ -22,31 +23,7 @@ size_t triangles(const scene::Scene& s) {
     return n;
 }
 
-float mesh_area(const scene::TriangleMesh& m) {
-    float a = 0;
-    for (size_t t = 0; t < m.triangle_count(); ++t) {
-        const Vec3 p0 = m.positions[m.indices[3 * t]], p1 = m.positions[m.indices[3 * t + 1]],
-                   p2 = m.positions[m.indices[3 * t + 2]];
-        a += 0.5f * length(cross(p1 - p0, p2 - p0));
-    }
-    return a;
-}
-
-void check_cornell_light(const scene::Scene& s) {
-    ASSERT_EQ(s.lights.size(), 1u);
-    const Light& l = s.lights[0];
-    EXPECT_EQ(l.kind, Light::Kind::Area);
-    EXPECT_EQ(l.color, Rgb(15));
-    const Shape& e = s.shapes[size_t(l.shape)];
-    EXPECT_EQ(e.area_light, 0);
-    EXPECT_NEAR(mesh_area(e.mesh), 0.05f, 1e-6f);
-    const auto& m = e.mesh;
-    const Vec3 n = cross(m.positions[m.indices[1]] - m.positions[m.indices[0]],
-                         m.positions[m.indices[2]] - m.positions[m.indices[0]]);
-    EXPECT_LT(n.y, 0);  // faces down into the box
-    for (Vec3 p : m.positions) EXPECT_FLOAT_EQ(p.y, 0.998f);
-    EXPECT_TRUE(s.materials[size_t(e.material)].diffuse.is_black());
-}
+using phos::testing::check_cornell_light;
 
 void check_cornell_camera(const scene::Scene& s) {
     ASSERT_TRUE(s.camera);
