@@ -21,6 +21,8 @@ struct ProgressiveOptions {
     uint64_t photons_per_iter = 0;  // 0 = default (kDefaultPhotonsPerIter)
     float radius = 0;               // initial radius in scene units; 0 = automatic (pixel footprint)
     float radius_pixels = 0;        // automatic radius in pixel footprints; 0 = default
+    double radius_photons = -1;     // sppm: photons a pixel's disc should hold, from a pilot photon
+                                    // pass (per-pixel radius from density); 0 = off, < 0 = default
     int direct_samples = 0;         // light samples per visible point per eye pass; 0 = default
                                     // (sppm 4 per iteration, ppm 16 once)
     int eye_samples = 1;            // ppm: hit points per pixel (jittered inside the pixel)

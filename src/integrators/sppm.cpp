@@ -32,6 +32,14 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kSppmDirectSamples;
     const PixelFootprint footprint(P);
     const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    // The pilot refines the automatic (footprint) radius only; an explicit --radius is kept.
+    PilotRadius pilot;
+    if (opt_.radius <= 0) {
+        pilot.k = opt_.radius_photons >= 0 ? opt_.radius_photons : kDefaultRadiusPhotons;
+        const double lo = kPilotRadiusMinPixels / radius_pixels, hi = kPilotRadiusMaxPixels / radius_pixels;
+        pilot.min_scale = std::min(1.0, lo * lo);
+        pilot.max_scale = std::max(1.0, hi * hi);
+    }
     std::vector<VisiblePoint> vps(pixels);
     PhotonAccumulator acc(pixels);
     photon::HitPointGrid grid;
@@ -63,10 +71,20 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                 }
             P.stats.add_rays(rays);
         });
+        const bool is_pilot = it == 0 && pilot.k > 0;
+        if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
+            for (size_t i = 0; i < pixels; ++i)
+                if (vps[i].bsdf) state.slots[i].r2 *= pilot.max_scale;
         build_grid(grid, vps, state.slots);
         RayCounts prays;
         prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
         P.stats.add_rays(prays);
+        if (is_pilot) {
+            // The pilot: its photons choose the radii, then are dropped (not in N_emitted either);
+            // its direct light is kept. A resumed run has it behind it (r2 is in the checkpoint).
+            acc.pilot(state.slots, vps, pilot);
+            return;
+        }
         state.photons_emitted += photons;
         acc.update(state.slots, vps, opt_.alpha);
     };

@@ -21,6 +21,10 @@ private:
 
 // Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
 constexpr float kDefaultRadiusPixels = 4.0f;
+// Photons a pixel's disc should hold after the pilot pass (--radius-photons, see PilotRadius in
+// sppm_core.h), and the bounds of that per-pixel radius in pixel footprints.
+constexpr double kDefaultRadiusPhotons = 64;
+constexpr double kPilotRadiusMinPixels = 1, kPilotRadiusMaxPixels = 8;
 // Light samples per visible point per iteration (--direct-samples). One leaves the direct light's
 // noise dominant on area-lit scenes; 4 cost ~10 % more time per iteration and cut cornell-diffuse's
 // relMSE at 60 iterations from 0.00095 to 0.00074 (8: 0.00071 for +25 %).

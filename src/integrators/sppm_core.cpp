@@ -192,8 +192,9 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     return total_rays.load();
 }
 
-void PhotonAccumulator::update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
-                               float alpha) {
+// Calls f(i, m, sum) with each point's photon count and fixed-point flux sums, clearing them.
+template <class F>
+void PhotonAccumulator::drain(F&& f) {
     std::vector<LocalSlot*> locals;
     if (locals_)
         for (auto& v : locals_->per_thread)
@@ -208,6 +209,20 @@ void PhotonAccumulator::update(std::vector<film::SlotStats>& stats, const std::v
             m += l[i].m;
             l[i] = LocalSlot{};
         }
+        f(i, m, sum);
+    });
+}
+
+void PhotonAccumulator::pilot(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
+                              const PilotRadius& a) {
+    drain([&](size_t i, uint64_t m, const int64_t*) {
+        if (vps[i].bsdf) stats[i].r2 = pilot_r2(a, stats[i].r2, m);
+    });
+}
+
+void PhotonAccumulator::update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
+                               float alpha) {
+    drain([&](size_t i, uint64_t m, const int64_t* sum) {
         if (m == 0 || !vps[i].bsdf) return;
         double phi[3];
         for (int k = 0; k < 3; ++k) phi[k] = double(sum[k]) / scale_;

@@ -21,14 +21,14 @@ std::vector<uint32_t> brute_force(const std::vector<Vec3>& pos, const std::vecto
     return out;
 }
 
-void check(float cell_factor, uint64_t seed) {
+void check(float cell_factor, uint64_t seed, float spread = 0.05f) {
     Sampler s(seed);
     std::vector<Vec3> pos;
     std::vector<float> r2;
     for (int i = 0; i < 3000; ++i) {
         // Half on a plane (as visible points on a wall), half in a volume; some points disabled.
         const Vec3 p = i % 2 ? Vec3(s.next(), 0.25f, s.next()) : Vec3(s.next(), s.next(), s.next());
-        const float r = 0.005f + 0.05f * s.next() * s.next();
+        const float r = 0.005f + spread * s.next() * s.next();
         pos.push_back(p);
         r2.push_back(i % 17 == 0 ? 0.0f : r * r);
     }
@@ -51,6 +51,8 @@ void check(float cell_factor, uint64_t seed) {
 
 TEST(HitPointGrid, QueryEqualsBruteForce) { check(2.0f, 1); }
 TEST(HitPointGrid, QueryEqualsBruteForceSmallCells) { check(0.6f, 2); }
+// Cells follow the mean radius, so discs far larger than the mean span many cells.
+TEST(HitPointGrid, QueryEqualsBruteForceWideRadiusSpread) { check(2.0f, 3, 0.3f); }
 
 TEST(HitPointGrid, EmptyAndDisabled) {
     HitPointGrid grid;

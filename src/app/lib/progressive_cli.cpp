@@ -39,6 +39,13 @@ void add_progressive_options(CLI::App& render, integrators::ProgressiveOptions& 
                     "ppm/sppm: automatic initial radius in pixel footprints at the hit distance (default 4)")
         ->check(kPositive);
     render
+        .add_option(
+            "--radius-photons", o.radius_photons,
+            "sppm: the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
+            "automatic radius so its disc holds about K photons, within 1-8 pixel footprints "
+            "(default 64; 0 = off)")
+        ->check(CLI::Range(0.0, 1e9));
+    render
         .add_option("--direct-samples,--ppm-direct-samples", o.direct_samples,
                     "ppm/sppm: light samples per visible point (default: sppm 4 per iteration, ppm 16)")
         ->check(CLI::Range(1, 65536));

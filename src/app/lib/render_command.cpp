@@ -69,7 +69,7 @@ void setup_progressive(const RenderCommand& cmd, const std::string& integrator, 
       << cmd.dof_distance << ' ' << cmd.dof_radius << ' ' << cmd.schlick << ' ' << cmd.real << ' '
       << cmd.legacy_attenuation << ' ' << cmd.emission_lights << ' ' << p.alpha << ' '
       << integrators::photons_per_iteration(p) << ' ' << p.radius << ' ' << p.radius_pixels << ' '
-      << p.direct_samples << ' ' << p.eye_samples;
+      << p.direct_samples << ' ' << p.eye_samples << ' ' << p.radius_photons;
     const std::string ostr = o.str();
     id.options_hash = film::hash_bytes(ostr.data(), ostr.size());
     id.command_line = cmd.command_line;
