@@ -36,9 +36,24 @@ struct Vec3 {
     constexpr Vec3 operator*(Vec3 o) const { return {x * o.x, y * o.y, z * o.z}; }
     constexpr Vec3 operator*(float s) const { return {x * s, y * s, z * s}; }
     constexpr Vec3 operator/(float s) const { return {x / s, y / s, z / s}; }
-    constexpr Vec3& operator+=(Vec3 o) { x += o.x; y += o.y; z += o.z; return *this; }
-    constexpr Vec3& operator-=(Vec3 o) { x -= o.x; y -= o.y; z -= o.z; return *this; }
-    constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr Vec3& operator+=(Vec3 o) {
+        x += o.x;
+        y += o.y;
+        z += o.z;
+        return *this;
+    }
+    constexpr Vec3& operator-=(Vec3 o) {
+        x -= o.x;
+        y -= o.y;
+        z -= o.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(float s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
     constexpr bool operator==(const Vec3&) const = default;
 };
 
@@ -76,9 +91,24 @@ struct Rgb {
     constexpr Rgb operator/(Rgb o) const { return {r / o.r, g / o.g, b / o.b}; }
     constexpr Rgb operator*(float s) const { return {r * s, g * s, b * s}; }
     constexpr Rgb operator/(float s) const { return {r / s, g / s, b / s}; }
-    constexpr Rgb& operator+=(Rgb o) { r += o.r; g += o.g; b += o.b; return *this; }
-    constexpr Rgb& operator*=(Rgb o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-    constexpr Rgb& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+    constexpr Rgb& operator+=(Rgb o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(Rgb o) {
+        r *= o.r;
+        g *= o.g;
+        b *= o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(float s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     constexpr bool operator==(const Rgb&) const = default;
 
     constexpr bool is_black() const { return r == 0 && g == 0 && b == 0; }

@@ -17,7 +17,7 @@ struct Medium {
     Rgb sigma_a{0.0f};  // absorption, 1/scene-unit
     Rgb sigma_s{0.0f};  // scattering, 1/scene-unit
     float scale = 1.0f;
-    float g = 0.0f;     // Henyey-Greenstein asymmetry
+    float g = 0.0f;  // Henyey-Greenstein asymmetry
     Rgb emission{0.0f};
     // UniformGrid: density values nx*ny*nz over the box [p0, p1] in medium space.
     int nx = 0, ny = 0, nz = 0;

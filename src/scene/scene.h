@@ -39,7 +39,7 @@ struct Scene {
     Rgb background{0.0f};  // radiance of escaping camera / specular rays
     Rgb ambient{0.0f};     // .scn `ambient`, used only with --ambient
     RenderSettings settings;
-    std::string source;    // the file it was loaded from
+    std::string source;  // the file it was loaded from
 
     // Adds an area light emitting radiance `L` from `shape` (appended); returns the light index.
     int add_area_light(Shape shape, Rgb L, bool two_sided = false) {

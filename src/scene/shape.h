@@ -14,8 +14,8 @@ namespace phos::scene {
 
 struct TriangleMesh {
     std::vector<Vec3> positions;
-    std::vector<Vec3> normals;   // empty, or one per position (shading normals)
-    std::vector<Vec2> uvs;       // empty, or one per position
+    std::vector<Vec3> normals;      // empty, or one per position (shading normals)
+    std::vector<Vec2> uvs;          // empty, or one per position
     std::vector<uint32_t> indices;  // 3 per triangle, counter-clockwise seen from the front
     size_t triangle_count() const { return indices.size() / 3; }
 };
@@ -41,11 +41,11 @@ struct Shape {
     Vec3 box_min{0.0f}, box_max{1.0f};
 
     int material = 0;
-    int area_light = -1;             // index into Scene::lights, or -1
+    int area_light = -1;               // index into Scene::lights, or -1
     bool reverse_orientation = false;  // flip the outward normal (pbrt ReverseOrientation)
     MediumInterface media;
-    Transform to_world;              // object space to world space
-    std::string origin;              // "file:line" where it was defined, for messages
+    Transform to_world;  // object space to world space
+    std::string origin;  // "file:line" where it was defined, for messages
 };
 
 // A named group of shapes placed several times (pbrt ObjectBegin/ObjectInstance).

@@ -21,7 +21,7 @@ struct Texture {
     enum class Kind { Constant, Image, Checkerboard, Scale };
     enum class Wrap { Repeat, Clamp, Black };
     Kind kind = Kind::Constant;
-    Rgb value{1.0f};                           // Constant; also the multiplier for Image
+    Rgb value{1.0f};                            // Constant; also the multiplier for Image
     std::shared_ptr<const TextureImage> image;  // Image
     std::string filename;                       // Image (for messages)
     Wrap wrap = Wrap::Repeat;

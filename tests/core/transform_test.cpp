@@ -1,7 +1,7 @@
 // Tests of core/transform: inverse, composition, and how points, vectors and normals transform.
-#include <gtest/gtest.h>
-
 #include "core/transform.h"
+
+#include <gtest/gtest.h>
 
 namespace phos {
 namespace {
@@ -13,8 +13,8 @@ void expect_near(Vec3 a, Vec3 b, float eps = 1e-5f) {
 }
 
 TEST(Transform, TranslateScaleRotateCompose) {
-    const Transform t = Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 0, 1}) *
-                        Transform::scale({2, 2, 2});
+    const Transform t =
+        Transform::translate({1, 2, 3}) * Transform::rotate(90, {0, 0, 1}) * Transform::scale({2, 2, 2});
     expect_near(t.point({1, 0, 0}), {1, 4, 3});
     expect_near(t.vector({1, 0, 0}), {0, 2, 0});
     expect_near(t.inverse().point(t.point({0.3f, -0.7f, 5})), {0.3f, -0.7f, 5});
