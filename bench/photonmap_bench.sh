@@ -4,13 +4,13 @@
 # wall time of the whole `phos render` command, relMSE, mean ratio and caustic window against the
 # reference, photon tracing rate, map build time and render-pass time (from -v).
 # Usage: bench/photonmap_bench.sh [BUILD_DIR] [extra phos options...]
-# Needs BUILD_DIR/phos and a metrics tool (BUILD_DIR/sppm_metrics, built with PHOS_BUILD_BENCH=ON).
+# Needs BUILD_DIR/phos (metrics from `phos diff`).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/metrics.sh"
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
 phos=$build/phos
-metrics=${METRICS:-$build/sppm_metrics}
 shared=$here/../../shared/bench
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -28,8 +28,7 @@ for spec in "cornell-diffuse - - - -" "cornell-glass-mirror 168 200 226 242" "ca
     rate=$(sed -n 's/.*photon tracing rate: \([^ ]*\).*/\1/p' "$out/$scene.log")
     build_s=$(sed -n 's/.*time photon map build: *\([^ ]*\) s/\1/p' "$out/$scene.log")
     render_s=$(sed -n 's/.*time photon map render pass: *\([^ ]*\) s/\1/p' "$out/$scene.log")
-    # sppm_metrics prints relMSE, mean ratio and (with a window) the window mean.
-    m=$(echo $("$metrics" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win))
+    m=$(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" $win)
     e=$(echo "$m" | cut -d' ' -f1)
     ratio=$(echo "$m" | cut -d' ' -f2)
     w=-

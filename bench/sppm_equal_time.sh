@@ -13,13 +13,13 @@
 # the reference's noise at most a third of pbrt-v4's").
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
+. "$here/metrics.sh"
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
 columns=${1:-goal}
 [ $# -gt 0 ] && shift
 extra="$*"  # extra phos options (word-split when used)
 phos=$build/phos
-metrics_tool=$build/sppm_metrics
 shared=$here/../../shared/bench
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
@@ -50,10 +50,10 @@ for col in $columns; do
         end=$(date +%s.%N)
         wall=$(echo "$end - $start" | bc)
         if [ "$x0" = "-" ]; then
-            set -- $("$metrics_tool" "$out/$scene.pfm" "$shared/ref/$scene.pfm")
+            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm")
             win="-"
         else
-            set -- $("$metrics_tool" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
+            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
             win="$3 ($wref)"
         fi
         goal=$(echo "scale=6; $floor + ($pbrt - $floor) / 3" | bc | sed 's/^\./0./')
