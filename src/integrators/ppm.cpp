@@ -3,7 +3,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/error.h"
 #include "integrators/pixel_loop.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
@@ -15,25 +14,12 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const RenderOptions& ro = P.options;
     const int eye = std::max(1, opt_.eye_samples);
     const size_t slots = size_t(ro.width) * size_t(ro.height) * size_t(eye);
-    film::ProgressiveState state = opt_.identity;
-    state.integrator = "ppm";
-    state.width = uint32_t(ro.width);
-    state.height = uint32_t(ro.height);
-    state.slots_per_pixel = uint32_t(eye);
-    state.seed = ro.seed;
-    if (opt_.resume) {
-        film::check_resumable(*opt_.resume, state, opt_.resume_path);
-        state = *opt_.resume;
-    } else {
-        state.slots.assign(slots, {});
-    }
-    state.target_iterations = uint64_t(std::max(1, ro.spp));
-    if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+    film::ProgressiveState state = start_state(P, opt_, "ppm", uint32_t(eye));
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
     const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kPpmDirectSamples;
-    const PixelFootprint footprint(P);
-    const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    const InitialRadius initial{
+        opt_.radius, opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels, PixelFootprint(P)};
     std::vector<VisiblePoint> vps(slots);
     tbb::parallel_for(0, ro.height, [&](int y) {
         RayCounts rays;
@@ -48,11 +34,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
                 film::SlotStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
-                if (vps[i].bsdf && st.r2 == 0) {
-                    const float r =
-                        opt_.radius > 0 ? opt_.radius : radius_pixels * footprint.at(vps[i].path_length);
-                    st.r2 = double(r) * double(r);
-                }
+                if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
             }
         P.stats.add_rays(rays);
     });

@@ -3,7 +3,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include "core/error.h"
 #include "film/tiles.h"
 #include "integrators/sppm_core.h"
 
@@ -13,25 +12,12 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
-    film::ProgressiveState state = opt_.identity;
-    state.integrator = "sppm";
-    state.width = uint32_t(ro.width);
-    state.height = uint32_t(ro.height);
-    state.slots_per_pixel = 1;
-    state.seed = ro.seed;
-    if (opt_.resume) {
-        film::check_resumable(*opt_.resume, state, opt_.resume_path);
-        state = *opt_.resume;
-    } else {
-        state.slots.assign(pixels, {});
-    }
-    state.target_iterations = uint64_t(std::max(1, ro.spp));
-    if (!(opt_.alpha > 0 && opt_.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+    film::ProgressiveState state = start_state(P, opt_, "sppm", 1);
 
     const uint64_t photons = photons_per_iteration(opt_);
     const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kSppmDirectSamples;
-    const PixelFootprint footprint(P);
     const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    const InitialRadius initial{opt_.radius, radius_pixels, PixelFootprint(P)};
     // The pilot refines the automatic (footprint) radius only; an explicit --radius is kept.
     PilotRadius pilot;
     if (opt_.radius <= 0) {
@@ -63,11 +49,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                     film::SlotStats& st = state.slots[i];
                     if (L.is_finite())
                         for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);
-                    if (vps[i].bsdf && st.r2 == 0) {
-                        const float r =
-                            opt_.radius > 0 ? opt_.radius : radius_pixels * footprint.at(vps[i].path_length);
-                        st.r2 = double(r) * double(r);
-                    }
+                    if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
                 }
             P.stats.add_rays(rays);
         });

@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "core/error.h"
 #include "integrators/direct_light.h"
 #include "photon/photon_path.h"
 
@@ -89,6 +90,26 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
         if (!beta.is_finite() || beta.max() <= 0) break;
     }
     return L;
+}
+
+film::ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
+                                   uint32_t slots_per_pixel) {
+    const RenderOptions& ro = P.options;
+    film::ProgressiveState state = opt.identity;
+    state.integrator = integrator;
+    state.width = uint32_t(ro.width);
+    state.height = uint32_t(ro.height);
+    state.slots_per_pixel = slots_per_pixel;
+    state.seed = ro.seed;
+    if (opt.resume) {
+        film::check_resumable(*opt.resume, state, opt.resume_path);
+        state = *opt.resume;
+    } else {
+        state.slots.assign(size_t(ro.width) * size_t(ro.height) * slots_per_pixel, {});
+    }
+    state.target_iterations = uint64_t(std::max(1, ro.spp));
+    if (!(opt.alpha > 0 && opt.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+    return state;
 }
 
 PixelFootprint::PixelFootprint(const Prepared& P) {

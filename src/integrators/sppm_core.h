@@ -57,6 +57,24 @@ struct PixelFootprint {
     float at(float distance) const { return offset + slope * distance; }
 };
 
+// The automatic or explicit initial radius of a visible point, before any photon pass: `radius`
+// (--radius) when > 0, else `radius_pixels` pixel footprints at the point's path length.
+struct InitialRadius {
+    float radius;
+    float radius_pixels;
+    PixelFootprint footprint;
+    double r2(const VisiblePoint& vp) const {
+        const float r = radius > 0 ? radius : radius_pixels * footprint.at(vp.path_length);
+        return double(r) * double(r);
+    }
+};
+
+// The state a progressive render starts from: a fresh one (`slots_per_pixel` slots per pixel) for
+// `integrator`, or the checkpoint being resumed after checking it is the same render. Also
+// validates --alpha and records the requested iteration count.
+film::ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
+                                   uint32_t slots_per_pixel);
+
 // Per-pixel initial radius from a pilot photon pass (--radius-photons): the first iteration's
 // photons only count how many fall in each visible point's largest allowed disc, R₀² max_scale
 // (M_p; R₀ the automatic radius); the point's radius becomes the disc that would hold ~k photons,
