@@ -4,8 +4,14 @@
 
 namespace phos::integrators {
 
-scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel) {
-    return scene.camera ? *scene.camera : CameraModel::frame_bounds(accel.bounds());
+scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
+                                   const PrepareOptions& prepare) {
+    scene::Camera camera = scene.camera ? *scene.camera : CameraModel::frame_bounds(accel.bounds());
+    if (prepare.lens_radius >= 0) {
+        camera.lens_radius = prepare.lens_radius;
+        camera.focal_distance = prepare.focal_distance;
+    }
+    return camera;
 }
 
 Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, const PrepareOptions& prepare,
@@ -13,7 +19,7 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
     : scene(scene_),
       accel(scene_),
       lights(scene_, accel.bounds(), prepare.lights),
-      camera(camera_for(scene_, accel), options_.width, options_.height),
+      camera(camera_for(scene_, accel, prepare), options_.width, options_.height),
       options(options_),
       bsdf_options(prepare.bsdf),
       stats(stats_) {}

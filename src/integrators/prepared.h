@@ -17,6 +17,10 @@ namespace phos::integrators {
 struct PrepareOptions {
     shading::BsdfOptions bsdf;
     shading::LightOptions lights;
+    // --dof: thin-lens aperture radius and focal distance replacing the camera's (also for the
+    // camera framed for scenes without one); ignored when lens_radius < 0.
+    float lens_radius = -1;
+    float focal_distance = 1;
 };
 
 class Prepared {
@@ -48,7 +52,8 @@ public:
     }
 
 private:
-    static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel);
+    static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
+                                    const PrepareOptions& prepare);
 };
 
 }  // namespace phos::integrators

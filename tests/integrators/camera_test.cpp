@@ -6,6 +6,9 @@
 
 #include <cmath>
 
+#include "core/stats.h"
+#include "integrators/prepared.h"
+
 namespace phos::integrators {
 namespace {
 
@@ -85,6 +88,38 @@ TEST(Camera, FramesScenesWithoutACamera) {
     EXPECT_TRUE(cam.project(b.center(), fx, fy));
     EXPECT_NEAR(fx, 32, 1e-3f);
     EXPECT_TRUE(cam.project(Vec3(-1, 0, 0), fx, fy));  // a front corner is in view
+}
+
+}  // namespace
+}  // namespace phos::integrators
+
+namespace phos::integrators {
+namespace {
+
+TEST(Camera, DepthOfFieldOverrideKeepsTheFramingOfCameralessScenes) {
+    scene::Scene s;
+    s.materials.emplace_back();
+    scene::Shape sphere;
+    sphere.kind = scene::Shape::Kind::Sphere;
+    sphere.center = Vec3(5, 1, -3);
+    sphere.radius = 0.5f;
+    s.shapes.push_back(sphere);
+    RenderOptions opt;
+    opt.width = opt.height = 32;
+    PrepareOptions prep;
+    prep.lens_radius = 0.01f;
+    prep.focal_distance = 2.0f;
+    Stats stats;
+    const Prepared P(s, opt, prep, stats);
+    // The framing camera looks at the sphere (it is not replaced by a default camera at the origin)...
+    float fx, fy;
+    ASSERT_TRUE(P.camera.project(sphere.center, fx, fy));
+    EXPECT_NEAR(fx, 16, 1e-3f);
+    EXPECT_NEAR(fy, 16, 1e-3f);
+    // ...and its rays start on the lens, not all at one point.
+    const accel::Ray a = P.camera.generate_ray(16, 16, {0.1f, 0.1f});
+    const accel::Ray b = P.camera.generate_ray(16, 16, {0.9f, 0.9f});
+    EXPECT_GT(length(a.origin - b.origin), 0.005f);
 }
 
 }  // namespace

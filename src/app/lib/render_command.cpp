@@ -143,15 +143,13 @@ void run_render(const RenderCommand& cmd) {
     config.progressive.clock_start = clock_start;
     auto integrator = integrators::make_integrator(integrator_name, config);
 
-    if (cmd.dof_samples) {
-        if (!scene.camera) scene.camera.emplace();  // replaced below by the framing camera if absent
-        scene.camera->lens_radius = cmd.dof_radius;
-        scene.camera->focal_distance = cmd.dof_distance;
-    }
-
     integrators::PrepareOptions prep;
     prep.bsdf.schlick = cmd.schlick;
     prep.lights.legacy_attenuation = cmd.legacy_attenuation;
+    if (cmd.dof_samples) {
+        prep.lens_radius = cmd.dof_radius;
+        prep.focal_distance = cmd.dof_distance;
+    }
     std::optional<integrators::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");
