@@ -4,6 +4,7 @@
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace phos::integrators {
 
@@ -16,6 +17,8 @@ struct RenderOptions {
     int dof_samples = 1;            // lens samples per pixel sample (--dof)
     bool ambient = false;           // add ka * ambient at the first hit (.scn legacy look)
     bool background_light = false;  // the background lights diffuse surfaces too
+    bool layers = false;            // --layers: integrators record their component layers
+    std::vector<std::string> aovs;  // --aov: auxiliary images (albedo, normal, depth)
 };
 
 }  // namespace phos::integrators
