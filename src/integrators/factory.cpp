@@ -12,6 +12,13 @@ namespace phos::integrators {
 
 std::vector<std::string> integrator_names() { return {"whitted", "path", "photonmap", "ppm", "sppm"}; }
 
+std::vector<std::string> integrator_layers(const std::string& name) {
+    if (name == "whitted") return {"direct", "specular"};
+    if (name == "path" || name == "photonmap") return {"direct", "caustic", "indirect", "specular"};
+    if (name == "ppm" || name == "sppm") return {"direct", "indirect"};
+    return {};
+}
+
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config) {
     if (name == "whitted") return std::make_unique<WhittedIntegrator>();
     if (name == "path") return std::make_unique<PathIntegrator>();

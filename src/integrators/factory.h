@@ -19,6 +19,8 @@ struct IntegratorConfig {
 };
 
 std::vector<std::string> integrator_names();
+// The component layers integrator `name` records with RenderOptions::layers (they sum to the image).
+std::vector<std::string> integrator_layers(const std::string& name);
 // Throws InputError for an unknown name or invalid options.
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config = {});
 

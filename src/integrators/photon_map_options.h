@@ -1,10 +1,12 @@
-// Options of the two-pass photon-map integrator (--integrator photonmap). Filled by the CLI
-// (app/lib/photon_map_cli.cpp); documented in docs/photon-mapping.md.
+// Options of the two-pass photon-map integrator (--integrator photonmap): the struct the integrator
+// reads and its option table (photon_map_options.cpp: flags, defaults, ranges, help); documented in
+// docs/photon-mapping.md and the generated docs/options.md.
 #pragma once
 
 #include <cstdint>
 #include <string>
 
+#include "core/option_table.h"
 #include "photon/filter.h"
 
 namespace phos::integrators {
@@ -41,5 +43,8 @@ struct PhotonMapOptions {
     // Throws InputError for values that make no sense (k = 0, negative radius, cone k < 1...).
     void validate() const;
 };
+
+// The "Photon map" option table over PhotonMapOptions.
+const options::Table& photon_map_options();
 
 }  // namespace phos::integrators

@@ -15,15 +15,25 @@
 
 namespace phos::scene {
 
+// A parameter of the scene file's integrator (pbrt `Integrator "sppm" "float radius" [0.1]`),
+// kept as written: the renderer maps it onto its option tables by name (app/lib/render_command.cpp).
+struct IntegratorParameter {
+    std::string name, type;           // "radius", "float"
+    std::vector<std::string> values;  // as text: numbers, "true"/"false", strings
+    std::string file;                 // where it is written
+    int line = 0, column = 0;
+};
+
 // Render settings a scene file may carry (pbrt's Film/Sampler/Integrator); the CLI wins.
 struct RenderSettings {
     std::optional<int> width, height;
     std::optional<int> spp;
-    std::optional<int> max_depth;
     std::optional<std::string> integrator;  // phos integrator name
     std::optional<std::string> output;      // image filename
-    std::optional<float> sppm_radius;
-    std::optional<int> photons_per_iteration;
+    // When the file names an integrator phos does not have (pbrt "bdpt"): its name and where, so
+    // the renderer can say which integrator it uses instead (unless --integrator chose one).
+    std::string unavailable_integrator, integrator_location;
+    std::vector<IntegratorParameter> integrator_parameters;
 };
 
 struct Scene {

@@ -1,5 +1,7 @@
-// The `phos` command line (CLI11). Accepts the seed renderer's single-dash long options (-aa,
-// -resolution, -real...) by rewriting them to the double-dash form before parsing.
+// The `phos` command line (CLI11). Every `phos render` option comes from the option tables
+// (render_options.h): registration, validation wording, --help text with defaults. Accepts the seed
+// renderer's single-dash long options (-aa, -resolution, -real...) by rewriting them to the
+// double-dash form before parsing; suggests the nearest command for a misspelt one.
 #include "app/lib/cli.h"
 
 #include <CLI/CLI.hpp>
@@ -7,19 +9,59 @@
 #include <cstdio>
 #include <filesystem>
 #include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
+#include "accel/version.h"
 #include "app/lib/diff_command.h"
-#include "app/lib/photon_map_cli.h"
-#include "app/lib/progressive_cli.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
 #include "film/checkpoint.h"
-#include "integrators/factory.h"
 
 namespace phos::app {
 namespace {
+
+constexpr const char* kVersion = "0.2.0";
+const std::vector<std::string> kCommands{"render", "diff", "options", "help"};
+
+std::string version_text() {
+    std::string s = std::string("phos ") + kVersion + "\n";
+#if defined(__clang__)
+    s += "compiler: clang " __clang_version__ "\n";
+#elif defined(__GNUC__)
+    s += "compiler: GCC " __VERSION__ "\n";
+#endif
+    s += "C++ standard: " + std::to_string(__cplusplus) + "\n";
+    s += "Embree " + accel::embree_version() + ", oneTBB " + accel::tbb_version() + "\n";
+    return s;
+}
+
+size_t edit_distance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            const size_t up = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diag = up;
+        }
+    }
+    return row[b.size()];
+}
+
+// The nearest of `names` to `word`, if it is close enough to be a likely typo.
+std::string nearest(const std::string& word, const std::vector<std::string>& names) {
+    std::string best;
+    size_t best_d = 3;
+    for (const auto& n : names) {
+        const size_t d = edit_distance(word, n);
+        if (d < best_d || (d == best_d && best.empty() && n.rfind(word, 0) == 0)) best = n, best_d = d;
+    }
+    return best;
+}
 
 std::vector<std::string> normalise_args(int argc, char** argv, const std::set<std::string>& long_names) {
     std::vector<std::string> args;
@@ -79,70 +121,87 @@ std::vector<std::string> checkpoint_arguments(const std::vector<std::string>& re
     return out;
 }
 
+// --help text of one option: its help, accepted values and default.
+std::string describe(const options::Table& t, const options::Option& o) {
+    std::string s = o.help;
+    if (!o.applies_to.empty()) {
+        std::string who = o.applies_to;
+        std::replace(who.begin(), who.end(), ' ', '/');
+        s = who + ": " + s;
+    }
+    if (!o.flag && !o.range_text.empty()) s += "; " + o.range_text;
+    std::string def = t.default_text(o);
+    if (def.empty()) def = "none";
+    return s + " (default: " + def + ")";
+}
+
+// Registers every option of `bound` on `render`; each callback stores the value through the table
+// (which validates it) and records the option as given.
+void register_table(CLI::App& render, const BoundTable& bound, std::set<std::string>& given) {
+    const options::Table& t = *bound.table;
+    for (const options::Option& o : t.options) {
+        std::string names = (o.short_name.empty() ? "" : "-" + o.short_name + ",") + "--" + o.name;
+        for (const auto& a : o.aliases) names += ",--" + a;
+        const options::Option* opt = &o;
+        void* object = bound.object;
+        CLI::Option* added = nullptr;
+        if (o.flag) {
+            if (!o.negation.empty()) names += ",!--" + o.negation;
+            added = render.add_flag_function(
+                names,
+                [opt, object, &given](int64_t count) {
+                    const bool on = (count > 0) == opt->flag_value;
+                    opt->set(object, {on ? "true" : "false"});
+                    given.insert(opt->name);
+                },
+                describe(t, o));
+        } else {
+            added = render
+                        .add_option_function<std::vector<std::string>>(
+                            names,
+                            [opt, object, &given](const std::vector<std::string>& v) {
+                                if (int(v.size()) != opt->arity)
+                                    throw CLI::ValidationError(options::option_error(
+                                        *opt, "expects " + std::to_string(opt->arity) + " values (" +
+                                                  opt->value_name + "), got " + std::to_string(v.size())));
+                                try {
+                                    opt->set(object, v);
+                                } catch (const options::ValueError& e) {
+                                    throw CLI::ValidationError(options::option_error(*opt, e.what()));
+                                }
+                                given.insert(opt->name);
+                            },
+                            describe(t, o))
+                        ->expected(o.arity)
+                        ->type_name(o.value_name)
+                        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+        }
+        added->group(t.title);
+        if (o.hidden) added->group("");
+    }
+}
+
+int print_error(const std::string& message) {
+    std::fprintf(stderr, "phos: %s\n", message.c_str());
+    return 2;
+}
+
 }  // namespace
 
 int run_cli(int argc, char** argv) {
     CLI::App app{"phos: a physically based photon-mapping renderer", "phos"};
     app.require_subcommand(1);
-    app.set_version_flag("--version", "phos 0.1");
+    app.set_version_flag("-V,--version", version_text());
+    app.footer(
+        "Commands: phos render SCENE [options] | phos diff IMAGE REFERENCE | phos options | phos help "
+        "[COMMAND]");
 
     RenderCommand rc;
     CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt) to an image");
     render->add_option("scene", rc.scene_path,
                        "scene file (.scn or .pbrt); may be omitted with --resume, which replays the "
                        "checkpointed render's arguments");
-    render->add_option("-o,--output", rc.output,
-                       "output image: .exr (linear float), .pfm (linear), .png / .bmp (sRGB 8-bit); "
-                       "default: the scene file's Film filename");
-    auto* w = render->add_option("--width", rc.width, "image width in pixels")->check(CLI::Range(1, 65536));
-    auto* h =
-        render->add_option("--height", rc.height, "image height in pixels")->check(CLI::Range(1, 65536));
-    std::vector<int> resolution;
-    auto* res = render->add_option("--resolution", resolution, "image size W H (the seed's -resolution)")
-                    ->expected(2)
-                    ->check(CLI::Range(1, 65536));
-    res->excludes(w)->excludes(h);
-    auto* spp = render->add_option("--spp", rc.spp, "samples per pixel (iterations for ppm/sppm)")
-                    ->check(CLI::Range(1, 1 << 20));
-    render->add_option("--aa", rc.aa, "anti-aliasing level N: 4^N samples per pixel (the seed's -aa)")
-        ->check(CLI::Range(0, 8))
-        ->excludes(spp);
-    render->add_option("--threads", rc.threads, "worker threads (0 = all cores)")->check(CLI::Range(0, 4096));
-    render->add_option("--seed", rc.seed, "random seed (same seed -> identical image)");
-    std::string names;
-    for (const auto& n : integrators::integrator_names()) names += (names.empty() ? "" : "|") + n;
-    render->add_option("--integrator", rc.integrator, "rendering algorithm: " + names)
-        ->check(CLI::IsMember(integrators::integrator_names()));
-    render->add_option("--max-depth", rc.max_depth, "maximum number of bounces (pbrt's maxdepth)")
-        ->check(CLI::Range(0, 100000));
-    render->add_flag("-v,--verbose", rc.verbose, "print statistics: rays by kind, time per phase");
-    render->add_flag("-q,--quiet", rc.quiet, "no warnings or messages");
-    render->add_option("--exposure", rc.exposure, "exposure in stops for .png/.bmp output")
-        ->check(CLI::Range(-64.0f, 64.0f));
-    render->add_flag("--schlick", rc.schlick, "Schlick's approximation instead of exact Fresnel");
-    std::vector<float> dof;
-    render
-        ->add_option("--dof", dof,
-                     "depth of field: SAMPLES DISTANCE RADIUS (lens samples per pixel sample, focal "
-                     "distance, aperture radius)")
-        ->expected(3);
-    render->add_flag(
-        "--emission-lights", rc.emission_lights,
-        ".scn: surfaces with emission e become area lights (they light the scene and emit photons)");
-    render->add_flag("--legacy-attenuation", rc.legacy_attenuation,
-                     ".scn: honour (ca, la, qa) light attenuation in direct light");
-    render->add_flag("--real", rc.real, ".scn: scale material lobes so kd + ks + kt <= 1 (the seed's -real)");
-    render->add_flag("--ambient", rc.ambient, ".scn: add the non-physical ka * ambient term");
-    render->add_flag("--background-light", rc.background_light,
-                     "the background radiance also lights diffuse surfaces");
-    render->add_flag("--strict", rc.strict, "pbrt: unused scene parameters are errors");
-    render->add_flag("--layers", rc.layers,
-                     "also write each layer (direct, indirect, caustic, specular) as OUT.<layer>.<ext>");
-    add_photon_map_options(*render, rc.config.photon_map);
-    add_progressive_options(*render, rc.config.progressive);
-    bool progress_on = false, progress_off = false;
-    render->add_flag("--progress", progress_on, "always draw the progress bar");
-    render->add_flag("--no-progress", progress_off, "never draw the progress bar");
+    for (const BoundTable& b : rc.tables()) register_table(*render, b, rc.given);
 
     DiffCommand dc;
     CLI::App* diff =
@@ -152,10 +211,31 @@ int run_cli(int argc, char** argv) {
     diff->add_option("--window", dc.window, "pixel window x0 x1 y0 y1 (half-open, y from the top)")
         ->expected(4);
 
+    CLI::App* opts = app.add_subcommand("options", "print every render option (markdown: docs/options.md)");
+    bool markdown = false;
+    opts->add_flag("--markdown", markdown, "markdown table (the default; kept for scripts)");
+
+    CLI::App* help = app.add_subcommand("help", "help on phos or on one command: phos help render");
+    std::string help_topic;
+    help->add_option("command", help_topic, "render, diff or options");
+
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
         for (const auto& n : o->get_lnames()) long_names.insert(n);
     const std::vector<std::string> args = normalise_args(argc, argv, long_names);
+
+    // A misspelt command: say what was meant instead of "a subcommand is required".
+    if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
+        std::find(kCommands.begin(), kCommands.end(), args[0]) == kCommands.end()) {
+        const std::string ext = std::filesystem::path(args[0]).extension().string();
+        if (ext == ".scn" || ext == ".pbrt")
+            return print_error("unknown command '" + args[0] + "'; to render it: phos render " + args[0]);
+        const std::string guess = nearest(args[0], kCommands);
+        return print_error("unknown command '" + args[0] + "'" +
+                           (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
+                           " (commands: render, diff, options, help)");
+    }
+
     // Returns -1 when parsing succeeded, else the exit code.
     auto parse = [&](std::vector<std::string> a) {
         std::reverse(a.begin(), a.end());  // CLI11 takes the arguments reversed
@@ -169,20 +249,54 @@ int run_cli(int argc, char** argv) {
         } catch (const CLI::CallForVersion& e) {
             return app.exit(e);
         } catch (const CLI::ParseError& e) {
-            std::fprintf(stderr, "phos: %s\n", e.what());
-            std::fprintf(stderr, "Run 'phos --help' or 'phos render --help' for the options.\n");
+            std::string what = e.what();
+            // CLI11: "The following argument was not expected: --sp" -> suggest the option meant.
+            if (const size_t at = what.find("expected: "); at != std::string::npos) {
+                std::istringstream words(what.substr(at + 10));
+                for (std::string word; words >> word;) {
+                    if (word.rfind("--", 0) != 0) continue;
+                    const std::string guess =
+                        nearest(word.substr(2, word.find('=') - 2),
+                                std::vector<std::string>(long_names.begin(), long_names.end()));
+                    if (!guess.empty()) what += " (did you mean --" + guess + "?)";
+                    break;
+                }
+            }
+            std::fprintf(stderr, "phos: %s\n", what.c_str());
+            std::fprintf(stderr, "Run 'phos help' or 'phos help render' for the options.\n");
             return 2;
         }
     };
     if (const int code = parse(args); code >= 0) return code;
 
     try {
+        if (help->parsed()) {
+            if (help_topic.empty()) {
+                // app.help() would describe the `help` command itself once it is selected.
+                std::fputs(app.get_formatter()->make_help(&app, "phos", CLI::AppFormatMode::Normal).c_str(),
+                           stdout);
+            } else if (CLI::App* sub =
+                           std::find(kCommands.begin(), kCommands.end(), help_topic) != kCommands.end()
+                               ? app.get_subcommand(help_topic)
+                               : nullptr) {
+                std::fputs(sub->help().c_str(), stdout);
+            } else {
+                const std::string guess = nearest(help_topic, kCommands);
+                return print_error("no help on '" + help_topic + "'" +
+                                   (guess.empty() ? "" : "; did you mean 'phos help " + guess + "'?"));
+            }
+            return 0;
+        }
+        if (opts->parsed()) {
+            std::fputs(options_markdown().c_str(), stdout);
+            return 0;
+        }
         if (render->parsed()) {
             const auto render_at = std::find(args.begin(), args.end(), "render");
             std::vector<std::string> render_args(render_at + 1, args.end());
             if (rc.scene_path.empty()) {
                 // A bare `phos render --resume FILE [overrides]`: replay the checkpointed arguments.
-                const std::string& resume = rc.config.progressive.resume_path;
+                const std::string resume = rc.progressive.resume_path;
                 if (resume.empty())
                     throw InputError(
                         "render: give a scene file (or --resume CHECKPOINT to continue a render)");
@@ -192,21 +306,19 @@ int run_cli(int argc, char** argv) {
                 render_args = merge_arguments(*render, saved.command_line, render_args);
                 std::vector<std::string> replay{"render"};
                 replay.insert(replay.end(), render_args.begin(), render_args.end());
+                rc.run = {};
+                rc.scene = {};
+                rc.render = {};
+                rc.photon_map = {};
+                rc.progressive = {};
+                rc.given.clear();
                 if (const int code = parse(replay); code >= 0) return code;
             }
+            if (rc.was_given("spp") && rc.was_given("aa"))
+                throw InputError("give either --spp or --aa, not both");
+            if (rc.was_given("resolution") && (rc.was_given("width") || rc.was_given("height")))
+                throw InputError("give either --resolution or --width/--height, not both");
             rc.command_line = checkpoint_arguments(render_args, rc.scene_path);
-            if (!resolution.empty()) rc.width = resolution[0], rc.height = resolution[1];
-            if (!dof.empty()) {
-                if (!(dof[0] >= 1 && dof[0] <= 4096 && dof[0] == float(int(dof[0]))))
-                    throw InputError("--dof: SAMPLES must be a whole number >= 1");
-                if (!(dof[1] > 0)) throw InputError("--dof: DISTANCE must be > 0");
-                if (!(dof[2] >= 0)) throw InputError("--dof: RADIUS must be >= 0");
-                rc.dof_samples = int(dof[0]);
-                rc.dof_distance = dof[1];
-                rc.dof_radius = dof[2];
-            }
-            if (progress_on) rc.progress = 1;
-            if (progress_off) rc.progress = 0;
             run_render(rc);
         }
         if (diff->parsed()) run_diff(dc);
@@ -215,8 +327,7 @@ int run_cli(int argc, char** argv) {
         std::fprintf(stderr, "%s\n", e.what());
         return 2;
     } catch (const InputError& e) {
-        std::fprintf(stderr, "phos: %s\n", e.what());
-        return 2;
+        return print_error(e.what());
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "phos: out of memory\n");
         return 1;

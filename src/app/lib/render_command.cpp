@@ -1,10 +1,13 @@
-// `phos render`: load the scene, resolve settings (CLI over scene file over defaults), prepare,
-// render with the chosen integrator, write the image atomically, print statistics with -v.
+// `phos render`: load the scene, resolve settings (command line, then the scene file, then the
+// option tables' defaults) and say where each came from, prepare, render with the chosen
+// integrator, write the image (and layers, AOVs) atomically, print statistics with -v.
 #include "app/lib/render_command.h"
 
 #include <tbb/global_control.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -36,25 +39,161 @@ void check_output(const std::string& out) {
     if (std::filesystem::is_directory(out)) throw InputError("output '" + out + "' is a directory");
 }
 
+// Where the effective settings came from, for the start-up line.
+struct Sources {
+    std::string integrator, size, spp;
+};
+
+// The integrator, image size and sample count: the command line, else the scene file, else the
+// defaults. A single --width or --height keeps the scene's aspect ratio. The scene file's sample
+// count is a budget for its own integrator; another integrator chosen on the command line starts
+// from the default instead.
+Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
+    const scene::RenderSettings& st = scene.settings;
+    Sources src;
+    if (cmd.was_given("integrator")) {
+        src.integrator = "command line";
+    } else if (st.integrator) {
+        cmd.run.integrator = *st.integrator;
+        src.integrator = "scene file";
+        if (!st.unavailable_integrator.empty())
+            log::warn(st.integrator_location + ": Integrator \"" + st.unavailable_integrator +
+                      "\" is not available in phos; using " + cmd.run.integrator +
+                      " (choose another with --integrator)");
+    } else {
+        src.integrator = "default";
+    }
+
+    const int sw = st.width.value_or(512), sh = st.height.value_or(512);
+    const char* file_or_default = st.width || st.height ? "scene file" : "default";
+    const char* aspect =
+        st.width || st.height ? "the scene file's aspect ratio" : "the default square aspect";
+    integrators::RenderOptions& r = cmd.render;
+    const bool w = cmd.was_given("width"), h = cmd.was_given("height");
+    if (cmd.was_given("resolution") || (w && h)) {
+        src.size = "command line";
+    } else if (w) {
+        r.height = std::max(1, int(std::lround(double(r.width) * sh / sw)));
+        src.size = std::string("command line; height keeps ") + aspect;
+    } else if (h) {
+        r.width = std::max(1, int(std::lround(double(r.height) * sw / sh)));
+        src.size = std::string("command line; width keeps ") + aspect;
+    } else {
+        r.width = sw;
+        r.height = sh;
+        src.size = file_or_default;
+    }
+
+    const bool progressive = cmd.run.integrator == "ppm" || cmd.run.integrator == "sppm";
+    if (cmd.was_given("spp") || cmd.was_given("aa")) {
+        src.spp = "command line";
+    } else if (progressive && cmd.was_given("iterations")) {
+        r.spp = cmd.progressive.iterations;
+        src.spp = "--iterations";
+    } else if (st.spp && (!st.integrator || *st.integrator == cmd.run.integrator)) {
+        r.spp = *st.spp;
+        src.spp = "scene file";
+    } else if (st.spp) {
+        src.spp =
+            "default; the scene file's " + std::to_string(*st.spp) + " are for its " +
+            (st.unavailable_integrator.empty() ? st.integrator.value_or("path") : st.unavailable_integrator) +
+            " integrator";
+    } else {
+        src.spp = "default";
+    }
+    return src;
+}
+
+// The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
+// the option tables by name, for options the command line did not give. A value outside the
+// option's range is an error at the parameter; a parameter no option takes is a warning (an error
+// with --strict).
+void apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
+    const scene::RenderSettings& st = scene.settings;
+    const bool own = !st.integrator || *st.integrator == cmd.run.integrator;
+    for (const scene::IntegratorParameter& p : st.integrator_parameters) {
+        const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
+        const options::Option* opt = nullptr;
+        void* object = nullptr;
+        for (const BoundTable& b : cmd.tables())
+            if (const options::Option* o = b.table->find_pbrt(p.name)) opt = o, object = b.object;
+        if (!opt) {
+            // An integrator phos substitutes already had one warning for the whole directive.
+            if (!st.unavailable_integrator.empty()) continue;
+            const std::string msg = what + " is not used by phos";
+            if (cmd.run.strict) throw ParseError(p.file, p.line, p.column, msg);
+            if (own) log::warn(ParseError::format(p.file, p.line, p.column, msg + " (ignored)"));
+            continue;
+        }
+        if (cmd.was_given(opt->name)) continue;  // the command line wins
+        if (p.name == "photonsperiteration" && p.values.size() == 1 && p.values[0] == "-1")
+            continue;  // pbrt's "default"
+        if (int(p.values.size()) != opt->arity)
+            throw ParseError(
+                p.file, p.line, p.column,
+                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
+        try {
+            opt->set(object, p.values);
+        } catch (const options::ValueError& e) {
+            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
+        }
+        if (opt->name == "iterations" && !cmd.was_given("spp") && !cmd.was_given("aa"))
+            cmd.render.spp = cmd.progressive.iterations;
+    }
+}
+
+// Every table's values checked (values from tests or scene files included), and options given on
+// the command line that the chosen integrator does not use: budgets and checkpoints are refused
+// (work would silently not be bounded or saved), the rest warn once.
+void check_options(RenderCommand& cmd) {
+    for (const BoundTable& b : cmd.tables()) {
+        try {
+            options::validate(*b.table, b.object);
+        } catch (const options::ValueError& e) {
+            throw InputError(e.what());
+        }
+    }
+    std::string refused;
+    for (const BoundTable& b : cmd.tables())
+        for (const options::Option& o : b.table->options) {
+            if (!cmd.was_given(o.name) || o.applies(cmd.run.integrator)) continue;
+            std::string who = o.applies_to;
+            std::replace(who.begin(), who.end(), ' ', '/');
+            if (o.effect != options::Effect::Image)
+                refused += (refused.empty() ? "" : ", ") + o.flag_name();
+            else
+                log::warn(o.flag_name() + " has no effect on the " + cmd.run.integrator + " integrator (" +
+                          who + " only)");
+        }
+    if (!refused.empty())
+        throw InputError(refused +
+                         ": only the ppm and sppm integrators have iteration budgets, previews and "
+                         "checkpoints (this render uses " +
+                         cmd.run.integrator + ")");
+}
+
+// The image-changing options of this render as (flag, value) pairs: what a checkpoint records to
+// refuse resuming a different render.
+std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cmd) {
+    std::vector<std::pair<std::string, std::string>> out;
+    for (const BoundTable& b : cmd.tables()) {
+        if (b.table == &run_options()) continue;  // the integrator is recorded by name
+        for (const options::Option& o : b.table->options)
+            if (o.effect == options::Effect::Image && o.applies(cmd.run.integrator))
+                out.emplace_back(o.flag_name(), o.get(b.object));
+    }
+    return out;
+}
+
 // Budgets, previews, checkpoints and resuming of the progressive integrators (ppm, sppm): fills
 // the hooks and the render identity that checkpoints carry, and turns --iterations / --time /
 // --resume into the iteration count.
-void setup_progressive(const RenderCommand& cmd, const std::string& integrator, const std::string& output,
-                       integrators::RenderOptions& opt, integrators::ProgressiveOptions& p) {
-    const bool progressive = integrator == "ppm" || integrator == "sppm";
-    if (!progressive) {
-        if (!p.checkpoint_path.empty() || !p.resume_path.empty() || p.time > 0 || p.write_every > 0 ||
-            p.iterations > 0)
-            throw InputError(
-                "--iterations, --time, --write-every, --checkpoint and --resume need --integrator ppm or "
-                "sppm");
-        return;
-    }
-    if (p.iterations > 0) {
-        if (cmd.spp && *cmd.spp != p.iterations) throw InputError("--spp and --iterations disagree");
-        opt.spp = p.iterations;
-    }
-    const bool count_given = p.iterations > 0 || cmd.spp.has_value() || cmd.aa.has_value();
+void setup_progressive(RenderCommand& cmd, const std::string& output) {
+    integrators::ProgressiveOptions& p = cmd.progressive;
+    integrators::RenderOptions& opt = cmd.render;
+    if (p.iterations > 0 && (cmd.was_given("spp") || cmd.was_given("aa")) && opt.spp != p.iterations)
+        throw InputError("--spp and --iterations disagree");
+    const bool count_given = cmd.was_given("iterations") || cmd.was_given("spp") || cmd.was_given("aa");
     if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
 
     // The render's identity: scene bytes and every option that changes the image.
@@ -64,14 +203,9 @@ void setup_progressive(const RenderCommand& cmd, const std::string& integrator, 
         const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
         id.scene_hash = film::hash_bytes(bytes.data(), bytes.size());
     }
-    std::ostringstream o;
-    o << opt.max_depth << ' ' << opt.dof_samples << ' ' << opt.ambient << ' ' << opt.background_light << ' '
-      << cmd.dof_distance << ' ' << cmd.dof_radius << ' ' << cmd.schlick << ' ' << cmd.real << ' '
-      << cmd.legacy_attenuation << ' ' << cmd.emission_lights << ' ' << p.alpha << ' '
-      << integrators::photons_per_iteration(p) << ' ' << p.radius << ' ' << p.radius_pixels << ' '
-      << p.direct_samples << ' ' << p.eye_samples << ' ' << p.radius_photons;
-    const std::string ostr = o.str();
-    id.options_hash = film::hash_bytes(ostr.data(), ostr.size());
+    std::string listed;
+    for (const auto& [name, value] : image_options(cmd)) listed += name + "=" + value + "\n";
+    id.options_hash = film::hash_bytes(listed.data(), listed.size());
     id.command_line = cmd.command_line;
 
     if (!p.resume_path.empty()) {
@@ -84,11 +218,23 @@ void setup_progressive(const RenderCommand& cmd, const std::string& integrator, 
         p.on_checkpoint = [path](const film::ProgressiveState& s) { film::save_checkpoint(path, s); };
     }
     if (p.write_every > 0) {
-        const float exposure = cmd.exposure;
+        const float exposure = cmd.run.exposure;
         p.on_preview = [output, exposure](const film::Film& f) {
             io::write_image(output, f.image(), {exposure});
         };
     }
+}
+
+// The film layers to write: the integrator's components with --layers, the AOVs asked for.
+std::vector<std::string> written_layers(const film::Film& film, const integrators::RenderOptions& opt) {
+    std::vector<std::string> out;
+    for (const std::string& name : film.layer_names()) {
+        const auto& aovs = integrators::aov_names();
+        const bool is_aov = std::find(aovs.begin(), aovs.end(), name) != aovs.end();
+        if (is_aov ? std::find(opt.aovs.begin(), opt.aovs.end(), name) != opt.aovs.end() : opt.layers)
+            out.push_back(name);
+    }
+    return out;
 }
 
 }  // namespace
@@ -98,86 +244,104 @@ std::string layer_path(const std::string& output, const std::string& layer) {
     return (p.parent_path() / (p.stem().string() + "." + layer + p.extension().string())).string();
 }
 
-void run_render(const RenderCommand& cmd) {
+void run_render(const RenderCommand& command) {
     const auto clock_start = std::chrono::steady_clock::now();
-    log::set_quiet(cmd.quiet);
+    RenderCommand cmd = command;
+    log::set_quiet(cmd.run.quiet);
     std::optional<tbb::global_control> threads;
-    if (cmd.threads > 0) threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.threads));
+    if (cmd.run.threads > 0)
+        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
 
     Stats stats;
     scene::Scene scene;
     {
         ScopedTimer t(stats, "load");
-        scene = io::load_scene(cmd.scene_path, {cmd.real, cmd.legacy_attenuation, cmd.strict});
-        if (cmd.emission_lights) {
+        scene =
+            io::load_scene(cmd.scene_path, {cmd.scene.real, cmd.scene.legacy_attenuation, cmd.run.strict});
+        if (cmd.scene.emission_lights) {
             const int n = scene::emissive_shapes_to_lights(scene);
             if (n == 0) log::warn("--emission-lights: the scene has no emissive surfaces");
         }
     }
 
     // Resolve settings: command line, then the scene file, then defaults.
-    std::string output = cmd.output;
+    std::string output = cmd.run.output;
     if (output.empty() && scene.settings.output) {
         const std::filesystem::path p(*scene.settings.output);
         output = p.is_absolute() ? p.string() : p.filename().string();  // written to the current directory
     }
     check_output(output);
+    const Sources sources = resolve_settings(cmd, scene);
+    apply_scene_parameters(cmd, scene);
+    check_options(cmd);
+    const std::string& integrator_name = cmd.run.integrator;
+    const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";
+    if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
+        throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
+    if (progressive) setup_progressive(cmd, output);
+    cmd.progressive.clock_start = clock_start;
 
-    integrators::RenderOptions opt;
-    opt.width = cmd.width.value_or(scene.settings.width.value_or(512));
-    opt.height = cmd.height.value_or(scene.settings.height.value_or(512));
-    if (cmd.aa)
-        opt.spp = 1 << (2 * *cmd.aa);
-    else
-        opt.spp = cmd.spp.value_or(scene.settings.spp.value_or(16));
-    if (cmd.spp && cmd.aa) throw InputError("give either --spp or -aa, not both");
-    opt.max_depth = cmd.max_depth.value_or(scene.settings.max_depth.value_or(16));
-    opt.seed = cmd.seed;
-    opt.ambient = cmd.ambient;
-    opt.background_light = cmd.background_light;
-    if (cmd.dof_samples) opt.dof_samples = *cmd.dof_samples;
-    if (opt.width <= 0 || opt.height <= 0) throw InputError("image size must be positive");
-    const std::string integrator_name = cmd.integrator.value_or(scene.settings.integrator.value_or("path"));
-    integrators::IntegratorConfig config = cmd.config;
-    setup_progressive(cmd, integrator_name, output, opt, config.progressive);
-    config.progressive.clock_start = clock_start;
+    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive};
     auto integrator = integrators::make_integrator(integrator_name, config);
+    const integrators::RenderOptions& opt = cmd.render;
 
     integrators::PrepareOptions prep;
-    prep.bsdf.schlick = cmd.schlick;
-    prep.lights.legacy_attenuation = cmd.legacy_attenuation;
-    if (cmd.dof_samples) {
-        prep.lens_radius = cmd.dof_radius;
-        prep.focal_distance = cmd.dof_distance;
-    }
+    prep.bsdf.schlick = cmd.scene.schlick;
+    prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
+    prep.lens_radius = opt.lens_radius;
+    prep.focal_distance = opt.focal_distance;
     std::optional<integrators::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");
         prepared.emplace(scene, opt, prep, stats);
     }
-    if (prepared->lights.size() == 0 && scene.lights.empty())
-        log::warn_once("no-lights", "scene has no lights: the image is black except for emission");
+    if (prepared->lights.size() == 0) {
+        bool glows = false;
+        for (const scene::Material& m : scene.materials) glows |= m.emission.max() > 0;
+        log::warn_once("no-lights", cmd.scene_path +
+                                        ": the scene has no lights; the image is black except for emission "
+                                        "and the background" +
+                                        (glows && !cmd.scene.emission_lights
+                                             ? " (--emission-lights makes its glowing surfaces lights)"
+                                             : ""));
+    }
+
+    {
+        std::string budget = std::to_string(opt.spp) + (progressive ? " iterations" : " spp");
+        if (progressive && cmd.progressive.time > 0)
+            budget = opt.spp >= (1 << 30)
+                         ? "iterations until " + options::format_number(cmd.progressive.time) + " s"
+                         : budget + " or " + options::format_number(cmd.progressive.time) + " s";
+        if (opt.dof_samples > 1) budget += " x " + std::to_string(opt.dof_samples) + " lens samples";
+        log::info("phos: " + std::filesystem::path(cmd.scene_path).filename().string() + ": " +
+                  integrator_name + " (" + sources.integrator + "), " + std::to_string(opt.width) + "x" +
+                  std::to_string(opt.height) + " (" + sources.size + "), " + budget + " (" + sources.spp +
+                  "), seed " + std::to_string(opt.seed));
+    }
 
     film::Film film(opt.width, opt.height);
-    Progress progress(cmd.progress < 0 ? Progress::stderr_is_terminal() && !cmd.quiet : cmd.progress == 1);
+    const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
+    Progress progress(bar && !cmd.run.quiet);
     {
         ScopedTimer t(stats, "render");
         integrator->render(*prepared, film, progress);
     }
     {
         ScopedTimer t(stats, "write");
-        io::write_image(output, film.image(), {cmd.exposure});
-        if (cmd.layers)
-            for (const std::string& name : film.layer_names())
-                io::write_image(layer_path(output, name), film.find_layer(name)->image(), {cmd.exposure});
+        io::write_image(output, film.image(), {cmd.run.exposure});
+        for (const std::string& name : written_layers(film, opt))
+            io::write_image(layer_path(output, name), film.find_layer(name)->image(), {cmd.run.exposure});
     }
-    if (cmd.verbose) {
-        stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " +
-                                     std::to_string(opt.spp * opt.dof_samples) + " spp, integrator " +
-                                     integrator_name);
+    if (cmd.run.verbose) {
+        std::string done = std::to_string(opt.spp * opt.dof_samples) + " spp";
+        if (progressive) done = std::to_string(*cmd.progressive.iterations_done) + " iterations";
+        stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " + done +
+                                     ", integrator " + integrator_name);
         std::fputs(stats.report().c_str(), stderr);
     }
-    if (!cmd.quiet) log::info("phos: wrote " + output);
+    std::string also;
+    for (const std::string& name : written_layers(film, opt)) also += (also.empty() ? "" : ", ") + name;
+    log::info("phos: wrote " + output + (also.empty() ? "" : " (and layers " + also + ")"));
 }
 
 }  // namespace phos::app

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "core/option_table.h"
 
 namespace phos::io {
 
@@ -212,32 +213,30 @@ void SceneBuilder::sampler(const std::string& type, const ParamList& params, con
 
 void SceneBuilder::integrator(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "Integrator", loc);
-    const std::string d = "Integrator \"" + type + "\"";
-    if (params.has("maxdepth")) {
-        const int depth = params.get_int("maxdepth", 5);
-        if (depth < 0) params.find("maxdepth")->loc.fail("maxdepth must not be negative");
-        scene_.settings.max_depth = depth;
+    // Parameters are kept as written; the renderer maps them onto its option tables by name
+    // (maxdepth, radius, photonsperiteration, seed...) and warns about the ones it does not use.
+    for (const Param& p : params.all()) {
+        scene::IntegratorParameter ip;
+        ip.name = p.name;
+        ip.type = p.type;
+        for (double v : p.numbers) ip.values.push_back(options::format_number(v));
+        for (const std::string& v : p.strings) ip.values.push_back(v);
+        for (bool v : p.bools) ip.values.push_back(v ? "true" : "false");
+        ip.file = p.loc.filename();
+        ip.line = p.loc.line;
+        ip.column = p.loc.col;
+        scene_.settings.integrator_parameters.push_back(std::move(ip));
     }
-    if (type == "sppm") {
-        scene_.settings.integrator = "sppm";
-        if (params.has("radius")) {
-            const float r = params.get_float("radius", 1.0f);
-            if (!(r > 0)) params.find("radius")->loc.fail("radius must be positive");
-            scene_.settings.sppm_radius = r;
-        }
-        const int photons = params.get_int("photonsperiteration", -1);
-        if (photons > 0) scene_.settings.photons_per_iteration = photons;
-        done(params, d);
-        return;
-    }
-    scene_.settings.integrator = "path";
-    if (type == "path" || type == "volpath") {
-        params.get_bool("regularize", false);
-        done(params, d);
-        return;
-    }
-    warn(loc, d + " is not available in phos; the path integrator is used instead");
     params.mark_all_used();
+    if (type == "sppm" || type == "path") {
+        scene_.settings.integrator = type;
+    } else if (type == "volpath") {
+        scene_.settings.integrator = "path";  // phos's path tracer is its volumetric path tracer too
+    } else {
+        scene_.settings.integrator = "path";
+        scene_.settings.unavailable_integrator = type;
+        scene_.settings.integrator_location = loc.str();
+    }
 }
 
 void SceneBuilder::accelerator(const std::string& type, const ParamList& params, const Loc& loc) {

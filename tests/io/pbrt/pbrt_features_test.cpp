@@ -104,9 +104,19 @@ TEST(PbrtSettings, SppmIntegratorSamplerAndFilter) {
         "65536\n"
         "Sampler \"halton\" \"integer pixelsamples\" 64\nPixelFilter \"box\"\nWorldBegin\n");
     EXPECT_EQ(l.scene.settings.integrator, "sppm");
-    EXPECT_EQ(l.scene.settings.max_depth, 7);
-    EXPECT_FLOAT_EQ(*l.scene.settings.sppm_radius, 0.02f);
-    EXPECT_EQ(l.scene.settings.photons_per_iteration, 65536);
+    // Integrator parameters are kept as written, with their locations; `phos render` maps them
+    // onto its option tables (tests/app/options_test.cpp).
+    const auto& ps = l.scene.settings.integrator_parameters;
+    ASSERT_EQ(ps.size(), 3u);
+    EXPECT_EQ(ps[0].name, "maxdepth");
+    EXPECT_EQ(ps[0].type, "integer");
+    EXPECT_EQ(ps[0].values, std::vector<std::string>{"7"});
+    EXPECT_EQ(ps[0].line, 1);
+    EXPECT_EQ(ps[0].column, 19);
+    EXPECT_EQ(ps[1].name, "radius");
+    EXPECT_EQ(ps[1].values, std::vector<std::string>{"0.02"});
+    EXPECT_EQ(ps[2].name, "photonsperiteration");
+    EXPECT_EQ(ps[2].values, std::vector<std::string>{"65536"});
     EXPECT_EQ(l.scene.settings.spp, 64);
     EXPECT_EQ(l.warnings, 0);
 }
@@ -120,8 +130,11 @@ TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
         "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3] \"float width\" 0.1\n"
         "LightSource \"goniometric\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
         "2\nWorldEnd\n");
-    EXPECT_EQ(l.warnings, 6);
+    EXPECT_EQ(l.warnings, 5);  // the mlt integrator is reported by `phos render` (it may be overridden)
     EXPECT_EQ(l.scene.settings.integrator, "path");
+    EXPECT_EQ(l.scene.settings.unavailable_integrator, "mlt");
+    EXPECT_EQ(l.scene.settings.integrator_location.substr(l.scene.settings.integrator_location.size() - 4),
+              ":2:1");
     EXPECT_TRUE(l.scene.shapes.empty());
     EXPECT_TRUE(l.scene.lights.empty());
 }

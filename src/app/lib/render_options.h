@@ -1,0 +1,70 @@
+// What `phos render` is told: the run's own options (output, integrator, threads, messages), the
+// scene-reading and shading switches, and every integrator's option struct, each with its option
+// table. The tables drive the command line, --help, validation, checkpoints, pbrt Integrator
+// parameters and docs/options.md (`phos options --markdown`).
+#pragma once
+
+#include <set>
+#include <string>
+#include <vector>
+
+#include "core/option_table.h"
+#include "integrators/options.h"
+#include "integrators/photon_map_options.h"
+#include "integrators/progressive_options.h"
+
+namespace phos::app {
+
+// Options of the run itself (none changes the image's radiance).
+struct RunOptions {
+    std::string output;  // empty: the scene file's Film filename
+    std::string integrator = "path";
+    int threads = 0;  // 0 = all cores
+    bool verbose = false;
+    bool quiet = false;
+    bool progress = false;  // forced on or off (given on the command line), else automatic
+    float exposure = 0;
+    bool strict = false;
+};
+
+// How the scene is read and shaded (they change the image).
+struct SceneOptions {
+    bool schlick = false;
+    bool legacy_attenuation = false;
+    bool emission_lights = false;  // glowing .scn surfaces become area lights
+    bool real = false;
+};
+
+const options::Table& run_options();
+const options::Table& scene_options();
+
+// A table and the struct it fills.
+struct BoundTable {
+    const options::Table* table;
+    void* object;
+};
+
+struct RenderCommand {
+    std::string scene_path;
+    RunOptions run;
+    SceneOptions scene;
+    integrators::RenderOptions render;
+    integrators::PhotonMapOptions photon_map;
+    integrators::ProgressiveOptions progressive;
+    // Names (without dashes) of the options given on the command line.
+    std::set<std::string> given;
+    // The arguments of this render (for checkpoints: a bare --resume replays them).
+    std::vector<std::string> command_line;
+
+    // Every option table with the struct of this command it fills, in --help order.
+    std::vector<BoundTable> tables();
+    bool was_given(const std::string& name) const { return given.count(name) > 0; }
+};
+
+// The tables of `phos render` over default structs (for docs and lookups).
+std::vector<const options::Table*> all_tables();
+
+// docs/options.md: every option of every table with its default, range, effect and pbrt name.
+std::string options_markdown();
+
+}  // namespace phos::app

@@ -1,0 +1,71 @@
+// The option table of the progressive photon mappers (see progressive_options.h).
+#include "integrators/progressive_options.h"
+
+namespace phos::integrators {
+
+using options::at_least;
+using options::between;
+using options::Effect;
+using options::positive;
+
+const options::Table& progressive_options() {
+    static const options::Table table = [] {
+        options::TableBuilder<ProgressiveOptions> b(
+            "Progressive photon mapping",
+            "ppm and sppm: radius reduction, photons, budgets, checkpoints (docs/progressive.md)");
+        auto prog = [](options::Option& o, const char* to = "ppm sppm") -> options::Option& {
+            o.applies_to = to;
+            return o;
+        };
+        prog(b.number("alpha", &ProgressiveOptions::alpha, "A", options::Range{0, 1, true, false},
+                      "fraction of new photons kept per iteration (radius reduction)"));
+        prog(b.number("photons-per-iter", &ProgressiveOptions::photons_per_iter, "N",
+                      between(1, 4294967296.0), "photons traced per iteration"))
+            .pbrt = "photonsperiteration";
+        auto& r = prog(b.number("radius", &ProgressiveOptions::radius, "R", at_least(0),
+                                "initial gather radius in scene units (0 = automatic)"));
+        r.pbrt = "radius";
+        r.default_text = "automatic (--radius-pixels, --radius-photons)";
+        prog(b.number("radius-pixels", &ProgressiveOptions::radius_pixels, "P", positive(),
+                      "automatic initial radius in pixel footprints at the hit distance"));
+        prog(b.number(
+                 "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
+                 "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
+                 "automatic radius so its disc holds about K photons, within 1-8 pixel footprints (0 = off)"),
+             "sppm");
+        auto& ds =
+            prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
+                          "light samples per visible point (0 = the integrator's default)"));
+        ds.aliases = {"ppm-direct-samples"};
+        ds.default_text = "sppm 4 per iteration, ppm 16 once";
+        prog(b.number("ppm-eye-samples", &ProgressiveOptions::eye_samples, "N", between(1, 4096),
+                      "hit points per pixel"),
+             "ppm");
+        auto& it = prog(b.number("iterations", &ProgressiveOptions::iterations, "N", between(0, 1 << 30),
+                                 "number of iterations (the same as --spp; 0 = not given)"));
+        it.effect = Effect::Budget;
+        it.pbrt = "iterations";
+        it.default_text = "--spp";
+        auto& t = prog(b.number("time", &ProgressiveOptions::time, "SECONDS", at_least(0),
+                                "stop after the iteration that crosses SECONDS of wall time (0 = no limit)"));
+        t.effect = Effect::Budget;
+        prog(b.number("write-every", &ProgressiveOptions::write_every, "SECONDS", at_least(0),
+                      "write the current image every SECONDS (0 = only at the end)"))
+            .effect = Effect::None;
+        prog(b.text("checkpoint", &ProgressiveOptions::checkpoint_path, "FILE",
+                    "save the progressive state to FILE (atomically)"))
+            .effect = Effect::None;
+        prog(b.number("checkpoint-every", &ProgressiveOptions::checkpoint_every, "N", between(1, 1 << 30),
+                      "iterations between checkpoints"))
+            .effect = Effect::None;
+        auto& res =
+            prog(b.text("resume", &ProgressiveOptions::resume_path, "FILE",
+                        "continue the render saved in checkpoint FILE (alone: replays its arguments)"));
+        res.effect = Effect::None;
+        res.default_text = "none";
+        return b.build();
+    }();
+    return table;
+}
+
+}  // namespace phos::integrators
