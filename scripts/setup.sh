@@ -22,5 +22,6 @@ if [ ${#missing[@]} -gt 0 ]; then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
-cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# PHOS_WERROR=1 (CI): warnings are errors.
+cmake -S "$here" -B "$build" -DCMAKE_BUILD_TYPE=Release -DPHOS_WERROR="${PHOS_WERROR:-0}" >/dev/null
 cmake --build "$build" -j"$(nproc)" "${targets[@]}"
