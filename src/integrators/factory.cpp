@@ -20,6 +20,13 @@ std::vector<std::string> integrator_layers(const std::string& name) {
 }
 
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config) {
+    // The option tables hold the valid ranges: the integrators take the structs as valid.
+    try {
+        options::validate(photon_map_options(), &config.photon_map);
+        options::validate(progressive_options(), &config.progressive);
+    } catch (const options::ValueError& e) {
+        throw InputError(e.what());
+    }
     if (name == "whitted") return std::make_unique<WhittedIntegrator>();
     if (name == "path") return std::make_unique<PathIntegrator>();
     if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map);

@@ -21,7 +21,8 @@ struct IntegratorConfig {
 std::vector<std::string> integrator_names();
 // The component layers integrator `name` records with RenderOptions::layers (they sum to the image).
 std::vector<std::string> integrator_layers(const std::string& name);
-// Throws InputError for an unknown name or invalid options.
+// Throws InputError for an unknown name or options outside their tables' ranges (the message
+// names the option: "--alpha: 0 is not in (0, 1]").
 std::unique_ptr<Integrator> make_integrator(const std::string& name, const IntegratorConfig& config = {});
 
 }  // namespace phos::integrators
