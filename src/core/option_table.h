@@ -50,6 +50,7 @@ struct Option {
     std::string value_name;  // "N", "SECONDS", "W H"
     std::string help;
     std::string pbrt;          // pbrt-v4 Integrator parameter that maps onto it ("" = none)
+    std::string pbrt_unset;    // a value of that parameter meaning "pbrt's default" (kept as ours)
     std::string default_text;  // shown instead of the field's value when that needs words
     std::string range_text;    // accepted values, for help and docs ("(0, 1]", "a|b|c")
     Effect effect = Effect::Image;

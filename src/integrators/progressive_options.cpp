@@ -22,6 +22,7 @@ const options::Table& progressive_options() {
         prog(b.number("photons-per-iter", &ProgressiveOptions::photons_per_iter, "N",
                       between(1, 4294967296.0), "photons traced per iteration"))
             .pbrt = "photonsperiteration";
+        b.last().pbrt_unset = "-1";
         auto& r = prog(b.number("radius", &ProgressiveOptions::radius, "R", at_least(0),
                                 "initial gather radius in scene units (0 = automatic)"));
         r.pbrt = "radius";

@@ -126,8 +126,8 @@ void apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
             continue;
         }
         if (cmd.was_given(opt->name)) continue;  // the command line wins
-        if (p.name == "photonsperiteration" && p.values.size() == 1 && p.values[0] == "-1")
-            continue;  // pbrt's "default"
+        // A value meaning "pbrt's default" (photonsperiteration -1) keeps phos's default.
+        if (!opt->pbrt_unset.empty() && p.values == std::vector<std::string>{opt->pbrt_unset}) continue;
         if (int(p.values.size()) != opt->arity)
             throw ParseError(
                 p.file, p.line, p.column,
