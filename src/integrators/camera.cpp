@@ -76,6 +76,16 @@ accel::Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
     return ray;
 }
 
+CameraModel::Footprint CameraModel::pixel_footprint() const {
+    const float cx = 0.5f * float(width_), cy = 0.5f * float(height_);
+    const accel::Ray a = generate_ray(cx, cy, {0.5f, 0.5f});
+    const accel::Ray b = generate_ray(cx + 1, cy, {0.5f, 0.5f});
+    Footprint f;
+    f.offset = length(a.origin - b.origin);
+    f.slope = length(normalize(a.dir) - normalize(b.dir));
+    return f;
+}
+
 bool CameraModel::project(Vec3 p, float& fx, float& fy) const {
     const Vec3 d = p - eye_;
     const float z = dot(d, forward_);

@@ -10,6 +10,14 @@ namespace phos::integrators {
 
 class CameraModel {
 public:
+    // The width of one pixel projected into the scene along a camera path of length d (distance
+    // travelled from the lens, through mirrors and glass included): offset + slope d. It scales
+    // density-estimation radii to the image's resolution.
+    struct Footprint {
+        float offset = 0, slope = 0;
+        float at(float distance) const { return offset + slope * distance; }
+    };
+
     CameraModel(const scene::Camera& camera, int width, int height);
     // A camera for scenes without one: frames `bounds` from the +z side.
     static scene::Camera frame_bounds(const accel::Bounds& bounds);
@@ -19,6 +27,9 @@ public:
     // Projects a world point to film coordinates; returns false if it is behind the camera or
     // outside the image. Used by tests and debugging tools.
     bool project(Vec3 p, float& fx, float& fy) const;
+    // The pixel footprint measured at the image centre (between the centres of two neighbouring
+    // pixels' rays, lens centre): constant offset for orthographic views, slope for perspective.
+    Footprint pixel_footprint() const;
 
     Vec3 eye() const { return eye_; }
     Vec3 forward() const { return forward_; }

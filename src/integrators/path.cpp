@@ -5,7 +5,9 @@
 
 #include "core/warp.h"
 #include "integrators/direct_light.h"
+#include "integrators/emission.h"
 #include "integrators/pixel_loop.h"
+#include "shading/surface_walk.h"
 
 namespace phos::integrators {
 
@@ -19,13 +21,14 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
     const scene::Scene& scene = P.scene;
     Rgb L(0.0f), beta(1.0f);
     bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
-    float prev_pdf = 0;
-    Vec3 prev_p;
+    BsdfSampledFrom from{};       // the last vertex, when !specular_bounce
     int depth = 0;
-    int crossings = 0;
+    shading::SurfaceWalk walk(P.accel);
     while (true) {
         accel::SurfaceHit hit;
-        if (!P.accel.intersect(ray, hit)) {
+        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
+        if (event == shading::SurfaceWalk::Event::Lost) break;
+        if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
             if (specular_bounce || P.options.background_light) L += beta * scene.background;
             for (size_t i : P.lights.infinite_lights()) {
@@ -33,34 +36,14 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
                 if (Le.is_black()) continue;
                 float w = 1;
                 if (!specular_bounce)
-                    w = warp::power_heuristic(prev_pdf,
-                                              P.lights.pmf(i) * P.lights[i].pdf_Li(prev_p, dir, {}, {}));
+                    w = warp::power_heuristic(from.pdf,
+                                              P.lights.pmf(i) * P.lights[i].pdf_Li(from.p, dir, {}, {}));
                 L += beta * Le * w;
             }
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        if (P.passes_through(hit)) {
-            if (++crossings > 256) break;
-            ray = accel::spawn_ray(hit, ray.dir);
-            continue;
-        }
-        const scene::Material& mat = scene.materials[size_t(hit.material)];
-
-        // Light emitted by the surface we hit.
-        const Rgb Le = P.emitted(hit, wo);
-        if (!Le.is_black()) {
-            float w = 1;
-            if (!specular_bounce) {
-                const auto li = size_t(hit.area_light);
-                const float light_pdf = P.lights.pmf(li) * P.lights[li].pdf_Li(prev_p, -wo, hit.p, hit.ng);
-                w = warp::power_heuristic(prev_pdf, light_pdf);
-            }
-            L += beta * Le * w;
-        }
-        // The .scn glow is seen only by camera and specular rays (see docs/formats/scn.md).
-        if (specular_bounce) L += beta * mat.emission;
-        if (depth == 0 && P.options.ambient) L += beta * mat.ambient * scene.ambient;
+        L += seen_emission(P, hit, wo, beta, specular_bounce ? nullptr : &from);
 
         if (depth++ == P.options.max_depth) break;
         const shading::Bsdf bsdf = P.bsdf(hit);
@@ -71,8 +54,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
         beta *= bs->weight;
         specular_bounce = bs->is_specular();
-        prev_pdf = bs->pdf;
-        prev_p = hit.p;
+        from = {hit.p, bs->pdf};
         ray = accel::spawn_ray(hit, bs->wi);
         ++rays.bounce;
 

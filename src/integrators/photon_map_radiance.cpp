@@ -17,31 +17,15 @@
 #include <cmath>
 
 #include "integrators/direct_light.h"
+#include "integrators/emission.h"
 #include "integrators/pixel_loop.h"
+#include "shading/surface_walk.h"
 
 namespace phos::integrators {
 
 using photon::kCausticMap;
 using photon::kGlobalMap;
 using photon::kIndirectMap;
-
-LobeSplit split_lobes(const shading::Bsdf& bsdf, Vec3 wo) {
-    using namespace shading;
-    const uint32_t f = bsdf.flags();
-    const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
-    // A material's ks is either a mirror (kSpecular) or Phong (kGlossy), its kt either smooth
-    // glass (kSpecular) or frosted (kGlossy); the albedos say which lobe set which flag.
-    const bool mirror = a.specular.max() > 0;
-    const bool phong = a.glossy.max() > 0;
-    const bool dielectric = a.transmission.max() > 0;
-    const bool smooth = (f & kSpecular) && !(mirror && (f & kGlossy) && !phong);
-    LobeSplit s;
-    if (mirror) s.delta |= kSpecular;
-    if (dielectric) (smooth ? s.delta : s.non_delta) |= kTransmission;
-    if (f & kDiffuse) s.non_delta |= kDiffuse;
-    if (phong) s.non_delta |= kGlossy;
-    return s;
-}
 
 PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps)
     : P_(P), o_(o), maps_(maps) {
@@ -54,42 +38,33 @@ PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& 
         est_[m].normal_cos = o.normal_cos;
         est_[m].flatness = o.flatness;
     }
-    const float cx = 0.5f * float(P.options.width), cy = 0.5f * float(P.options.height);
-    const accel::Ray a = P.camera.generate_ray(cx, cy, {0.5f, 0.5f});
-    const accel::Ray b = P.camera.generate_ray(cx + 1, cy, {0.5f, 0.5f});
     // The caustic estimate's minimum radius in pixel footprints, widened at low sample counts:
     // the film averages a pixel's samples over its area, so with n samples per pixel a kernel of
     // about 3 / sqrt(n) pixels is what keeps a sub-pixel focus from hitting or missing them
     // (caustic-point's window at 1 spp: +/- 12 % over seeds with 1 pixel, +/- 4 % with 3).
     const int n = std::max(1, P.options.spp) * std::max(1, P.options.dof_samples);
     const float pixels = o.caustic_min_pixels * std::max(1.0f, 3.0f / std::sqrt(float(n)));
-    footprint_offset_ = pixels * length(a.origin - b.origin);
-    footprint_slope_ = pixels * length(normalize(a.dir) - normalize(b.dir));
+    const CameraModel::Footprint f = P.camera.pixel_footprint();
+    footprint_offset_ = pixels * f.offset;
+    footprint_slope_ = pixels * f.slope;
 }
 
 RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
     RadianceParts out;
     Rgb beta(1.0f);
     bool via_delta = false;
-    int crossings = 0;
-    float distance = 0;  // along the camera path, for the pixel footprint
+    shading::SurfaceWalk walk(P_.accel);  // its distance() scales the pixel footprint
     for (int depth = 0;;) {
         Rgb& seen = via_delta ? out.specular : out.direct;
         accel::SurfaceHit hit;
-        if (!P_.accel.intersect(ray, hit)) {
+        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
+        if (event == shading::SurfaceWalk::Event::Lost) break;
+        if (event == shading::SurfaceWalk::Event::Escaped) {
             seen += beta * (P_.scene.background + P_.escaped(normalize(ray.dir)));
             break;
         }
-        if (P_.passes_through(hit)) {
-            if (++crossings > 256) break;
-            ray = accel::spawn_ray(hit, ray.dir);
-            continue;
-        }
         const Vec3 wo = -normalize(ray.dir);
-        distance += hit.t * length(ray.dir);
-        const scene::Material& mat = P_.scene.materials[size_t(hit.material)];
-        seen += beta * (P_.emitted(hit, wo) + mat.emission);
-        if (depth == 0 && P_.options.ambient) seen += beta * mat.ambient * P_.scene.ambient;
+        seen += seen_emission(P_, hit, wo, beta);
 
         const shading::Bsdf bsdf = P_.bsdf(hit);
         if (bsdf.has_non_specular()) {
@@ -103,7 +78,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
                 if (o_.direct) d += beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays);
                 if (o_.caustics) {
                     photon::SurfaceQuery qc = q;
-                    qc.min_radius = footprint_offset_ + footprint_slope_ * distance;
+                    qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
                     c += beta * photon::radiance_estimate(maps_.caustic(), est_[kCausticMap], qc, wo, bsdf);
                 }
                 if (o_.indirect_light) {
@@ -117,9 +92,9 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
         }
         // Mirrors and glass: one stochastically chosen delta branch per sample (unbiased).
         if (depth >= P_.options.max_depth) break;
-        const LobeSplit ls = split_lobes(bsdf, wo);
-        if (!ls.delta) break;
-        const auto s = bsdf.sample_lobes(ls.delta, wo, sampler.next(), sampler.next2());
+        const uint32_t delta = bsdf.split_lobes(wo).delta;
+        if (!delta) break;
+        const auto s = bsdf.sample_lobes(delta, wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         if ((s->flags & shading::kTransmission) ? !o_.transmissive : !o_.specular) break;
         beta *= s->weight;
@@ -134,15 +109,15 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
 
 Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
                                     Sampler& sampler, RayCounts& rays) const {
-    const LobeSplit ls = split_lobes(bsdf, wo);
+    const uint32_t non_delta = bsdf.split_lobes(wo).non_delta;
     const int n = std::max(o_.gather_rays, 1);
-    if (!ls.non_delta) return Rgb(0.0f);
+    if (!non_delta) return Rgb(0.0f);
     Rgb sum(0.0f);
     for (int i = 0; i < n; ++i) {
         // Stratified over the hemisphere (sqrt(n) x sqrt(n) cells of the lobe's sample square).
         const Vec2 u = stratified_sample(i, n, sampler.next2());
         const float u_lobe = sampler.next();
-        const auto s = bsdf.sample_lobes(ls.non_delta, wo, u_lobe, u);
+        const auto s = bsdf.sample_lobes(non_delta, wo, u_lobe, u);
         if (!s || s->is_specular() || s->weight.is_black()) continue;
         ++rays.bounce;
         sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi), sampler, rays);
@@ -152,30 +127,25 @@ Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading:
 
 Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
     Rgb L(0.0f), beta(1.0f);
-    int crossings = 0;
+    shading::SurfaceWalk walk(P_.accel);
     for (int depth = 0; depth <= P_.options.max_depth;) {
         accel::SurfaceHit hit;
-        if (!P_.accel.intersect(ray, hit)) break;  // sky light arriving this way is direct light
-        if (P_.passes_through(hit)) {
-            if (++crossings > 256) break;
-            ray = accel::spawn_ray(hit, ray.dir);
-            continue;
-        }
+        // Sky light arriving this way is direct light: an escaped ray adds nothing.
+        if (walk.next(ray, hit) != shading::SurfaceWalk::Event::Surface) break;
         const Vec3 wo = -normalize(ray.dir);
         const shading::Bsdf bsdf = P_.bsdf(hit);
         if (bsdf.has_non_specular()) {
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
             Rgb E;
-            const bool lambert = (bsdf.flags() & ~(shading::kDiffuse | shading::kReflection)) == 0;
-            if (lambert && !maps_.cache.empty() &&
+            if (bsdf.is_lambertian() && !maps_.cache.empty() &&
                 maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E))
                 L += beta * bsdf.diffuse_albedo() * kInvPi * E;
             else
                 L += beta * photon::radiance_estimate(maps_.global(), est_[kGlobalMap], q, wo, bsdf);
         }
-        const LobeSplit ls = split_lobes(bsdf, wo);
-        if (!ls.delta) break;
-        const auto s = bsdf.sample_lobes(ls.delta, wo, sampler.next(), sampler.next2());
+        const uint32_t delta = bsdf.split_lobes(wo).delta;
+        if (!delta) break;
+        const auto s = bsdf.sample_lobes(delta, wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;

@@ -42,12 +42,4 @@ private:
     float footprint_offset_ = 0, footprint_slope_ = 0;
 };
 
-// The lobe kinds (sample_lobes masks) of a BSDF split into delta lobes (mirror, smooth glass),
-// followed by ray tracing, and non-delta ones (Lambert, Phong, frosted glass), handled by the
-// photon maps.
-struct LobeSplit {
-    uint32_t delta = 0, non_delta = 0;
-};
-LobeSplit split_lobes(const shading::Bsdf& bsdf, Vec3 wo);
-
 }  // namespace phos::integrators

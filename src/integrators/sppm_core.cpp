@@ -35,14 +35,6 @@ film::ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& 
     return state;
 }
 
-PixelFootprint::PixelFootprint(const Prepared& P) {
-    const float cx = 0.5f * float(P.options.width), cy = 0.5f * float(P.options.height);
-    const accel::Ray a = P.camera.generate_ray(cx, cy, {0.5f, 0.5f});
-    const accel::Ray b = P.camera.generate_ray(cx + 1, cy, {0.5f, 0.5f});
-    offset = length(a.origin - b.origin);
-    slope = length(normalize(a.dir) - normalize(b.dir));
-}
-
 struct PhotonAccumulator::Locals {
     tbb::enumerable_thread_specific<std::vector<LocalSlot>> per_thread;
 };
@@ -69,7 +61,7 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth) {
     g.ng = b.geometric_normal() * s;
     g.ns = b.frame().n * s;
     g.max_bounces = max_depth - 1 - vp.depth;
-    g.lambert = b.flags() == (shading::kDiffuse | shading::kReflection) ? 1 : 0;
+    g.lambert = b.is_lambertian() ? 1 : 0;
     g.kd_pi = b.diffuse_albedo() * float(1 / M_PI);
     return g;
 }

@@ -49,12 +49,9 @@ struct VisiblePoint {
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays);
 
-// Film footprint model for the automatic initial radius: footprint(d) = offset + slope × d for a
-// path of length d (one pixel's width across, measured at the image centre).
-struct PixelFootprint {
-    float offset = 0, slope = 0;
-    explicit PixelFootprint(const Prepared& P);
-    float at(float distance) const { return offset + slope * distance; }
+// Film footprint model for the automatic initial radius: the camera's (camera.h).
+struct PixelFootprint : CameraModel::Footprint {
+    explicit PixelFootprint(const Prepared& P) : CameraModel::Footprint(P.camera.pixel_footprint()) {}
 };
 
 // The automatic or explicit initial radius of a visible point, before any photon pass: `radius`

@@ -3,7 +3,9 @@
 #include "integrators/whitted.h"
 
 #include "integrators/direct_light.h"
+#include "integrators/emission.h"
 #include "integrators/pixel_loop.h"
+#include "shading/surface_walk.h"
 
 namespace phos::integrators {
 
@@ -14,25 +16,18 @@ void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progr
 }
 
 Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays) {
-    const scene::Scene& scene = P.scene;
     Rgb L(0.0f), beta(1.0f);
-    int crossings = 0;
+    shading::SurfaceWalk walk(P.accel);
     for (int depth = 0;; ++depth) {
         accel::SurfaceHit hit;
-        if (!P.accel.intersect(ray, hit)) {
-            L += beta * (scene.background + P.escaped(normalize(ray.dir)));
+        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
+        if (event == shading::SurfaceWalk::Event::Lost) break;
+        if (event == shading::SurfaceWalk::Event::Escaped) {
+            L += beta * (P.scene.background + P.escaped(normalize(ray.dir)));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        if (P.passes_through(hit)) {
-            if (++crossings > 256) break;
-            ray = accel::spawn_ray(hit, ray.dir);
-            --depth;
-            continue;
-        }
-        const scene::Material& mat = scene.materials[size_t(hit.material)];
-        L += beta * (P.emitted(hit, wo) + mat.emission);
-        if (P.options.ambient) L += beta * mat.ambient * scene.ambient;
+        L += seen_emission(P, hit, wo, beta);
 
         const shading::Bsdf bsdf = P.bsdf(hit);
         if (bsdf.has_non_specular()) L += beta * sample_all_lights(P, hit, bsdf, wo, sampler, rays);

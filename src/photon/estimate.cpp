@@ -77,10 +77,9 @@ bool accept_photon(const Photon& ph, const SurfaceQuery& q, const EstimateOption
 
 Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, Vec3 wo,
                       const shading::Bsdf& bsdf, uint32_t* n_used) {
-    using namespace shading;
     Rgb sum(0.0f);
     uint32_t n;
-    if ((bsdf.flags() & ~(kDiffuse | kReflection)) == 0) {
+    if (bsdf.is_lambertian()) {
         // Lambert only: f = kd / pi for every photon on wo's side, which the normal test ensures.
         n = gather(map, o, q, [&](const Photon& ph, float w) { sum += ph.power() * w; });
         sum *= bsdf.diffuse_albedo() * kInvPi;

@@ -12,6 +12,7 @@
 #include "scene/scene.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
+#include "shading/surface_walk.h"
 
 namespace phos::photon {
 
@@ -75,22 +76,13 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
     if (!(options.projection ? detail::emit_projected(*options.projection, ps, sampler, ray, power)
                              : detail::emit_photon(ps, sampler, ray, power)))
         return 0;
-    uint32_t rays = 0;
     bool after_diffuse = false, after_specular = false;
-    int crossings = 0;
+    shading::SurfaceWalk walk(ps.accel);
     for (int bounces = 0; bounces <= options.max_bounces;) {
         accel::SurfaceHit hit;
-        ++rays;
-        if (!ps.accel.intersect(ray, hit)) break;
+        if (walk.next(ray, hit) != shading::SurfaceWalk::Event::Surface) break;
         const Vec3 wo = -normalize(ray.dir);
-        const scene::Material& mat = ps.scene.materials[size_t(hit.material)];
-        if (mat.interface_only) {
-            if (++crossings > 256) break;
-            ray = accel::spawn_ray(hit, ray.dir);
-            continue;
-        }
-        const shading::Bsdf bsdf(mat, hit, ps.scene, ps.bsdf_options);
-        if (bsdf.flags() == 0) break;
+        const shading::Bsdf bsdf(ps.scene.materials[size_t(hit.material)], hit, ps.scene, ps.bsdf_options);
         if (bsdf.has_non_specular()) {
             const PhotonHit ph{hit, bsdf, wo, power, bounces, after_diffuse, after_specular};
             // A visitor returning bool may end the path (false): e.g. once no map it fills can
@@ -114,7 +106,7 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
         ray = accel::spawn_ray(hit, wi);
         ++bounces;
     }
-    return rays;
+    return walk.rays();
 }
 
 }  // namespace phos::photon

@@ -118,6 +118,24 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
     return a;
 }
 
+Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo) const {
+    LobeSplit s;
+    const bool dielectric = lobes_ & (1u << kDielectric);
+    if (lobes_ & (1u << kMirror)) s.delta |= kSpecular;
+    if (dielectric) (sharp_glass_ ? s.delta : s.non_delta) |= kTransmission;
+    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) s.non_delta |= kDiffuse;
+    if (lobes_ & (1u << kPhong)) s.non_delta |= kGlossy;
+    if (!s.non_delta) {
+        s.p_non_delta = 0;
+    } else if (s.delta) {
+        const LobeAlbedos a = lobe_albedos(wo);
+        float ns = a.diffuse.average() + a.glossy.average(), d = a.specular.average();
+        if (dielectric) (sharp_glass_ ? d : ns) += a.transmission.average();
+        s.p_non_delta = ns + d > 0 ? ns / (ns + d) : 1;
+    }
+    return s;
+}
+
 Rgb Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return Rgb(0.0f);

@@ -87,6 +87,9 @@ public:
     uint32_t flags() const { return flags_; }
     bool has_non_specular() const { return flags_ & (kDiffuse | kGlossy); }
     bool is_purely_specular() const { return flags_ != 0 && !has_non_specular(); }
+    // True if the BSDF is a single Lambert reflection lobe (f = kd / pi on wo's side): estimates and
+    // gathering take fast paths that skip per-direction BSDF evaluation.
+    bool is_lambertian() const { return flags_ == (kDiffuse | kReflection); }
     // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses.
     Rgb diffuse_albedo() const { return kd_; }
     // Directional albedo of each lobe kind for wo (probabilities for the photon tracer's Russian
@@ -110,6 +113,17 @@ public:
     // photon tracer divides by its Russian-roulette probability.
     std::optional<BsdfSample> sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
                                            TransportMode mode = TransportMode::Radiance) const;
+    // The lobes split into delta ones (mirror, smooth or thin glass), which camera paths follow by
+    // ray tracing, and the rest (Lambert, Phong, frosted glass, Lambertian transmission), which the
+    // photon estimates, visible points and final gathering handle; both as sample_lobes masks.
+    // `p_non_delta` is the probability of choosing the non-delta part at a vertex that takes one
+    // of the two: 0 without non-delta lobes, 1 without delta lobes, else the non-delta share of the
+    // lobes' average albedos at wo.
+    struct LobeSplit {
+        uint32_t delta = 0, non_delta = 0;
+        float p_non_delta = 1;
+    };
+    LobeSplit split_lobes(Vec3 wo) const;
     const Frame& frame() const { return frame_; }
     Vec3 geometric_normal() const { return ng_; }
 

@@ -1,0 +1,26 @@
+// What a camera path sees where it meets a scattering surface: the surface's own light (area
+// emitter) and the .scn glow and ambient terms, with the one rule for which rays see which.
+#pragma once
+
+#include "integrators/prepared.h"
+
+namespace phos::integrators {
+
+// The scattering vertex a ray was BSDF-sampled from (a non-delta lobe), for weighting emission it
+// finds against light sampling at that vertex (multiple importance sampling, power heuristic).
+struct BsdfSampledFrom {
+    Vec3 p;     // the vertex
+    float pdf;  // solid-angle pdf of the sampled direction
+};
+
+// Radiance times `beta` that the path sees leaving `hit` towards `wo` (unit, away from the surface):
+// - the area light's emission, MIS-weighted against sampling that light when `from` is given;
+// - for camera rays and rays after delta bounces (`from` == null) also the .scn glow `e` and, with
+//   --ambient, ka x ambient. Both are non-physical surface terms that light nothing else, so like
+//   a colour painted on the surface they are seen wherever the surface itself is seen directly or
+//   in a mirror or through glass (the rule of docs/formats/scn.md for `e`), never by rays that
+//   sampled a diffuse or glossy lobe: those would count light the ambient term already stands for.
+Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta,
+                  const BsdfSampledFrom* from = nullptr);
+
+}  // namespace phos::integrators
