@@ -5,7 +5,7 @@
 
 namespace phos::integrators {
 
-Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta,
+Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta, bool camera_chain,
                   const BsdfSampledFrom* from) {
     Rgb L(0.0f);
     const Rgb Le = P.emitted(hit, wo);
@@ -18,7 +18,7 @@ Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb 
         }
         L = beta * Le * w;
     }
-    if (from) return L;
+    if (!camera_chain) return L;
     const scene::Material& mat = P.scene.materials[size_t(hit.material)];
     L += beta * mat.emission;
     if (P.options.ambient) L += beta * mat.ambient * P.scene.ambient;

@@ -14,13 +14,14 @@ struct BsdfSampledFrom {
 };
 
 // Radiance times `beta` that the path sees leaving `hit` towards `wo` (unit, away from the surface):
-// - the area light's emission, MIS-weighted against sampling that light when `from` is given;
-// - for camera rays and rays after delta bounces (`from` == null) also the .scn glow `e` and, with
-//   --ambient, ka x ambient. Both are non-physical surface terms that light nothing else, so like
-//   a colour painted on the surface they are seen wherever the surface itself is seen directly or
-//   in a mirror or through glass (the rule of docs/formats/scn.md for `e`), never by rays that
-//   sampled a diffuse or glossy lobe: those would count light the ambient term already stands for.
+// - the area light's emission, MIS-weighted against sampling that light when `from` is given (the
+//   ray's last bounce sampled a non-delta lobe);
+// - on the camera's specular chain (`camera_chain`: the camera ray and rays after delta bounces
+//   only) also the .scn glow `e` and, with --ambient, ka x ambient. Both are non-physical surface
+//   terms that are "not a light" (docs/formats/scn.md): like a colour painted on the surface they
+//   are seen wherever the surface itself is seen, directly, in a mirror or through glass, but they
+//   light nothing, so a path that has been through a diffuse or glossy bounce never sees them.
 Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta,
-                  const BsdfSampledFrom* from = nullptr);
+                  bool camera_chain = true, const BsdfSampledFrom* from = nullptr);
 
 }  // namespace phos::integrators

@@ -10,18 +10,82 @@
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+namespace {
+
+// Where the path is, for the split into components (pixel_loop.h, RadianceParts): x is the first
+// surface the camera sees directly.
+enum class Stage {
+    Camera,         // the camera ray
+    SpecularChain,  // after one or more delta bounces from the camera
+    FromX,          // the ray x's BSDF sampled from a non-delta lobe
+    CausticChain,   // after x's non-delta bounce, delta bounces only
+    Indirect,       // after two or more non-delta bounces
+};
+
+// The component of emission (or escaped light) found by a ray of stage s.
+Rgb RadianceParts::*found_part(Stage s) {
+    switch (s) {
+        case Stage::Camera:
+        case Stage::FromX:
+            return &RadianceParts::direct;
+        case Stage::SpecularChain:
+            return &RadianceParts::specular;
+        case Stage::CausticChain:
+            return &RadianceParts::caustic;
+        case Stage::Indirect:
+            break;
+    }
+    return &RadianceParts::indirect;
+}
+
+// The component of light sampled at the vertex a ray of stage s reached.
+Rgb RadianceParts::*sampled_part(Stage s) {
+    if (s == Stage::Camera) return &RadianceParts::direct;
+    if (s == Stage::SpecularChain) return &RadianceParts::specular;
+    return &RadianceParts::indirect;
+}
+
+Stage next_stage(Stage s, bool delta_bounce) {
+    switch (s) {
+        case Stage::Camera:
+            return delta_bounce ? Stage::SpecularChain : Stage::FromX;
+        case Stage::FromX:
+        case Stage::CausticChain:
+            return delta_bounce ? Stage::CausticChain : Stage::Indirect;
+        case Stage::SpecularChain:
+        case Stage::Indirect:
+            break;
+    }
+    return s;
+}
+
+}  // namespace
 
 void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
+    if (prepared.options.layers) {
+        render_layers(prepared, film, progress, "render", {"direct", "caustic", "indirect", "specular"},
+                      [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                          return radiance(prepared, ray, sampler, rays, &parts);
+                      });
+        return;
+    }
     render_pixels(prepared, film, progress, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
         return radiance(prepared, ray, sampler, rays);
     });
 }
 
-Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays) {
+Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+                             RadianceParts* parts) {
     const scene::Scene& scene = P.scene;
     Rgb L(0.0f), beta(1.0f);
+    // Adds a contribution to the radiance and, with `parts`, to its component.
+    const auto add = [&](Rgb c, Rgb RadianceParts::*part) {
+        L += c;
+        if (parts) parts->*part += c;
+    };
     bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
-    BsdfSampledFrom from{};       // the last vertex, when !specular_bounce
+    Stage stage = Stage::Camera;
+    BsdfSampledFrom from{};  // the last vertex, when !specular_bounce
     int depth = 0;
     shading::SurfaceWalk walk(P.accel);
     while (true) {
@@ -30,7 +94,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
-            if (specular_bounce || P.options.background_light) L += beta * scene.background;
+            if (specular_bounce || P.options.background_light)
+                add(beta * scene.background, found_part(stage));
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
@@ -38,22 +103,26 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
                 if (!specular_bounce)
                     w = warp::power_heuristic(from.pdf,
                                               P.lights.pmf(i) * P.lights[i].pdf_Li(from.p, dir, {}, {}));
-                L += beta * Le * w;
+                add(beta * Le * w, found_part(stage));
             }
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        L += seen_emission(P, hit, wo, beta, specular_bounce ? nullptr : &from);
+        const bool camera_chain = stage == Stage::Camera || stage == Stage::SpecularChain;
+        add(seen_emission(P, hit, wo, beta, camera_chain, specular_bounce ? nullptr : &from),
+            found_part(stage));
 
         if (depth++ == P.options.max_depth) break;
         const shading::Bsdf bsdf = P.bsdf(hit);
 
-        if (bsdf.has_non_specular()) L += beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true);
+        if (bsdf.has_non_specular())
+            add(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true), sampled_part(stage));
 
         const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2());
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
         beta *= bs->weight;
         specular_bounce = bs->is_specular();
+        stage = next_stage(stage, specular_bounce);
         from = {hit.p, bs->pdf};
         ray = accel::spawn_ray(hit, bs->wi);
         ++rays.bounce;

@@ -7,11 +7,19 @@
 
 namespace phos::integrators {
 
+struct RadianceParts;  // pixel_loop.h
+
 class PathIntegrator : public Integrator {
 public:
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
-    // Radiance arriving at the camera along `ray` (exposed for tests and other integrators).
-    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays);
+    // Radiance arriving at the camera along `ray` (exposed for tests and other integrators). With
+    // `parts`, also its split into components (pixel_loop.h) by the path's bounces: emission seen
+    // through delta bounces from the camera (and all a surface seen that way sends) is specular;
+    // at the first surface x seen directly, its emission, the light sampled at it and the emission
+    // its BSDF sample finds are direct, light found after x through delta bounces only is caustic,
+    // the rest indirect. --layers records them.
+    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+                        RadianceParts* parts = nullptr);
 };
 
 }  // namespace phos::integrators

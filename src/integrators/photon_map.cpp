@@ -112,8 +112,11 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
         P.stats.add_value(std::string(photon::map_name(m)) + " map",
                           std::to_string(maps.map[m].size()) + " photons from " +
                               std::to_string(maps.emitted[m]) + " emitted" +
-                              (traced.reached[m] ? "" : " (emission cap reached before the budget)"));
-        if (!traced.reached[m] && to.target[m] > 0)
+                              (traced.reached[m]      ? ""
+                               : P.lights.size() == 0 ? " (no lights)"
+                                                      : " (emission cap reached before the budget)"));
+        // Without lights nothing is emitted: the app's no-lights warning says so, not --max-emitted.
+        if (!traced.reached[m] && to.target[m] > 0 && P.lights.size() > 0)
             log::warn_once(std::string("pm-cap-") + photon::map_name(m),
                            std::string("photon map: the ") + photon::map_name(m) + " map got " +
                                std::to_string(maps.map[m].size()) + " of " + std::to_string(to.target[m]) +
@@ -147,17 +150,17 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
                                       Progress& progress) const {
     const PhotonMapOptions o = resolve(options_, P);
     const PhotonMapRadiance R(P, o, maps);
-    // Layers are created before the parallel loop (creation is not thread-safe).
-    film::Layer* layers[4] = {&film.layer("direct"), &film.layer("caustic"), &film.layer("indirect"),
-                              &film.layer("specular")};
+    if (P.options.layers) {
+        render_layers(P, film, progress, "photonmap", {"direct", "caustic", "indirect", "specular"},
+                      [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                          parts = R.camera_ray(ray, sampler, rays);
+                          return parts.total();
+                      });
+        return;
+    }
     render_samples(P, "photonmap", progress,
                    [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
-                       const RadianceParts parts = R.camera_ray(ray, sampler, rays);
-                       film.add_sample(x, y, parts.total());
-                       layers[0]->add(x, y, parts.direct);
-                       layers[1]->add(x, y, parts.caustic);
-                       layers[2]->add(x, y, parts.indirect);
-                       layers[3]->add(x, y, parts.specular);
+                       film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total());
                    });
 }
 

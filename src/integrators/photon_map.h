@@ -2,8 +2,8 @@
 // caustic and (for --fast-global) indirect maps; pass 2 renders each pixel sample by following
 // mirrors and glass from the camera and, at the first non-specular hit, adding direct light (shadow
 // rays), caustics (caustic map) and indirect light (final gather into the global map, optionally
-// through the precomputed irradiance cache). Components also go to the film layers "direct",
-// "caustic", "indirect" and "specular" (see docs/photon-mapping.md).
+// through the precomputed irradiance cache). With --layers the components also go to the film
+// layers "direct", "caustic", "indirect" and "specular" (see docs/photon-mapping.md).
 #pragma once
 
 #include <memory>

@@ -5,18 +5,11 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "integrators/photon_map.h"
+#include "integrators/pixel_loop.h"
 #include "integrators/prepared.h"
 #include "photon/estimate.h"
 
 namespace phos::integrators {
-
-// Radiance along a camera ray split by component. `specular` holds everything that reached the
-// camera after at least one mirror/glass (delta) bounce; the other three are what the first
-// surface seen directly reflects (emission seen directly counts as direct).
-struct RadianceParts {
-    Rgb direct{0.0f}, caustic{0.0f}, indirect{0.0f}, specular{0.0f};
-    Rgb total() const { return direct + caustic + indirect + specular; }
-};
 
 class PhotonMapRadiance {
 public:

@@ -10,27 +10,40 @@
 namespace phos::integrators {
 
 void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
+    if (prepared.options.layers) {
+        render_layers(prepared, film, progress, "render", {"direct", "specular"},
+                      [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                          return radiance(prepared, ray, sampler, rays, &parts);
+                      });
+        return;
+    }
     render_pixels(prepared, film, progress, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
         return radiance(prepared, ray, sampler, rays);
     });
 }
 
-Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays) {
+Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+                                RadianceParts* parts) {
     Rgb L(0.0f), beta(1.0f);
     shading::SurfaceWalk walk(P.accel);
     for (int depth = 0;; ++depth) {
+        // Adds a contribution to the radiance and, with `parts`, to its component.
+        const auto add = [&](Rgb c) {
+            L += c;
+            if (parts) (depth == 0 ? parts->direct : parts->specular) += c;
+        };
         accel::SurfaceHit hit;
         const shading::SurfaceWalk::Event event = walk.next(ray, hit);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            L += beta * (P.scene.background + P.escaped(normalize(ray.dir)));
+            add(beta * (P.scene.background + P.escaped(normalize(ray.dir))));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        L += seen_emission(P, hit, wo, beta);
+        add(seen_emission(P, hit, wo, beta));
 
         const shading::Bsdf bsdf = P.bsdf(hit);
-        if (bsdf.has_non_specular()) L += beta * sample_all_lights(P, hit, bsdf, wo, sampler, rays);
+        if (bsdf.has_non_specular()) add(beta * sample_all_lights(P, hit, bsdf, wo, sampler, rays));
         // Recurse through mirrors and glass (sample_lobes selects by kind: kSpecular = mirror,
         // kTransmission = dielectric).
         constexpr uint32_t kRecurse = shading::kSpecular | shading::kTransmission;

@@ -7,10 +7,16 @@
 
 namespace phos::integrators {
 
+struct RadianceParts;  // pixel_loop.h
+
 class WhittedIntegrator : public Integrator {
 public:
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
-    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays);
+    // Radiance arriving at the camera along `ray`. With `parts`, also its split into components
+    // (pixel_loop.h): what the first surface seen sends by its own emission and light sampling is
+    // direct, everything found through the recursion (mirrors and glass) specular.
+    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+                        RadianceParts* parts = nullptr);
 };
 
 }  // namespace phos::integrators

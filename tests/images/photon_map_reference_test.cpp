@@ -31,6 +31,7 @@ Render render_pm(const std::string& scene_name, int size, int spp, const integra
     opt.width = opt.height = size;
     opt.spp = spp;
     opt.seed = seed;
+    opt.layers = true;  // the tests read the component layers
     Stats stats;
     integrators::Prepared prepared(s, opt, {}, stats);
     Render r{Image{}, film::Film(size, size)};

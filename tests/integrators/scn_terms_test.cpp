@@ -115,5 +115,24 @@ TEST(ScnTerms, NotSeenAfterADiffuseBounce) {
     }
 }
 
+TEST(ScnTerms, NotSeenThroughAMirrorAfterADiffuseBounce) {
+    // The front glows and is diffuse; behind the camera a mirror shows it to itself. Path tracing
+    // reaches the glow again by diffuse-then-mirror paths: the glow is "not a light", so they must
+    // add nothing and every integrator sees just the front's own terms.
+    scene::Material lit;
+    lit.diffuse = Rgb(0.8f);
+    lit.ambient = Rgb(0.4f);
+    lit.emission = Rgb(0.1f);
+    scene::Scene s = scene_with_front(lit);
+    s.materials[1] = scene::Material{};
+    s.materials[1].specular = Rgb(1.0f);
+    s.materials[1].shininess = scene::Material::kMirrorShininess;
+    for (const char* name : kIntegrators) {
+        const Rgb with = mean_pixel(name, s, true);
+        EXPECT_NEAR(with.r, 0.4f + 0.1f, 1e-5f) << name;
+        EXPECT_NEAR(with.b, 0.1f + 0.1f, 1e-5f) << name;
+    }
+}
+
 }  // namespace
 }  // namespace phos::integrators
