@@ -73,7 +73,7 @@ void render_aovs(const Prepared& P, film::Film& film) {
         if (std::find(valid.begin(), valid.end(), name) == valid.end()) {
             std::string list;
             for (const std::string& v : valid) list += (list.empty() ? "" : ", ") + v;
-            throw InputError("--aov: '" + name + "' is not one of " + list);
+            throw InputError("unknown auxiliary image '" + name + "' (known: " + list + ")");
         }
         // Layers are created before the parallel loop (creation is not thread-safe).
         film::Layer& layer = film.layer(name);

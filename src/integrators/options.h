@@ -16,11 +16,12 @@ struct RenderOptions {
     int height = 512;
     int spp = 16;  // samples per pixel (iterations for progressive integrators)
     uint64_t seed = 0;
-    int max_depth = 16;             // path segments from the camera
-    int dof_samples = 1;            // lens samples per pixel sample (--dof)
-    float lens_radius = -1;         // --dof aperture radius; < 0: the scene camera's own lens
-    float focal_distance = 1;       // --dof focal distance (with lens_radius >= 0)
-    bool ambient = false;           // add ka * ambient at the first hit (.scn legacy look)
+    int max_depth = 16;        // path segments from the camera
+    int dof_samples = 1;       // lens samples per pixel sample (--dof)
+    float lens_radius = -1;    // --dof aperture radius; < 0: the scene camera's own lens
+    float focal_distance = 1;  // --dof focal distance (with lens_radius >= 0)
+    bool ambient =
+        false;  // ka * ambient seen, like the glow e, by camera rays and after mirror/glass bounces
     bool background_light = false;  // the background lights diffuse surfaces too
     bool layers = false;            // --layers: integrators record their component layers
     std::vector<std::string> aovs;  // --aov: auxiliary images (albedo, normal, depth)

@@ -43,27 +43,8 @@ bool has_delta_materials(const scene::Scene& scene) {
 
 }  // namespace
 
-void PhotonMapOptions::validate() const {
-    const std::pair<const char*, const PhotonMapSettings*> maps[] = {
-        {"global", &global}, {"caustic", &caustic}, {"indirect", &indirect}};
-    for (const auto& [name, s] : maps) {
-        const std::string n = name;
-        if (s->samples == 0) throw InputError("--" + n + "-samples must be at least 1");
-        if (!(s->radius >= 0) || !std::isfinite(s->radius))
-            throw InputError("--" + n + "-radius must be >= 0");
-        if (s->filter == photon::FilterKind::Cone && !(s->cone_k >= 1))
-            throw InputError("--" + n + "-cone-k must be >= 1");
-    }
-    if (max_photon_depth < 0) throw InputError("--max-photon-depth must be >= 0");
-    if (gather_rays < 1) throw InputError("--gather-rays must be at least 1");
-    if (cache_stride < 1) throw InputError("--irradiance-cache-stride must be at least 1");
-    if (!(normal_cos >= -1 && normal_cos <= 1))
-        throw InputError("photon normal test cosine must be in [-1, 1]");
-}
-
-PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options) : options_(options) {
-    options_.validate();
-}
+// The options arrive validated against their table (integrators/factory.cpp).
+PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options) : options_(options) {}
 
 PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     const PhotonMapOptions o = resolve(options_, P);

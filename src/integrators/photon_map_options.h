@@ -39,9 +39,6 @@ struct PhotonMapOptions {
     float flatness = 0.2f;            // surface test: max |h| / d off the tangent plane
     // Components (the --no-* switches clear them).
     bool direct = true, caustics = true, indirect_light = true, specular = true, transmissive = true;
-
-    // Throws InputError for values that make no sense (k = 0, negative radius, cone k < 1...).
-    void validate() const;
 };
 
 // The "Photon map" option table over PhotonMapOptions.

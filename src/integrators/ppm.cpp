@@ -1,9 +1,14 @@
-// PPM's orchestration: the single eye pass, then photon passes with grid rebuilds (radii shrink).
+// PPM's orchestration, one screen (Hachisuka, Ogaki & Jensen 2008): a single eye pass stores hit
+// points with their direct light, then each iteration is a photon pass over the hit-point grid
+// (rebuilt as the radii shrink) and the per-point update of N, R², τ (radius reduction and flux
+// correction, sppm_pixel_stats.h); the pixel value is the mean over its hit points of direct
+// light + τ / (π R² N_emitted).
 #include "integrators/ppm.h"
 
 #include <tbb/parallel_for.h>
 
 #include "integrators/pixel_loop.h"
+#include "integrators/progressive_budget.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
 
@@ -14,7 +19,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const RenderOptions& ro = P.options;
     const int eye = std::max(1, opt_.eye_samples);
     const size_t slots = size_t(ro.width) * size_t(ro.height) * size_t(eye);
-    film::ProgressiveState state = start_state(P, opt_, "ppm", uint32_t(eye));
+    ProgressiveState state = start_state(P, opt_, "ppm", uint32_t(eye));
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
     const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kPpmDirectSamples;
@@ -32,7 +37,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                 ++rays.camera;
                 const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
-                film::SlotStats& st = state.slots[i];
+                PixelStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
                 if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
             }
@@ -42,16 +47,22 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const uint64_t photons = photons_per_iteration(opt_);
     PhotonAccumulator acc(slots);
     photon::HitPointGrid grid;
-    auto iterate = [&](uint64_t it) {
+    auto resolve_film = [&] { resolve(state.slots, eye, 1.0, state.photons_emitted, film, ro.layers); };
+
+    ProgressiveBudget budget(ro, opt_, state, film, progress);
+    while (budget.next()) {
+        // Photon pass: photons within each hit point's current radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);
         RayCounts prays;
-        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
+        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, state.iterations, photons);
         P.stats.add_rays(prays);
+        // Update: N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + Φ) R²_new/R²_old.
         state.photons_emitted += photons;
         acc.update(state.slots, vps, opt_.alpha);
-    };
-    auto resolve_fn = [&](film::Film& f) { resolve(state.slots, eye, 1.0, state.photons_emitted, f); };
-    run_loop(P, opt_, state, film, progress, iterate, resolve_fn);
+        budget.after_iteration(resolve_film);
+    }
+    resolve_film();
+    budget.finish();
     P.stats.add_value("ppm", std::to_string(state.iterations) + " iterations, " +
                                  std::to_string(state.photons_emitted) + " photons");
 }

@@ -1,7 +1,7 @@
 // Progressive photon mapping (Hachisuka, Ogaki & Jensen 2008): one eye pass stores hit points
 // (eye_samples per pixel) at the first non-specular surface, with direct light computed there once
 // by `direct_samples` shadow-ray samples; then photon passes refine each hit point's radius and
-// flux (see sppm_core.h for the update). Photons carry only indirect light.
+// flux (see sppm_pixel_stats.h for the update). Photons carry only indirect light.
 #pragma once
 
 #include "integrators/integrator.h"

@@ -13,8 +13,8 @@
 #include <string>
 
 #include "core/option_table.h"
-#include "film/checkpoint.h"
 #include "film/film.h"
+#include "integrators/progressive_checkpoint.h"
 
 namespace phos::integrators {
 
@@ -42,11 +42,13 @@ struct ProgressiveOptions {
     std::string resume_path;      // --resume FILE (the app loads it into `resume`)
 
     // Hooks (set by the application, not the CLI parser).
-    std::function<void(const film::Film& film)> on_preview;                  // every write_every seconds
-    std::function<void(const film::ProgressiveState& state)> on_checkpoint;  // every checkpoint_every
-    std::shared_ptr<const film::ProgressiveState> resume;                    // state to continue from
+    std::function<void(const film::Film& film)> on_preview;            // every write_every seconds
+    std::function<void(const ProgressiveState& state)> on_checkpoint;  // every checkpoint_every
+    std::shared_ptr<const ProgressiveState> resume;                    // state to continue from
     // Filled by the application: the render's identity stored in checkpoints (scene hash...).
-    film::ProgressiveState identity;
+    // The app fills identity.options (the image-changing options by flag and value); the
+    // integrator sets identity.options_hash from it.
+    ProgressiveState identity;
     // Out: the number of iterations actually completed (for -v and tests).
     std::shared_ptr<uint64_t> iterations_done = std::make_shared<uint64_t>(0);
 };

@@ -1,9 +1,12 @@
-// SPPM's orchestration: eye pass, hit-point grid, photon pass, update, once per iteration.
+// SPPM's orchestration, one screen: per iteration an eye pass (visible points, direct light), the
+// hit-point grid, a photon pass, and the per-pixel update of N, R², τ (Hachisuka & Jensen 2009,
+// eq. 9-11, sppm_pixel_stats.h); the pixel value is eq. 12 plus the direct-light average.
 #include "integrators/sppm.h"
 
 #include <tbb/parallel_for.h>
 
 #include "film/tiles.h"
+#include "integrators/progressive_budget.h"
 #include "integrators/sppm_core.h"
 
 namespace phos::integrators {
@@ -12,7 +15,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
-    film::ProgressiveState state = start_state(P, opt_, "sppm", 1);
+    ProgressiveState state = start_state(P, opt_, "sppm", 1);
 
     const uint64_t photons = photons_per_iteration(opt_);
     const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kSppmDirectSamples;
@@ -30,9 +33,17 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     PhotonAccumulator acc(pixels);
     photon::HitPointGrid grid;
     const auto tiles = film::make_tiles(ro.width, ro.height);
+    // Pixel = direct sum / iterations + τ / (π R² N_emitted).
+    auto resolve_film = [&] {
+        resolve(state.slots, 1, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
+                state.photons_emitted, film, ro.layers);
+    };
 
-    auto iterate = [&](uint64_t it) {
-        // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration).
+    ProgressiveBudget budget(ro, opt_, state, film, progress);
+    while (budget.next()) {
+        const uint64_t it = state.iterations;
+        // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration); its
+        // emission and direct light add to the pixel's direct sum.
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
             const film::Tile& tile = tiles[t];
             RayCounts rays;
@@ -45,8 +56,8 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                     const accel::Ray ray =
                         P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                     ++rays.camera;
-                    const Rgb L = sppm::trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
-                    film::SlotStats& st = state.slots[i];
+                    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
+                    PixelStats& st = state.slots[i];
                     if (L.is_finite())
                         for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);
                     if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
@@ -57,24 +68,26 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
             for (size_t i = 0; i < pixels; ++i)
                 if (vps[i].bsdf) state.slots[i].r2 *= pilot.max_scale;
+
+        // Photon pass: photons within each visible point's radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);
         RayCounts prays;
         prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
         P.stats.add_rays(prays);
+
         if (is_pilot) {
             // The pilot: its photons choose the radii, then are dropped (not in N_emitted either);
             // its direct light is kept. A resumed run has it behind it (r2 is in the checkpoint).
             acc.pilot(state.slots, vps, pilot);
-            return;
+        } else {
+            // Update: N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old (eq. 9-11).
+            state.photons_emitted += photons;
+            acc.update(state.slots, vps, opt_.alpha);
         }
-        state.photons_emitted += photons;
-        acc.update(state.slots, vps, opt_.alpha);
-    };
-    auto resolve_fn = [&](film::Film& f) {
-        resolve(state.slots, 1, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
-                state.photons_emitted, f);
-    };
-    run_loop(P, opt_, state, film, progress, iterate, resolve_fn);
+        budget.after_iteration(resolve_film);
+    }
+    resolve_film();
+    budget.finish();
     P.stats.add_value("sppm", std::to_string(state.iterations) + " iterations, " +
                                   std::to_string(state.photons_emitted) + " photons");
 }

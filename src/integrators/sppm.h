@@ -2,7 +2,7 @@
 // stochastic eye pass (random position in the pixel, lens sample, random specular choices) finds
 // one visible point per pixel, direct light is sampled there by shadow rays, then a photon pass
 // adds photons to the visible points within the pixel's shrinking radius. Per-pixel statistics
-// (N, R, τ, direct sum) are shared by all iterations; see sppm_core.h for the estimator.
+// (N, R, τ, direct sum) are shared by all iterations; see sppm_pixel_stats.h for the estimator.
 #pragma once
 
 #include "integrators/integrator.h"
@@ -22,7 +22,7 @@ private:
 // Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
 constexpr float kDefaultRadiusPixels = 4.0f;
 // Photons a pixel's disc should hold after the pilot pass (--radius-photons, see PilotRadius in
-// sppm_core.h), and the bounds of that per-pixel radius in pixel footprints.
+// sppm_pixel_stats.h), and the bounds of that per-pixel radius in pixel footprints.
 constexpr double kDefaultRadiusPhotons = 64;
 constexpr double kPilotRadiusMinPixels = 1, kPilotRadiusMaxPixels = 8;
 // Light samples per visible point per iteration (--direct-samples). One leaves the direct light's

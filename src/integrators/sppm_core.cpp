@@ -6,32 +6,63 @@
 #include <tbb/task_arena.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "core/error.h"
+#include "core/log.h"
 #include "integrators/direct_light.h"
+#include "integrators/progressive_budget.h"
 #include "photon/photon_path.h"
 
 namespace phos::integrators::sppm {
 
 using shading::Bsdf;
 
-film::ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
-                                   uint32_t slots_per_pixel) {
+namespace {
+// "2.40e6": a photon count for a message.
+std::string photons_text(uint64_t n) {
+    char buf[32];
+    std::snprintf(buf, sizeof(buf), "%.2e", double(n));
+    std::string s = buf;
+    const size_t e = s.find('e');
+    size_t digits = e + 1;
+    if (s[digits] == '+')
+        s.erase(digits, 1);
+    else if (s[digits] == '-')
+        ++digits;
+    while (s.size() > digits + 1 && s[digits] == '0') s.erase(digits, 1);
+    return s;
+}
+}  // namespace
+
+ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
+                             uint32_t slots_per_pixel) {
     const RenderOptions& ro = P.options;
-    film::ProgressiveState state = opt.identity;
+    ProgressiveState state = opt.identity;
     state.integrator = integrator;
     state.width = uint32_t(ro.width);
     state.height = uint32_t(ro.height);
     state.slots_per_pixel = slots_per_pixel;
     state.seed = ro.seed;
+    if (!state.options.empty()) state.options_hash = hash_options(state.options);
+    const uint64_t target = uint64_t(std::max(1, ro.spp));
     if (opt.resume) {
-        film::check_resumable(*opt.resume, state, opt.resume_path);
+        check_resumable(*opt.resume, state, opt.resume_path);
         state = *opt.resume;
+        const std::string done = std::to_string(state.iterations);
+        const bool counted = target < kUnboundedIterations && state.iterations <= target;
+        log::info("resuming " + state.integrator + " render from " + opt.resume_path + ": " + done +
+                  (counted ? " of " + std::to_string(target) : "") + " iterations done, " +
+                  photons_text(state.photons_emitted) + " photons");
+        if (state.iterations > target)
+            log::warn("checkpoint " + opt.resume_path + " already holds " + done +
+                      " iterations, more than the " + std::to_string(target) + " asked: the image is the " +
+                      done + "-iteration one (no further iterations run)");
     } else {
         state.slots.assign(size_t(ro.width) * size_t(ro.height) * slots_per_pixel, {});
     }
-    state.target_iterations = uint64_t(std::max(1, ro.spp));
-    if (!(opt.alpha > 0 && opt.alpha <= 1)) throw InputError("--alpha must be in (0, 1]");
+    state.target_iterations = target;
     return state;
 }
 
@@ -149,32 +180,26 @@ void PhotonAccumulator::drain(F&& f) {
     });
 }
 
-void PhotonAccumulator::pilot(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
+void PhotonAccumulator::pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,
                               const PilotRadius& a) {
     drain([&](size_t i, uint64_t m, const int64_t*) {
         if (vps[i].bsdf) stats[i].r2 = pilot_r2(a, stats[i].r2, m);
     });
 }
 
-void PhotonAccumulator::update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
+void PhotonAccumulator::update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,
                                float alpha) {
     drain([&](size_t i, uint64_t m, const int64_t* sum) {
         if (m == 0 || !vps[i].bsdf) return;
-        double phi[3];
-        for (int k = 0; k < 3; ++k) phi[k] = double(sum[k]) / scale_;
-        film::SlotStats& st = stats[i];
-        const double n_new = st.n + double(alpha) * double(m);
-        const double r2_new = st.r2 * n_new / (st.n + double(m));
-        const double shrink = r2_new / st.r2;
         const Rgb& beta = vps[i].beta;
-        for (int k = 0; k < 3; ++k) st.tau[k] = (st.tau[k] + double(beta[k]) * phi[k]) * shrink;
-        st.n = n_new;
-        st.r2 = r2_new;
+        double phi[3];  // β Φ_i: the flux the camera path carries to the pixel
+        for (int k = 0; k < 3; ++k) phi[k] = double(beta[k]) * (double(sum[k]) / scale_);
+        progressive_update(stats[i], m, phi, double(alpha));
     });
 }
 
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
-                const std::vector<film::SlotStats>& stats) {
+                const std::vector<PixelStats>& stats) {
     std::vector<Vec3> pos(vps.size());
     std::vector<float> r2(vps.size(), 0.0f);
     for (size_t i = 0; i < vps.size(); ++i)
@@ -185,56 +210,38 @@ void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps
     grid.build(pos, r2);
 }
 
-void resolve(const std::vector<film::SlotStats>& stats, int slots_per_pixel, double direct_scale,
-             uint64_t photons_emitted, film::Film& film) {
+void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double direct_scale,
+             uint64_t photons_emitted, film::Film& film, bool layers) {
     const int w = film.width(), h = film.height();
     const double inv_photons = photons_emitted > 0 ? 1.0 / double(photons_emitted) : 0.0;
+    // Layers are created here, before the parallel loop (Film::layer is not thread-safe).
+    film::Layer* direct_layer = layers ? &film.layer("direct") : nullptr;
+    film::Layer* indirect_layer = layers ? &film.layer("indirect") : nullptr;
     tbb::parallel_for(0, h, [&](int y) {
         for (int x = 0; x < w; ++x) {
-            double sum[3] = {0, 0, 0};
+            double sum[3] = {0, 0, 0}, direct[3] = {0, 0, 0}, indirect[3] = {0, 0, 0};
             for (int s = 0; s < slots_per_pixel; ++s) {
-                const film::SlotStats& st =
+                const PixelStats& st =
                     stats[(size_t(y) * size_t(w) + size_t(x)) * size_t(slots_per_pixel) + size_t(s)];
-                const double k = st.r2 > 0 ? inv_photons / (M_PI * st.r2) : 0.0;
-                for (int c = 0; c < 3; ++c) sum[c] += st.direct[c] * direct_scale + st.tau[c] * k;
+                const double k = radiance_scale(st.r2, inv_photons);  // eq. 12
+                for (int c = 0; c < 3; ++c) {
+                    const double d = st.direct[c] * direct_scale, l = st.tau[c] * k;
+                    sum[c] += d + l;
+                    direct[c] += d;
+                    indirect[c] += l;
+                }
             }
             const double inv = 1.0 / slots_per_pixel;
-            film.set_pixel(x, y, Rgb(float(sum[0] * inv), float(sum[1] * inv), float(sum[2] * inv)));
+            auto mean = [&](const double* v) {
+                return Rgb(float(v[0] * inv), float(v[1] * inv), float(v[2] * inv));
+            };
+            film.set_pixel(x, y, mean(sum));
+            if (direct_layer) {
+                direct_layer->set(x, y, mean(direct));
+                indirect_layer->set(x, y, mean(indirect));
+            }
         }
     });
-}
-
-void run_loop(const Prepared& P, const ProgressiveOptions& opt, film::ProgressiveState& state,
-              film::Film& film, Progress& progress, const std::function<void(uint64_t)>& iterate,
-              const std::function<void(film::Film&)>& resolve_fn) {
-    using clock = std::chrono::steady_clock;
-    const auto t0 = opt.clock_start.value_or(clock::now());
-    auto last_preview = clock::now();
-    const uint64_t target = uint64_t(std::max(1, P.options.spp));
-    uint64_t last_checkpoint = state.iterations;
-    progress.start(state.integrator, target > state.iterations ? target - state.iterations : 0);
-    while (state.iterations < target) {
-        iterate(state.iterations);
-        ++state.iterations;
-        progress.advance();
-        if (opt.on_checkpoint && opt.checkpoint_every > 0 &&
-            state.iterations % uint64_t(opt.checkpoint_every) == 0) {
-            opt.on_checkpoint(state);
-            last_checkpoint = state.iterations;
-        }
-        const auto now = clock::now();
-        if (opt.time > 0 && std::chrono::duration<double>(now - t0).count() >= opt.time) break;
-        if (opt.on_preview && opt.write_every > 0 &&
-            std::chrono::duration<double>(now - last_preview).count() >= opt.write_every) {
-            resolve_fn(film);
-            opt.on_preview(film);
-            last_preview = clock::now();
-        }
-    }
-    progress.finish();
-    resolve_fn(film);
-    if (opt.on_checkpoint && last_checkpoint != state.iterations) opt.on_checkpoint(state);
-    if (opt.iterations_done) *opt.iterations_done = state.iterations;
 }
 
 }  // namespace phos::integrators::sppm

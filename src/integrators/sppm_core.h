@@ -1,13 +1,8 @@
 // The parts PPM and SPPM share: the eye path to a visible point, the photon pass that splats
-// photons into the hit points' integer accumulators, the progressive radius/flux update, the final
-// pixel estimate, and the budget loop (iterations, time, previews, checkpoints).
-//
-// Estimator (Hachisuka & Jensen 2009, eq. 9-12): per hit point i, after an iteration with M_i new
-// photons and flux sum Φ_i = Σ f(wo, wi_p) Φ_p,
-//   N_{i+1} = N_i + α M_i,   R²_{i+1} = R²_i (N_i + α M_i) / (N_i + M_i),
-//   τ_{i+1} = (τ_i + β_i Φ_i) R²_{i+1} / R²_i,
-// and the indirect radiance is τ / (π R² N_emitted). Photon powers are flux × (photons emitted in
-// a pass), so N_emitted counts every photon emitted over all iterations.
+// photons into the hit points' integer accumulators, the per-point update (whose equations,
+// Hachisuka & Jensen 2009 eq. 9-12, are in sppm_pixel_stats.h), the final pixel estimate, and the
+// start of a render (fresh or resumed). The iteration loop itself is in ppm.cpp and sppm.cpp, with
+// progressive_budget.h keeping its count, time, previews and checkpoints.
 //
 // Determinism: Φ_i and M_i are sums in 64-bit fixed point (integer atomics), exact and
 // order-independent, so the result is bit-identical for any thread count.
@@ -15,18 +10,16 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
-#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "core/progress.h"
 #include "core/rng.h"
-#include "film/checkpoint.h"
 #include "film/film.h"
 #include "integrators/prepared.h"
+#include "integrators/progressive_checkpoint.h"
 #include "integrators/progressive_options.h"
+#include "integrators/sppm_pixel_stats.h"
 #include "photon/hitpoint_grid.h"
 #include "shading/bsdf.h"
 
@@ -67,31 +60,11 @@ struct InitialRadius {
 };
 
 // The state a progressive render starts from: a fresh one (`slots_per_pixel` slots per pixel) for
-// `integrator`, or the checkpoint being resumed after checking it is the same render. Also
-// validates --alpha and records the requested iteration count.
-film::ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
-                                   uint32_t slots_per_pixel);
-
-// Per-pixel initial radius from a pilot photon pass (--radius-photons): the first iteration's
-// photons only count how many fall in each visible point's largest allowed disc, R₀² max_scale
-// (M_p; R₀ the automatic radius); the point's radius becomes the disc that would hold ~k photons,
-// R² = R₀² max_scale clamp(k / M_p) within [min_scale, max_scale] R₀² (M_p = 0: R₀ kept). Counting
-// in the largest disc keeps a dim point next to a caustic from choosing a disc that reaches into
-// it. The pilot's photons are then discarded (N = τ = 0, not counted in N_emitted): the radius is
-// independent of the photons the estimate uses, so choosing it adds no bias of its own (reusing
-// them, with a radius picked so they number ~k, inflated sparse caustics by ~20 %). Bright
-// caustics get small discs (less blur), dim diffuse regions large ones (less noise).
-struct PilotRadius {
-    double k = 0;                         // target photons per disc (0 = no pilot)
-    double min_scale = 1, max_scale = 1;  // bounds on R²/R₀²
-};
-
-// The radius a point keeps after the pilot: r2 is the pilot's gathering disc (R₀² max_scale) and
-// m the photons it held.
-inline double pilot_r2(const PilotRadius& a, double r2, uint64_t m) {
-    if (m == 0) return r2 / a.max_scale;
-    return r2 * std::clamp(a.k / double(m), a.min_scale / a.max_scale, 1.0);
-}
+// `integrator`, or the checkpoint being resumed after checking it is the same render (and saying
+// what is resumed; a warning when it already holds more iterations than asked). Records the
+// requested iteration count and the options hash. The options arrive validated (factory.cpp).
+ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
+                             uint32_t slots_per_pixel);
 
 // What the photon pass reads of a visible point, compact (44 bytes) so the per-photon loop touches
 // one cache line per matched point instead of a whole VisiblePoint with its Bsdf.
@@ -115,12 +88,12 @@ public:
     // shadow rays). Returns the number of photon rays traced.
     uint64_t photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
                          const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass, uint64_t count);
-    // Applies the progressive update to `stats` (one per visible point) and clears the sums.
-    void update(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
+    // Applies progressive_update (eq. 9-11) to `stats` (one per visible point) with each point's
+    // M_i and β Φ_i, and clears the sums.
+    void update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
     // The pilot pass instead of update(): sets each visible point's r2 (the pilot's gathering disc)
     // by pilot_r2 from the photon count alone and clears the sums; N and τ stay 0 (see PilotRadius).
-    void pilot(std::vector<film::SlotStats>& stats, const std::vector<VisiblePoint>& vps,
-               const PilotRadius& a);
+    void pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, const PilotRadius& a);
 
 private:
     template <class F>
@@ -143,18 +116,12 @@ private:
 
 // Builds the grid over the visible points with their current radii.
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
-                const std::vector<film::SlotStats>& stats);
+                const std::vector<PixelStats>& stats);
 
 // Final radiance of each pixel: mean over its `slots_per_pixel` slots of
-// direct × direct_scale + τ / (π R² N_emitted).
-void resolve(const std::vector<film::SlotStats>& stats, int slots_per_pixel, double direct_scale,
-             uint64_t photons_emitted, film::Film& film);
-
-// Runs iterations state.iterations+1 ... until P.options.spp are done or `opt.time` has passed,
-// calling iterate(i) for iteration i (0-based), resolve_fn(film) for previews and at the end, and
-// the checkpoint hook every opt.checkpoint_every iterations and at the end.
-void run_loop(const Prepared& P, const ProgressiveOptions& opt, film::ProgressiveState& state,
-              film::Film& film, Progress& progress, const std::function<void(uint64_t)>& iterate,
-              const std::function<void(film::Film&)>& resolve_fn);
+// direct × direct_scale + τ / (π R² N_emitted) (eq. 12). With `layers`, also the film layers
+// "direct" (the first term) and "indirect" (the photon estimate), which sum to the image.
+void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double direct_scale,
+             uint64_t photons_emitted, film::Film& film, bool layers);
 
 }  // namespace phos::integrators::sppm

@@ -1,6 +1,8 @@
 // Checkpoint and resume of progressive renders through the phos binary: a render killed with
 // SIGKILL mid-way and resumed from its last checkpoint writes exactly the bytes of an uninterrupted
-// render with the same total iterations; corrupt, truncated or foreign checkpoints exit 2.
+// render with the same total iterations; corrupt, truncated or foreign checkpoints exit 2; a
+// resume says what it continues, and warns when the checkpoint already holds more iterations than
+// asked.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -10,7 +12,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "film/checkpoint.h"
+#include "integrators/progressive_checkpoint.h"
 #include "test_util.h"
 
 namespace phos::testing {
@@ -43,7 +45,7 @@ TEST(Resume, KilledRenderResumesToTheSameImage) {
     waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFSIGNALED(status)) << "the render finished before it could be killed";
     EXPECT_FALSE(std::filesystem::exists(dir.file("killed.pfm")));
-    const film::ProgressiveState saved = film::load_checkpoint(ckpt);
+    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
     EXPECT_GT(saved.iterations, 0u);
     EXPECT_LT(saved.iterations, 40u);
     std::printf("killed after checkpoint of iteration %llu\n",
@@ -80,7 +82,8 @@ TEST(Resume, BadCheckpointsAreRefusedWithExit2) {
              {kScene + kArgs + " --resume " + dir.file("missing.ckpt"), "cannot open"},
              {kScene + kArgs + " --resume " + kScene, "not a phos checkpoint"},
              {other_scene + kArgs + " --resume " + ckpt, "scene file contents"},
-             {kScene + kArgs + " --alpha 0.5 --resume " + ckpt, "render options"},
+             {kScene + kArgs + " --alpha 0.5 --resume " + ckpt,
+              "option --alpha differs: checkpoint 0.7, now 0.5"},
              {kScene +
                   " --integrator sppm --width 32 --height 64 --photons-per-iter 30000 --seed 5 --resume " +
                   ckpt,
@@ -109,6 +112,39 @@ TEST(Resume, TimeBudgetAndPreviews) {
     EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
     const auto bad = run_phos("render " + kScene + " --integrator path --time 2 -o " + out);
     EXPECT_EQ(bad.exit_code, 2);
+}
+
+TEST(Resume, SaysWhatIsResumedAndWarnsWhenAskedForFewer) {
+    TempDir dir;
+    const std::string ckpt = dir.file("c.ckpt");
+    const std::string args = " --integrator sppm --width 32 --height 32 --photons-per-iter 30000 --seed 5";
+    ASSERT_EQ(run_phos("render " + kScene + args + " --iterations 4 -q --checkpoint " + ckpt + " -o " +
+                       dir.file("four.pfm"))
+                  .exit_code,
+              0);
+    // More iterations: it says where it starts from (sppm's first iteration is the pilot, whose
+    // photons are not counted: 3 x 30000 photons).
+    const auto more = run_phos("render " + kScene + args + " --iterations 6 --resume " + ckpt + " -o " +
+                               dir.file("six.pfm"));
+    ASSERT_EQ(more.exit_code, 0) << more.output;
+    EXPECT_NE(
+        more.output.find("resuming sppm render from " + ckpt + ": 4 of 6 iterations done, 9.00e4 photons"),
+        std::string::npos)
+        << more.output;
+    const auto quiet = run_phos("render " + kScene + args + " --iterations 6 -q --resume " + ckpt + " -o " +
+                                dir.file("six.pfm"));
+    EXPECT_EQ(quiet.exit_code, 0);
+    EXPECT_EQ(quiet.output, "");
+    // Fewer: a clear warning, and the image is the checkpoint's 4-iteration one.
+    const auto fewer = run_phos("render " + kScene + args + " --iterations 2 --resume " + ckpt + " -o " +
+                                dir.file("two.pfm"));
+    ASSERT_EQ(fewer.exit_code, 0) << fewer.output;
+    EXPECT_NE(fewer.output.find("warning: checkpoint " + ckpt +
+                                " already holds 4 iterations, more than the 2 asked: the image is the "
+                                "4-iteration one (no further iterations run)"),
+              std::string::npos)
+        << fewer.output;
+    EXPECT_EQ(read_bytes(dir.file("two.pfm")), read_bytes(dir.file("four.pfm")));
 }
 
 }  // namespace

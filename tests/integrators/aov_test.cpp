@@ -164,7 +164,7 @@ TEST(Aov, OnlyTheRequestedLayersAndValidNames) {
         render(s, {"albedo", "colour"});
         ADD_FAILURE() << "no error for an unknown AOV";
     } catch (const InputError& e) {
-        EXPECT_EQ(std::string(e.what()), "--aov: 'colour' is not one of albedo, normal, depth");
+        EXPECT_EQ(std::string(e.what()), "unknown auxiliary image 'colour' (known: albedo, normal, depth)");
     }
 }
 

@@ -17,7 +17,7 @@
 #include "app/lib/diff_command.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
-#include "film/checkpoint.h"
+#include "integrators/progressive_checkpoint.h"
 
 namespace phos::app {
 namespace {
@@ -300,7 +300,7 @@ int run_cli(int argc, char** argv) {
                 if (resume.empty())
                     throw InputError(
                         "render: give a scene file (or --resume CHECKPOINT to continue a render)");
-                const film::ProgressiveState saved = film::load_checkpoint(resume);
+                const integrators::ProgressiveState saved = integrators::load_checkpoint(resume);
                 if (saved.command_line.empty())
                     throw InputError("checkpoint " + resume + ": it does not record its render's arguments");
                 render_args = merge_arguments(*render, saved.command_line, render_args);

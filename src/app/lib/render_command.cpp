@@ -17,10 +17,11 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/stats.h"
-#include "film/checkpoint.h"
 #include "film/film.h"
+#include "integrators/aov.h"
 #include "integrators/factory.h"
 #include "integrators/prepared.h"
+#include "integrators/progressive_checkpoint.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
 #include "scene/emission_lights.h"
@@ -197,25 +198,26 @@ void setup_progressive(RenderCommand& cmd, const std::string& output) {
     if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
 
     // The render's identity: scene bytes and every option that changes the image.
-    film::ProgressiveState& id = p.identity;
+    integrators::ProgressiveState& id = p.identity;
     {
         std::ifstream f(cmd.scene_path, std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-        id.scene_hash = film::hash_bytes(bytes.data(), bytes.size());
+        id.scene_hash = integrators::hash_bytes(bytes.data(), bytes.size());
     }
-    std::string listed;
-    for (const auto& [name, value] : image_options(cmd)) listed += name + "=" + value + "\n";
-    id.options_hash = film::hash_bytes(listed.data(), listed.size());
+    id.options = image_options(cmd);  // named in the message when a resume does not match
     id.command_line = cmd.command_line;
 
     if (!p.resume_path.empty()) {
-        auto saved = std::make_shared<film::ProgressiveState>(film::load_checkpoint(p.resume_path));
+        auto saved =
+            std::make_shared<integrators::ProgressiveState>(integrators::load_checkpoint(p.resume_path));
         if (!count_given && p.time <= 0) opt.spp = int(std::min<uint64_t>(saved->target_iterations, 1 << 30));
         p.resume = saved;
     }
     if (!p.checkpoint_path.empty()) {
         const std::string path = p.checkpoint_path;
-        p.on_checkpoint = [path](const film::ProgressiveState& s) { film::save_checkpoint(path, s); };
+        p.on_checkpoint = [path](const integrators::ProgressiveState& s) {
+            integrators::save_checkpoint(path, s);
+        };
     }
     if (p.write_every > 0) {
         const float exposure = cmd.run.exposure;
@@ -321,10 +323,14 @@ void run_render(const RenderCommand& command) {
 
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
-    Progress progress(bar && !cmd.run.quiet);
+    Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet));
     {
         ScopedTimer t(stats, "render");
         integrator->render(*prepared, film, progress);
+    }
+    if (!opt.aovs.empty()) {
+        ScopedTimer t(stats, "aov");
+        integrators::render_aovs(*prepared, film);
     }
     {
         ScopedTimer t(stats, "write");

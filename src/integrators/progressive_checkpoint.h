@@ -1,33 +1,36 @@
 // The saved state of a progressive photon-mapping render (PPM / SPPM): per-hit-point statistics
-// (photon count N, radius², flux τ, direct-light sums), iteration and photon counts, and what the
-// render was made from, so `phos render --resume` can continue it bit for bit. Binary format with
-// a magic, a version and a checksum; written atomically.
+// (sppm_pixel_stats.h), iteration and photon counts, and what the render was made from (scene
+// hash, image-changing options by name and value), so `phos render --resume` can continue it bit
+// for bit or say exactly why it cannot. Binary format with a magic, a version and a checksum;
+// written atomically.
 #pragma once
 
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
-namespace phos::film {
+#include "integrators/sppm_pixel_stats.h"
 
-// Statistics of one hit-point slot (SPPM: one per pixel; PPM: one per pixel and eye sample).
-struct SlotStats {
-    double n = 0;                  // accumulated photon count N_i (fractional after α-reduction)
-    double r2 = 0;                 // squared radius R_i² (0 = not yet initialised)
-    double tau[3] = {0, 0, 0};     // accumulated, radius-reduced flux τ_i (unnormalised)
-    double direct[3] = {0, 0, 0};  // sum over iterations of direct light + emission seen
-};
+namespace phos::integrators {
+
+// The options that change the image, as (flag, value) pairs in a fixed order, e.g.
+// {{"--alpha", "0.7"}, {"--max-depth", "16"}}: filled by the application from its option tables.
+using OptionValues = std::vector<std::pair<std::string, std::string>>;
 
 struct ProgressiveState {
-    static constexpr uint32_t kVersion = 2;
+    static constexpr uint32_t kVersion = 3;
 
     // What the render was made from: refused on resume when any differs.
     std::string integrator;  // "ppm" or "sppm"
     uint32_t width = 0, height = 0;
     uint32_t slots_per_pixel = 1;
     uint64_t seed = 0;
-    uint64_t scene_hash = 0;    // hash of the scene file's bytes
-    uint64_t options_hash = 0;  // hash of the options that change the image
+    uint64_t scene_hash = 0;  // hash of the scene file's bytes
+    OptionValues options;     // the image-changing options, by flag
+    // hash_options(options), set by the integrator when it starts (start_state); a caller that
+    // sets only the hash and no list is compared by hash alone.
+    uint64_t options_hash = 0;
 
     // Progress.
     uint64_t iterations = 0;         // completed iterations
@@ -38,7 +41,7 @@ struct ProgressiveState {
     // --resume), so a bare `phos render --resume FILE` can continue it.
     std::vector<std::string> command_line;
 
-    std::vector<SlotStats> slots;  // width * height * slots_per_pixel, row-major
+    std::vector<sppm::PixelStats> slots;  // width * height * slots_per_pixel, row-major
 };
 
 // Writes `state` to `path` atomically (temporary file + rename). Throws InputError on I/O failure.
@@ -53,10 +56,14 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
 
 // 64-bit FNV-1a-style hash over bytes, then mixed: used for the scene hash and the checksum.
 uint64_t hash_bytes(const void* data, size_t size, uint64_t seed = 0);
+// Hash of an option list ("flag=value\n" per option, in order).
+uint64_t hash_options(const OptionValues& options);
 
-// Throws InputError naming every field of `saved` that differs from `expected` (integrator, image
-// size, slots, seed, scene hash, options hash): a checkpoint of another render cannot be resumed.
+// Throws InputError naming every field of `saved` that differs from `expected`: integrator, image
+// size, hit points per pixel, seed, scene contents, and each image-changing option with both
+// values ("option --alpha differs: checkpoint 0.7, now 0.5"). A checkpoint of another render
+// cannot be resumed.
 void check_resumable(const ProgressiveState& saved, const ProgressiveState& expected,
                      const std::string& path);
 
-}  // namespace phos::film
+}  // namespace phos::integrators

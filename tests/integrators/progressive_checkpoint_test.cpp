@@ -1,6 +1,7 @@
-// Progressive-render checkpoints: exact round trip, and refusal (InputError with a clear reason)
-// of truncated, corrupted, foreign, other-version and other-render files.
-#include "film/checkpoint.h"
+// Progressive-render checkpoints: exact round trip (option list included), and refusal
+// (InputError with a clear reason) of truncated, corrupted, foreign, other-version and
+// other-render files, naming each differing option with both values.
+#include "integrators/progressive_checkpoint.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -12,7 +13,7 @@
 
 #include "core/error.h"
 
-namespace phos::film {
+namespace phos::integrators {
 namespace {
 
 ProgressiveState sample_state() {
@@ -23,7 +24,8 @@ ProgressiveState sample_state() {
     s.slots_per_pixel = 2;
     s.seed = 42;
     s.scene_hash = 0x1234;
-    s.options_hash = 0x5678;
+    s.options = {{"--alpha", "0.7"}, {"--max-depth", "16"}, {"--radius", "0"}, {"--dof", ""}};
+    s.options_hash = hash_options(s.options);
     s.iterations = 17;
     s.photons_emitted = 17 * 1000;
     s.target_iterations = 64;
@@ -64,12 +66,13 @@ TEST(Checkpoint, RoundTripIsExact) {
     EXPECT_EQ(t.slots_per_pixel, s.slots_per_pixel);
     EXPECT_EQ(t.seed, s.seed);
     EXPECT_EQ(t.scene_hash, s.scene_hash);
+    EXPECT_EQ(t.options, s.options);
     EXPECT_EQ(t.options_hash, s.options_hash);
     EXPECT_EQ(t.iterations, s.iterations);
     EXPECT_EQ(t.photons_emitted, s.photons_emitted);
     EXPECT_EQ(t.target_iterations, s.target_iterations);
     ASSERT_EQ(t.slots.size(), s.slots.size());
-    EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(SlotStats)), 0);
+    EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(sppm::PixelStats)), 0);
 }
 
 TEST(Checkpoint, TruncatedFilesAreRefused) {
@@ -95,6 +98,10 @@ TEST(Checkpoint, ForeignFileAndOtherVersion) {
     std::string b = encode_checkpoint(sample_state());
     b[8] = char(99);  // version field
     EXPECT_NE(error_of(b).find("version 99"), std::string::npos);
+    b[8] = char(2);  // the previous format (no option list) is refused by version, not misread
+    EXPECT_NE(error_of(b).find("format version 2 is not supported (this phos reads version 3)"),
+              std::string::npos)
+        << error_of(b);
     EXPECT_THROW(load_checkpoint("/nonexistent/dir/x.ckpt"), InputError);
 }
 
@@ -111,20 +118,61 @@ TEST(Checkpoint, OtherRenderIsRefused) {
     };
     ProgressiveState o = s;
     o.scene_hash ^= 1;
-    expect_refused(o, "scene");
+    expect_refused(o, "scene file contents differ");
     o = s;
+    o.options[0].second = "0.5";
+    expect_refused(o, "option --alpha differs: checkpoint 0.7, now 0.5");
+    o = s;
+    o.options.emplace_back("--photons-per-iter", "1000");
+    expect_refused(o, "option --photons-per-iter differs: checkpoint not recorded, now 1000");
+    o = s;
+    o.options.pop_back();
+    expect_refused(o, "option --dof differs: checkpoint , now not an option");
+    // An identity given by hash alone (no list) is compared by hash.
+    o = s;
+    o.options.clear();
     o.options_hash ^= 1;
-    expect_refused(o, "options");
+    expect_refused(o, "render options differ");
+    o.options_hash = s.options_hash;
+    EXPECT_NO_THROW(check_resumable(s, o, "f"));
     o = s;
     o.seed = 7;
-    expect_refused(o, "seed");
+    expect_refused(o, "seed differs: checkpoint 42, now 7");
     o = s;
     o.width = 6;
-    expect_refused(o, "image size");
+    expect_refused(o, "image size differs: checkpoint 5x3, now 6x3");
     o = s;
     o.integrator = "ppm";
-    expect_refused(o, "integrator");
+    expect_refused(o, "integrator differs: checkpoint sppm, now ppm");
+    o = s;
+    o.slots_per_pixel = 1;
+    expect_refused(o, "hit points per pixel differ: checkpoint 2, now 1");
+}
+
+TEST(Checkpoint, EveryDifferenceIsNamedInOneMessage) {
+    const ProgressiveState s = sample_state();
+    ProgressiveState o = s;
+    o.seed = 1;
+    o.options[0].second = "0.5";
+    o.options[1].second = "4";
+    try {
+        check_resumable(s, o, "run.ckpt");
+        ADD_FAILURE();
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()),
+                  "checkpoint 'run.ckpt' was made by a different render: seed differs: checkpoint 42, now 1; "
+                  "option --alpha differs: checkpoint 0.7, now 0.5; option --max-depth differs: checkpoint "
+                  "16, now 4; rerun with the same scene and options, or start afresh");
+    }
+}
+
+TEST(Checkpoint, OptionsHashIsTheListsHash) {
+    const OptionValues a = {{"--alpha", "0.7"}}, b = {{"--alpha", "0.5"}};
+    EXPECT_NE(hash_options(a), hash_options(b));
+    EXPECT_NE(hash_options(a), hash_options({}));
+    const std::string listed = "--alpha=0.7\n";
+    EXPECT_EQ(hash_options(a), hash_bytes(listed.data(), listed.size()));
 }
 
 }  // namespace
-}  // namespace phos::film
+}  // namespace phos::integrators

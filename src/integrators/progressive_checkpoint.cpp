@@ -1,10 +1,12 @@
-// Binary checkpoint format (see checkpoint.h). Layout, little-endian as the machine stores it:
+// Binary checkpoint format (see progressive_checkpoint.h). Layout, little-endian as the machine
+// stores it (version 3):
 //   "PHOSCKPT" | u32 version | u32 integrator-name length | name bytes | u32 width, height,
 //   slots_per_pixel | u64 seed, scene_hash, options_hash, iterations, photons_emitted,
-//   target_iterations | u32 argument count, then per argument u32 length + bytes | u64 slot count |
-//   slot count x SlotStats (8 doubles) | u64 checksum of all
-//   preceding bytes.
-#include "film/checkpoint.h"
+//   target_iterations | u32 option count, then per option a string flag and a string value |
+//   u32 argument count, then per argument a string | u64 slot count | slot count x PixelStats
+//   (8 doubles) | u64 checksum of all preceding bytes. A string is u32 length + bytes.
+// Version 2 had no option list; older files are refused by version.
+#include "integrators/progressive_checkpoint.h"
 
 #include <cstring>
 #include <fstream>
@@ -13,15 +15,20 @@
 #include "core/error.h"
 #include "io/image/atomic_write.h"
 
-namespace phos::film {
+namespace phos::integrators {
 namespace {
 
 constexpr char kMagic[8] = {'P', 'H', 'O', 'S', 'C', 'K', 'P', 'T'};
-static_assert(sizeof(SlotStats) == 8 * sizeof(double));
+static_assert(sizeof(sppm::PixelStats) == 8 * sizeof(double));
 
 template <class T>
 void put(std::string& out, const T& v) {
     out.append(reinterpret_cast<const char*>(&v), sizeof(T));
+}
+
+void put_string(std::string& out, const std::string& s) {
+    put(out, uint32_t(s.size()));
+    out.append(s);
 }
 
 class Reader {
@@ -39,6 +46,13 @@ public:
         need(n);
         std::memcpy(dst, bytes_.data() + pos_, n);
         pos_ += n;
+    }
+    std::string get_string() {
+        const auto len = get<uint32_t>();
+        if (len > remaining()) fail("file is truncated");
+        std::string s(len, '\0');
+        get_bytes(s.data(), len);
+        return s;
     }
     size_t pos() const { return pos_; }
     size_t remaining() const { return bytes_.size() - pos_; }
@@ -67,9 +81,15 @@ uint64_t hash_bytes(const void* data, size_t size, uint64_t seed) {
     return h;
 }
 
+uint64_t hash_options(const OptionValues& options) {
+    std::string listed;
+    for (const auto& [flag, value] : options) listed += flag + "=" + value + "\n";
+    return hash_bytes(listed.data(), listed.size());
+}
+
 std::string encode_checkpoint(const ProgressiveState& s) {
     std::string out;
-    out.reserve(128 + s.slots.size() * sizeof(SlotStats));
+    out.reserve(128 + s.slots.size() * sizeof(sppm::PixelStats));
     out.append(kMagic, sizeof(kMagic));
     put(out, ProgressiveState::kVersion);
     put(out, uint32_t(s.integrator.size()));
@@ -80,13 +100,15 @@ std::string encode_checkpoint(const ProgressiveState& s) {
     for (uint64_t v :
          {s.seed, s.scene_hash, s.options_hash, s.iterations, s.photons_emitted, s.target_iterations})
         put(out, v);
-    put(out, uint32_t(s.command_line.size()));
-    for (const std::string& a : s.command_line) {
-        put(out, uint32_t(a.size()));
-        out.append(a);
+    put(out, uint32_t(s.options.size()));
+    for (const auto& [flag, value] : s.options) {
+        put_string(out, flag);
+        put_string(out, value);
     }
+    put(out, uint32_t(s.command_line.size()));
+    for (const std::string& a : s.command_line) put_string(out, a);
     put(out, uint64_t(s.slots.size()));
-    out.append(reinterpret_cast<const char*>(s.slots.data()), s.slots.size() * sizeof(SlotStats));
+    out.append(reinterpret_cast<const char*>(s.slots.data()), s.slots.size() * sizeof(sppm::PixelStats));
     put(out, hash_bytes(out.data(), out.size()));
     return out;
 }
@@ -122,22 +144,22 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
     s.iterations = r.get<uint64_t>();
     s.photons_emitted = r.get<uint64_t>();
     s.target_iterations = r.get<uint64_t>();
+    const auto optc = r.get<uint32_t>();
+    if (optc > 4096) r.fail("bad option count");
+    for (uint32_t i = 0; i < optc; ++i) {
+        std::string flag = r.get_string();
+        s.options.emplace_back(std::move(flag), r.get_string());
+    }
     const auto argc = r.get<uint32_t>();
     if (argc > 4096) r.fail("bad argument count");
-    for (uint32_t i = 0; i < argc; ++i) {
-        const auto len = r.get<uint32_t>();
-        if (len > r.remaining()) r.fail("file is truncated");
-        std::string a(len, '\0');
-        r.get_bytes(a.data(), len);
-        s.command_line.push_back(std::move(a));
-    }
+    for (uint32_t i = 0; i < argc; ++i) s.command_line.push_back(r.get_string());
     const auto count = r.get<uint64_t>();
     if (count != uint64_t(s.width) * s.height * s.slots_per_pixel)
         r.fail("slot count does not match the image size");
-    if (r.remaining() != count * sizeof(SlotStats) + sizeof(uint64_t))
+    if (r.remaining() != count * sizeof(sppm::PixelStats) + sizeof(uint64_t))
         r.fail("file size does not match its header");
     s.slots.resize(count);
-    r.get_bytes(s.slots.data(), count * sizeof(SlotStats));
+    r.get_bytes(s.slots.data(), count * sizeof(sppm::PixelStats));
     return s;
 }
 
@@ -159,22 +181,40 @@ ProgressiveState load_checkpoint(const std::string& path) {
 
 void check_resumable(const ProgressiveState& saved, const ProgressiveState& expected,
                      const std::string& path) {
-    std::string diff;
-    auto note = [&](bool differs, const std::string& what) {
-        if (differs) diff += (diff.empty() ? "" : ", ") + what;
+    std::vector<std::string> diff;
+    auto differs = [&](const std::string& what, const std::string& then, const std::string& now) {
+        if (then != now) diff.push_back(what + ": checkpoint " + then + ", now " + now);
     };
-    note(saved.integrator != expected.integrator,
-         "integrator (" + saved.integrator + " in the checkpoint, " + expected.integrator + " now)");
-    note(saved.width != expected.width || saved.height != expected.height,
-         "image size (" + std::to_string(saved.width) + "x" + std::to_string(saved.height) +
-             " in the checkpoint)");
-    note(saved.slots_per_pixel != expected.slots_per_pixel, "hit points per pixel");
-    note(saved.seed != expected.seed, "seed (" + std::to_string(saved.seed) + " in the checkpoint)");
-    note(saved.scene_hash != expected.scene_hash, "scene file contents");
-    note(saved.options_hash != expected.options_hash, "render options");
-    if (!diff.empty())
-        throw InputError("checkpoint '" + path + "' was made by a different render: " + diff +
-                         " differ; rerun with the same scene and options, or start afresh");
+    auto size = [](const ProgressiveState& s) {
+        return std::to_string(s.width) + "x" + std::to_string(s.height);
+    };
+    differs("integrator differs", saved.integrator, expected.integrator);
+    differs("image size differs", size(saved), size(expected));
+    differs("hit points per pixel differ", std::to_string(saved.slots_per_pixel),
+            std::to_string(expected.slots_per_pixel));
+    differs("seed differs", std::to_string(saved.seed), std::to_string(expected.seed));
+    if (saved.scene_hash != expected.scene_hash) diff.push_back("scene file contents differ");
+    if (saved.options.empty() || expected.options.empty()) {
+        // A side without the list (an identity given by hash alone): the hash decides.
+        if (saved.options_hash != expected.options_hash) diff.push_back("render options differ");
+    } else {
+        auto find = [](const OptionValues& list, const std::string& flag) -> const std::string* {
+            for (const auto& [f, v] : list)
+                if (f == flag) return &v;
+            return nullptr;
+        };
+        for (const auto& [flag, value] : expected.options) {
+            const std::string* then = find(saved.options, flag);
+            differs("option " + flag + " differs", then ? *then : "not recorded", value);
+        }
+        for (const auto& [flag, value] : saved.options)
+            if (!find(expected.options, flag)) differs("option " + flag + " differs", value, "not an option");
+    }
+    if (diff.empty()) return;
+    std::string listed;
+    for (const std::string& d : diff) listed += (listed.empty() ? "" : "; ") + d;
+    throw InputError("checkpoint '" + path + "' was made by a different render: " + listed +
+                     "; rerun with the same scene and options, or start afresh");
 }
 
-}  // namespace phos::film
+}  // namespace phos::integrators

@@ -1,0 +1,55 @@
+// The budget loop's bookkeeping for PPM / SPPM (see progressive_budget.h).
+#include "integrators/progressive_budget.h"
+
+#include <algorithm>
+
+namespace phos::integrators {
+
+using clock = std::chrono::steady_clock;
+
+ProgressiveBudget::ProgressiveBudget(const RenderOptions& ro, const ProgressiveOptions& opt,
+                                     ProgressiveState& state, film::Film& film, Progress& progress)
+    : opt_(opt),
+      state_(state),
+      film_(film),
+      progress_(progress),
+      target_(uint64_t(std::max(1, ro.spp))),
+      t0_(opt.clock_start.value_or(clock::now())),
+      last_preview_(clock::now()),
+      last_checkpoint_(state.iterations) {
+    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+    const uint64_t left = target_ > state_.iterations ? target_ - state_.iterations : 0;
+    progress_started_ = left > 0;  // a resumed render that is already complete shows no progress
+    if (!progress_started_) return;
+    if (opt_.time > 0)
+        progress_.start_timed(state_.integrator, opt_.time, t0_, target_ < kUnboundedIterations ? left : 0);
+    else
+        progress_.start(state_.integrator, left);
+}
+
+void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_film) {
+    ++state_.iterations;
+    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+    progress_.advance();
+    if (opt_.on_checkpoint && opt_.checkpoint_every > 0 &&
+        state_.iterations % uint64_t(opt_.checkpoint_every) == 0) {
+        opt_.on_checkpoint(state_);
+        last_checkpoint_ = state_.iterations;
+    }
+    const auto now = clock::now();
+    time_up_ = opt_.time > 0 && std::chrono::duration<double>(now - t0_).count() >= opt_.time;
+    if (next() && opt_.on_preview && opt_.write_every > 0 &&
+        std::chrono::duration<double>(now - last_preview_).count() >= opt_.write_every) {
+        resolve_film();
+        opt_.on_preview(film_);
+        last_preview_ = clock::now();
+    }
+}
+
+void ProgressiveBudget::finish() {
+    if (progress_started_) progress_.finish();
+    if (opt_.on_checkpoint && last_checkpoint_ != state_.iterations) opt_.on_checkpoint(state_);
+    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+}
+
+}  // namespace phos::integrators

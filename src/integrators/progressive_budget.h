@@ -1,0 +1,66 @@
+// The budget of a progressive render (PPM / SPPM), so that each integrator's loop stays visible:
+//
+//     ProgressiveBudget budget(P.options, opt, state, film, progress);
+//     while (budget.next()) {
+//         ... eye pass, photon pass, update of state.slots ...
+//         budget.after_iteration(resolve_film);
+//     }
+//     resolve_film();
+//     budget.finish();
+//
+// It owns the iteration count (state.iterations), the time budget (--time, counted from the
+// command's start), checkpoints every --checkpoint-every iterations and at the end, previews every
+// --write-every seconds, the progress display, and ProgressiveOptions::iterations_done.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <functional>
+
+#include "core/progress.h"
+#include "film/film.h"
+#include "integrators/options.h"
+#include "integrators/progressive_checkpoint.h"
+#include "integrators/progressive_options.h"
+
+namespace phos::integrators {
+
+// Iteration counts from here up mean "no count given" (the app's sentinel for a --time budget
+// alone): progress then shows time, not a count.
+constexpr uint64_t kUnboundedIterations = uint64_t(1) << 30;
+
+class ProgressiveBudget {
+public:
+    // Starts the progress display; the target is ro.spp iterations (at least 1) and opt.time
+    // seconds (0 = none).
+    ProgressiveBudget(const RenderOptions& ro, const ProgressiveOptions& opt, ProgressiveState& state,
+                      film::Film& film, Progress& progress);
+
+    // Whether to run another iteration: fewer than the target are done and the time budget (when
+    // there is one) was not crossed by the last iteration. Iteration numbers are state.iterations.
+    bool next() const { return !time_up_ && state_.iterations < target_; }
+
+    // Counts the iteration just run, saves a checkpoint every checkpoint_every iterations, checks
+    // the clock, and writes a preview when one is due and the render goes on: `resolve_film()`
+    // must then fill the film from the state.
+    void after_iteration(const std::function<void()>& resolve_film);
+
+    // Ends the render (call after resolving the final image): the progress line, a checkpoint of
+    // the final state unless the last iteration's was saved, iterations_done.
+    void finish();
+
+    uint64_t target() const { return target_; }
+
+private:
+    const ProgressiveOptions& opt_;
+    ProgressiveState& state_;
+    film::Film& film_;
+    Progress& progress_;
+    uint64_t target_;
+    std::chrono::steady_clock::time_point t0_, last_preview_;
+    uint64_t last_checkpoint_;
+    bool time_up_ = false;
+    bool progress_started_ = false;
+};
+
+}  // namespace phos::integrators

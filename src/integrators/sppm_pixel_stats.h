@@ -1,0 +1,84 @@
+// The per-pixel statistics of progressive photon mapping (N, R², τ, direct-light sum) and the
+// equations that update them, as small pure functions: the state beside its estimator.
+//
+// SPPM (Hachisuka & Jensen 2009, "Stochastic progressive photon mapping", eq. 9-12) shares one
+// set of statistics per pixel over all iterations; PPM (Hachisuka, Ogaki & Jensen 2008,
+// "Progressive photon mapping": radius reduction, flux correction, radiance evaluation) keeps the
+// same statistics per hit point. After an iteration in which M_i photons land within R_i and their
+// BSDF-weighted flux sums to Φ_i (camera throughput β included):
+//   N_{i+1}  = N_i + α M_i                                   (eq. 9)
+//   R²_{i+1} = R²_i (N_i + α M_i) / (N_i + M_i)              (eq. 10, squared)
+//   τ_{i+1}  = (τ_i + Φ_i) R²_{i+1} / R²_i                   (eq. 11)
+//   L        = τ / (π R² N_emitted)                          (eq. 12)
+// N_emitted counts every photon emitted over all iterations (photon powers are flux / photons
+// emitted in one pass). A pixel that received no photon (M_i = 0) keeps N, R², τ unchanged.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+namespace phos::integrators::sppm {
+
+// Statistics of one hit-point slot (SPPM: one per pixel; PPM: one per pixel and eye sample).
+// Plain doubles: saved bit for bit in checkpoints (progressive_checkpoint.h).
+struct PixelStats {
+    double n = 0;                  // accumulated photon count N (fractional after α-reduction)
+    double r2 = 0;                 // squared radius R² (0 = not yet initialised)
+    double tau[3] = {0, 0, 0};     // accumulated, radius-reduced flux τ (unnormalised)
+    double direct[3] = {0, 0, 0};  // sum over iterations of direct light + emission seen
+};
+
+// Eq. 9: the photon count after an iteration that found m photons, of which α are kept.
+inline double next_n(double n, double alpha, double m) { return n + alpha * m; }
+
+// Eq. 10 (squared): the radius shrinks so that the disc would have held N + αM photons at the
+// density seen. n_next = next_n(n, alpha, m). Needs n + m > 0.
+inline double next_r2(double r2, double n, double n_next, double m) { return r2 * n_next / (n + m); }
+
+// Eq. 11: the flux within the shrunk disc, τ scaled by the area ratio `shrink` = R²_{i+1} / R²_i.
+inline double next_tau(double tau, double phi, double shrink) { return (tau + phi) * shrink; }
+
+// One progressive update of `s` (eq. 9-11) after an iteration that found `m` photons with
+// throughput-weighted flux sums phi[3] (β Φ_i per channel). m = 0: nothing changes (the update
+// would divide 0 by 0 on a pixel that never received a photon).
+inline void progressive_update(PixelStats& s, uint64_t m, const double phi[3], double alpha) {
+    if (m == 0) return;
+    const double n_next = next_n(s.n, alpha, double(m));
+    const double r2_next = next_r2(s.r2, s.n, n_next, double(m));
+    const double shrink = r2_next / s.r2;
+    for (int k = 0; k < 3; ++k) s.tau[k] = next_tau(s.tau[k], phi[k], shrink);
+    s.n = n_next;
+    s.r2 = r2_next;
+}
+
+// Eq. 12's normalisation 1 / (π R² N_emitted) for a slot of squared radius r2, given
+// inv_emitted = 1 / N_emitted (0 before any photon): multiplies τ into radiance. 0 when r2 = 0
+// (no visible point yet).
+inline double radiance_scale(double r2, double inv_emitted) {
+    return r2 > 0 ? inv_emitted / (M_PI * r2) : 0.0;
+}
+
+// Per-pixel initial radius from a pilot photon pass (SPPM, --radius-photons): the first
+// iteration's photons only count how many fall in each visible point's largest allowed disc,
+// R₀² max_scale (M_p; R₀ the automatic radius); the point's radius becomes the disc that would
+// hold ~k photons, R² = R₀² max_scale clamp(k / M_p) within [min_scale, max_scale] R₀² (M_p = 0:
+// R₀ kept). Counting in the largest disc keeps a dim point next to a caustic from choosing a disc
+// that reaches into it. The pilot's photons are then discarded (N = τ = 0, not counted in
+// N_emitted): the radius is independent of the photons the estimate uses, so choosing it adds no
+// bias of its own (reusing them, with a radius picked so they number ~k, inflated sparse caustics
+// by ~20 %). Bright caustics get small discs (less blur), dim diffuse regions large ones (less
+// noise). Not in the papers: phos's own rule (docs/progressive.md).
+struct PilotRadius {
+    double k = 0;                         // target photons per disc (0 = no pilot)
+    double min_scale = 1, max_scale = 1;  // bounds on R²/R₀²
+};
+
+// The radius a point keeps after the pilot: r2 is the pilot's gathering disc (R₀² max_scale) and
+// m the photons it held.
+inline double pilot_r2(const PilotRadius& a, double r2, uint64_t m) {
+    if (m == 0) return r2 / a.max_scale;
+    return r2 * std::clamp(a.k / double(m), a.min_scale / a.max_scale, 1.0);
+}
+
+}  // namespace phos::integrators::sppm
