@@ -41,7 +41,7 @@ const Data& data() {
                 const accel::Ray ray = P.camera.generate_ray(x + 0.5f, y + 0.5f, {0.5f, 0.5f});
                 integrators::sppm::trace_eye_path(P, ray, sampler, 1, vp, rays);
                 if (!vp.bsdf) continue;
-                const float r = integrators::kDefaultRadiusPixels * fp.at(vp.path_length);
+                const float r = integrators::ProgressiveOptions{}.radius_pixels * fp.at(vp.path_length);
                 d.pos.push_back(vp.p);
                 d.r2.push_back(r * r);
             }

@@ -22,9 +22,8 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     ProgressiveState state = start_state(P, opt_, "ppm", uint32_t(eye));
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
-    const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kPpmDirectSamples;
-    const InitialRadius initial{
-        opt_.radius, opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels, PixelFootprint(P)};
+    const int direct_samples = direct_samples_for(opt_, true);
+    const InitialRadius initial{opt_.radius, opt_.radius_pixels, PixelFootprint(P)};
     std::vector<VisiblePoint> vps(slots);
     tbb::parallel_for(0, ro.height, [&](int y) {
         RayCounts rays;

@@ -18,13 +18,13 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     ProgressiveState state = start_state(P, opt_, "sppm", 1);
 
     const uint64_t photons = photons_per_iteration(opt_);
-    const int direct_samples = opt_.direct_samples > 0 ? opt_.direct_samples : kSppmDirectSamples;
-    const float radius_pixels = opt_.radius_pixels > 0 ? opt_.radius_pixels : kDefaultRadiusPixels;
+    const int direct_samples = direct_samples_for(opt_, false);
+    const float radius_pixels = opt_.radius_pixels;
     const InitialRadius initial{opt_.radius, radius_pixels, PixelFootprint(P)};
     // The pilot refines the automatic (footprint) radius only; an explicit --radius is kept.
     PilotRadius pilot;
     if (opt_.radius <= 0) {
-        pilot.k = opt_.radius_photons >= 0 ? opt_.radius_photons : kDefaultRadiusPhotons;
+        pilot.k = opt_.radius_photons;
         const double lo = kPilotRadiusMinPixels / radius_pixels, hi = kPilotRadiusMaxPixels / radius_pixels;
         pilot.min_scale = std::min(1.0, lo * lo);
         pilot.max_scale = std::max(1.0, hi * hi);

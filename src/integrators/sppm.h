@@ -19,17 +19,8 @@ private:
     ProgressiveOptions opt_;
 };
 
-// Initial radius multiplier of the automatic radius, in pixel footprints at the hit distance.
-constexpr float kDefaultRadiusPixels = 4.0f;
-// Photons a pixel's disc should hold after the pilot pass (--radius-photons, see PilotRadius in
-// sppm_pixel_stats.h), and the bounds of that per-pixel radius in pixel footprints.
-constexpr double kDefaultRadiusPhotons = 64;
+// Bounds of the pilot pass's per-pixel radius in pixel footprints (see PilotRadius in
+// sppm_core.h; the other defaults are in the option table, progressive_options.cpp).
 constexpr double kPilotRadiusMinPixels = 1, kPilotRadiusMaxPixels = 8;
-// Light samples per visible point per iteration (--direct-samples). One leaves the direct light's
-// noise dominant on area-lit scenes; 4 cost ~10 % more time per iteration and cut cornell-diffuse's
-// relMSE at 60 iterations from 0.00095 to 0.00074 (8: 0.00071 for +25 %).
-constexpr int kSppmDirectSamples = 4;
-// PPM computes direct light once, so it takes many more samples.
-constexpr int kPpmDirectSamples = 16;
 
 }  // namespace phos::integrators
