@@ -20,7 +20,7 @@ private:
 };
 
 // Bounds of the pilot pass's per-pixel radius in pixel footprints (see PilotRadius in
-// sppm_core.h; the other defaults are in the option table, progressive_options.cpp).
+// sppm_pixel_stats.h; the other defaults are in the option table, progressive_options.cpp).
 constexpr double kPilotRadiusMinPixels = 1, kPilotRadiusMaxPixels = 8;
 
 }  // namespace phos::integrators

@@ -91,6 +91,8 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     } else if (progressive && cmd.was_given("iterations")) {
         r.spp = cmd.progressive.iterations;
         src.spp = "--iterations";
+    } else if (progressive && cmd.was_given("time")) {
+        src.spp = "--time";  // the time budget alone decides (setup_progressive)
     } else if (st.spp && (!st.integrator || *st.integrator == cmd.run.integrator)) {
         r.spp = *st.spp;
         src.spp = "scene file";
