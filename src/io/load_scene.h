@@ -8,7 +8,7 @@
 namespace phos::io {
 
 struct LoadOptions {
-    bool real = false;                // .scn -real: scale lobes so kd+ks+kt <= 1
+    bool raw_materials = false;       // .scn: keep kd + ks + kt > 1 as written (default: scaled to 1)
     bool legacy_attenuation = false;  // .scn: keep (ca, la, qa) attenuation without warning
     bool strict = false;              // pbrt: unused parameters are errors
 };

@@ -201,6 +201,10 @@ int run_cli(int argc, char** argv) {
     render->add_option("scene", rc.scene_path,
                        "scene file (.scn or .pbrt); may be omitted with --resume, which replays the "
                        "checkpointed render's arguments");
+    std::string positional_output;
+    render->add_option(
+        "image", positional_output,
+        "output image, as the seed renderer took it (phos render in.scn out.png); the same as -o");
     for (const BoundTable& b : rc.tables()) register_table(*render, b, rc.given);
 
     DiffCommand dc;
@@ -222,18 +226,20 @@ int run_cli(int argc, char** argv) {
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
         for (const auto& n : o->get_lnames()) long_names.insert(n);
-    const std::vector<std::string> args = normalise_args(argc, argv, long_names);
+    std::vector<std::string> args = normalise_args(argc, argv, long_names);
 
     // A misspelt command: say what was meant instead of "a subcommand is required".
     if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
         std::find(kCommands.begin(), kCommands.end(), args[0]) == kCommands.end()) {
         const std::string ext = std::filesystem::path(args[0]).extension().string();
-        if (ext == ".scn" || ext == ".pbrt")
-            return print_error("unknown command '" + args[0] + "'; to render it: phos render " + args[0]);
-        const std::string guess = nearest(args[0], kCommands);
-        return print_error("unknown command '" + args[0] + "'" +
-                           (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
-                           " (commands: render, diff, options, help)");
+        if (ext == ".scn" || ext == ".pbrt") {
+            args.insert(args.begin(), "render");  // the seed's `photonmap in.scn out.png`
+        } else {
+            const std::string guess = nearest(args[0], kCommands);
+            return print_error("unknown command '" + args[0] + "'" +
+                               (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
+                               " (commands: render, diff, options, help)");
+        }
     }
 
     // Returns -1 when parsing succeeded, else the exit code.
@@ -312,7 +318,14 @@ int run_cli(int argc, char** argv) {
                 rc.photon_map = {};
                 rc.progressive = {};
                 rc.given.clear();
+                positional_output.clear();
                 if (const int code = parse(replay); code >= 0) return code;
+            }
+            if (!positional_output.empty()) {
+                if (rc.was_given("output"))
+                    throw InputError("give the output image either after the scene or with -o, not both");
+                rc.run.output = positional_output;
+                rc.given.insert("output");
             }
             if (rc.was_given("spp") && rc.was_given("aa"))
                 throw InputError("give either --spp or --aa, not both");

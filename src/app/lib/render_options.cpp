@@ -61,7 +61,13 @@ const options::Table& scene_options() {
         b.flag("emission-lights", &SceneOptions::emission_lights,
                ".scn: surfaces with emission e become area lights (they light the scene and emit photons)");
         b.flag("real", &SceneOptions::real,
-               ".scn: scale material lobes so kd + ks + kt <= 1 (the seed's -real)");
+               ".scn: the seed's -real (scale lobes so kd + ks + kt <= 1): phos always does this now, see "
+               "--raw-materials")
+            .effect = Effect::None;
+        b.flag(
+            "raw-materials", &SceneOptions::raw_materials,
+            ".scn: keep materials with kd + ks + kt > 1 as written (they create light; by default each such "
+            "channel is scaled to sum to 1, with a warning)");
         return b.build();
     }();
     return table;

@@ -32,7 +32,8 @@ struct SceneOptions {
     bool schlick = false;
     bool legacy_attenuation = false;
     bool emission_lights = false;  // glowing .scn surfaces become area lights
-    bool real = false;
+    bool real = false;             // the seed's -real: now the default (accepted, no effect)
+    bool raw_materials = false;    // keep energy-creating .scn materials as written
 };
 
 const options::Table& run_options();

@@ -100,19 +100,28 @@ void Parser::cmd_material(const Token& cmd) {
         m.diffuse_texture = load_texture(p, tok);
     }
 
+    // A material whose lobes sum to more than 1 in a channel creates light: path tracing diverges
+    // and photon maps wash out. By default the three lobes of such a channel are scaled by the same
+    // factor 1 / (kd + ks + kt) (the seed's -real); --raw-materials keeps them as written.
     const Rgb sum = m.diffuse + m.specular + m.transmission;
-    if (options_.real) {
-        // -real: scale all three lobes of a channel by the same factor so they sum to at most 1.
-        for (int c = 0; c < 3; ++c)
-            if (sum[c] > 1) {
-                m.diffuse[c] /= sum[c];
-                m.specular[c] /= sum[c];
-                m.transmission[c] /= sum[c];
-            }
-    } else if (sum.max() > 1) {
-        log::warn(where(cmd) + ": material " + std::to_string(files_.back().materials.size()) +
-                  " reflects more light than it receives (kd + ks + kt = " + fmt3(sum.r, sum.g, sum.b) +
-                  "); photon survival is clamped to 1 (use -real to scale it down)");
+    if (sum.max() > 1) {
+        const std::string what =
+            where(cmd) + ": material " + std::to_string(files_.back().materials.size()) +
+            " reflects more light than it receives (kd + ks + kt = " + fmt3(sum.r, sum.g, sum.b) + ")";
+        if (options_.raw_materials) {
+            log::warn(what + "; kept as written (--raw-materials): photon survival is clamped to 1");
+        } else {
+            Rgb factor(1.0f);
+            for (int c = 0; c < 3; ++c)
+                if (sum[c] > 1) {
+                    factor[c] = 1.0f / sum[c];
+                    m.diffuse[c] *= factor[c];
+                    m.specular[c] *= factor[c];
+                    m.transmission[c] *= factor[c];
+                }
+            log::warn(what + "; scaled by " + fmt3(factor.r, factor.g, factor.b) +
+                      " per channel (--raw-materials keeps it as written)");
+        }
     }
     files_.back().materials.push_back(int(scene_.materials.size()));
     scene_.materials.push_back(std::move(m));

@@ -9,8 +9,10 @@
 namespace phos::io {
 
 struct ScnOptions {
-    // Scale each material's lobes so kd + ks + kt <= 1 per channel (the seed's `-real` flag).
-    bool real = false;
+    // Keep materials whose lobes sum to more than 1 in a channel (kd + ks + kt > 1) as written,
+    // creating energy; by default each such channel is scaled down to sum to 1 (what the seed's
+    // `-real` flag did), with one warning per material naming its factors.
+    bool raw_materials = false;
     // Keep non-physical light attenuation constants silently (they are stored in Light::attenuation
     // either way; without this flag each light with constants other than 0 0 1 gets a warning).
     bool legacy_attenuation = false;

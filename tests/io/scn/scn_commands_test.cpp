@@ -62,25 +62,26 @@ TEST_F(ScnCommand, MaterialFields) {
     EXPECT_EQ(m.diffuse_texture, -1);
 }
 
-TEST_F(ScnCommand, OverbrightMaterialWarnsOrIsScaledWithReal) {
+TEST_F(ScnCommand, OverbrightMaterialIsScaledByDefaultOrKeptRaw) {
     const std::string text = "material 0 0 0  0.8 0.2 0.2  0.5 0.2 0.2  0 0 0  0 0 0  10 1 0\n";
+    // By default (what the seed's -real did): scaled, one warning naming the factors.
     const int before = log::warning_count();
     auto s = load(text);
-    // one for the material (missing lights are reported by `phos render`, once for every format)
     EXPECT_EQ(log::warning_count() - before, 1);
-    EXPECT_EQ(s.materials[0].diffuse, Rgb(0.8f, 0.2f, 0.2f));  // kept as given
-
-    ScnOptions real;
-    real.real = true;
-    const int before_real = log::warning_count();
-    s = load(text, real);
-    EXPECT_EQ(log::warning_count() - before_real, 0);  // scaled silently
     const auto& m = s.materials[0];
     EXPECT_NEAR(m.diffuse.r, 0.8f / 1.3f, 1e-6f);
     EXPECT_NEAR(m.specular.r, 0.5f / 1.3f, 1e-6f);
     EXPECT_NEAR(m.diffuse.r + m.specular.r + m.transmission.r, 1.0f, 1e-6f);
     EXPECT_FLOAT_EQ(m.diffuse.g, 0.2f);  // channels with sum <= 1 are untouched
     EXPECT_FLOAT_EQ(m.specular.g, 0.2f);
+
+    // --raw-materials: kept as written, still one warning.
+    ScnOptions raw;
+    raw.raw_materials = true;
+    const int before_raw = log::warning_count();
+    s = load(text, raw);
+    EXPECT_EQ(log::warning_count() - before_raw, 1);
+    EXPECT_EQ(s.materials[0].diffuse, Rgb(0.8f, 0.2f, 0.2f));
 }
 
 TEST_F(ScnCommand, TriBecomesAOneTriangleMesh) {

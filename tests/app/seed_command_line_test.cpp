@@ -1,0 +1,74 @@
+// The seed renderer's habits that phos takes as they are: `phos in.scn out.png` and
+// `phos render in.scn out.png` (positional output), and energy-creating `.scn` materials rendered
+// sanely by default (scaled as the seed's -real did) with the raw behaviour behind --raw-materials.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "io/image/image_io.h"
+#include "test_util.h"
+
+namespace phos::testing {
+namespace {
+
+const std::string kScene = R"(
+camera 0 0.5 2   0 0 -1   0 1 0   0.4   0.001 100
+material 0 0 0   0.7 0.7 0.7   0 0 0   0 0 0   0 0 0   10 1 0
+tri 0   -1 0 -1   -1 0 1   1 0 1
+tri 0   -1 0 -1   1 0 1   1 0 -1
+point_light 3 3 3   0 1.5 0   1 0 0
+)";
+
+// A closed box of a material with kd + ks = 1.6: without scaling, every bounce creates light.
+const std::string kHotBox = R"(
+camera 0 0 0   0 0 -1   0 1 0   0.5   0.001 100
+material 0 0 0   0.8 0.8 0.8   0.8 0.8 0.8   0 0 0   0 0 0   20 1 0
+box 0   -1 -1 -1   1 1 1
+point_light 1 1 1   0 0.5 0   1 0 0
+)";
+
+double mean_of(const std::string& path) {
+    const Image img = io::read_image(path);
+    double sum = 0;
+    for (const Rgb& p : img.pixels) sum += p.r + p.g + p.b;
+    return sum / (3.0 * double(img.pixels.size()));
+}
+
+TEST(SeedCommandLine, PositionalOutput) {
+    TempDir dir;
+    const std::string scene = dir.write("s.scn", kScene);
+    auto r = run_phos("render " + scene + " " + dir.file("a.pfm") + " --width 8 --spp 1 -q");
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("a.pfm")));
+    r = run_phos(scene + " " + dir.file("b.pfm") + " -resolution 8 8 -aa 0 -q");  // no subcommand
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("b.pfm")));
+    EXPECT_EQ(read_bytes(dir.file("a.pfm")), read_bytes(dir.file("b.pfm")));
+    r = run_phos("render " + scene + " " + dir.file("c.pfm") + " -o " + dir.file("d.pfm"));
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("c.pfm")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("d.pfm")));
+}
+
+TEST(SeedCommandLine, EnergyCreatingMaterialsAreScaledByDefault) {
+    TempDir dir;
+    const std::string scene = dir.write("hot.scn", kHotBox);
+    const std::string common = " --width 16 --spp 16 --integrator path --max-depth 60 --threads 2 -o ";
+    auto r = run_phos("render " + scene + common + dir.file("sane.pfm"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("scaled by 0.625 0.625 0.625"), std::string::npos) << r.output;
+    r = run_phos("render " + scene + common + dir.file("raw.pfm") + " --raw-materials");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("kept as written (--raw-materials)"), std::string::npos) << r.output;
+    // Scaled: an albedo-1 box lit by a 1 W/sr point light stays bounded (radiance of order
+    // I / (π r²) / (1 - ρ) with ρ < 1 after 60 bounces at most). Raw: ρ = 1.6 per bounce grows
+    // without bound over the same 60 bounces (Russian roulette cannot remove the gain).
+    const double sane = mean_of(dir.file("sane.pfm")), raw = mean_of(dir.file("raw.pfm"));
+    EXPECT_TRUE(std::isfinite(sane));
+    EXPECT_LT(sane, 10.0);
+    EXPECT_GT(raw, 10.0 * sane);
+}
+
+}  // namespace
+}  // namespace phos::testing
