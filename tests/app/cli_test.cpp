@@ -98,8 +98,10 @@ TEST(Cli, SameSeedIsBitIdenticalForAnyThreadCount) {
     }
     // A different seed gives a different image (the seed is really used).
     const std::string c = dir.file("c.pfm");
-    ASSERT_EQ(run_phos("render " + scene + " --width 48 --height 32 --spp 4 --seed 8 -q -o " + c).exit_code,
-              0);
+    ASSERT_EQ(
+        run_phos("render " + scene + " --width 48 --height 32 --spp 4 --seed 8 --integrator path -q -o " + c)
+            .exit_code,
+        0);
     EXPECT_NE(read_bytes(c), read_bytes(dir.file("a-path.pfm")));
 }
 

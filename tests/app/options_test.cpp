@@ -46,7 +46,8 @@ TEST(Options, EveryTableOptionIsInHelpWithItsDefault) {
     for (const char* s : {"--spp N", "--integrator NAME", "--width W", "--max-depth N", "--seed S"})
         EXPECT_NE(r.output.find(s), std::string::npos) << s;
     EXPECT_NE(r.output.find("(default: 16)"), std::string::npos);  // --max-depth
-    EXPECT_NE(r.output.find("the scene file's, else path"), std::string::npos);
+    EXPECT_NE(r.output.find("the scene file's (pbrt: path unless it names one), else photonmap"),
+              std::string::npos);
 }
 
 TEST(Options, DocsReferenceIsGeneratedFromTheTables) {

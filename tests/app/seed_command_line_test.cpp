@@ -70,5 +70,29 @@ TEST(SeedCommandLine, EnergyCreatingMaterialsAreScaledByDefault) {
     EXPECT_GT(raw, 10.0 * sane);
 }
 
+// The photon mapper is the default where the scene names no integrator: a point-lit glass
+// sphere's caustic (which path tracing cannot find from a point light) is there by default.
+TEST(SeedCommandLine, PhotonMapperIsTheDefaultForScnScenes) {
+    TempDir dir;
+    const std::string scene = source_path("scenes/caustic-point.scn");
+    const std::string common = " --width 64 --spp 4 --threads 2 --global 20000 --caustic 20000 -o ";
+    auto r = run_phos("render " + scene + common + dir.file("default.exr"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("photonmap (default)"), std::string::npos) << r.output;
+    r = run_phos("render " + scene + common + dir.file("path.exr") + " --integrator path");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    // The caustic under the sphere: the bench window (104..128, 132..156 at 256 pixels) at 64.
+    auto window = [](const std::string& path) {
+        const Image img = io::read_image(path);
+        double sum = 0;
+        for (int y = 33; y < 39; ++y)
+            for (int x = 26; x < 32; ++x) sum += img.at(x, y).g;
+        return sum / 36.0;
+    };
+    const double pm = window(dir.file("default.exr")), path = window(dir.file("path.exr"));
+    EXPECT_GT(pm, 1.0) << "reference window mean 4.58";
+    EXPECT_GT(pm, 10 * path);
+}
+
 }  // namespace
 }  // namespace phos::testing

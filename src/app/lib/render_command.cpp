@@ -260,8 +260,8 @@ void run_render(const RenderCommand& command) {
     scene::Scene scene;
     {
         ScopedTimer t(stats, "load");
-        scene =
-            io::load_scene(cmd.scene_path, {cmd.scene.raw_materials, cmd.scene.legacy_attenuation, cmd.run.strict});
+        scene = io::load_scene(cmd.scene_path,
+                               {cmd.scene.raw_materials, cmd.scene.legacy_attenuation, cmd.run.strict});
         if (cmd.scene.emission_lights) {
             const int n = scene::emissive_shapes_to_lights(scene);
             if (n == 0) log::warn("--emission-lights: the scene has no emissive surfaces");

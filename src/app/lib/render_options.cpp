@@ -29,7 +29,7 @@ const options::Table& run_options() {
         out.default_text = "the scene file's Film filename";
         auto& integ = b.choice("integrator", &RunOptions::integrator, integrators::integrator_names(),
                                "rendering algorithm");
-        integ.default_text = "the scene file's, else path";
+        integ.default_text = "the scene file's (pbrt: path unless it names one), else photonmap";
         b.number("threads", &RunOptions::threads, "N", between(0, 4096), "worker threads (0 = all cores)")
             .effect = Effect::None;
         b.flag("verbose", &RunOptions::verbose,

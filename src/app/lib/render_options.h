@@ -18,7 +18,9 @@ namespace phos::app {
 // Options of the run itself (none changes the image's radiance).
 struct RunOptions {
     std::string output;  // empty: the scene file's Film filename
-    std::string integrator = "path";
+    // The scene file's integrator when it names one (pbrt files always do: pbrt's default is
+    // volpath), else the photon mapper, as in both seed renderers.
+    std::string integrator = "photonmap";
     int threads = 0;  // 0 = all cores
     bool verbose = false;
     bool quiet = false;

@@ -17,6 +17,8 @@ scene::Scene load_pbrt(const std::string& path, const PbrtOptions& options) {
     pbrt::parse_file(path, builder);
     scene::Scene s = builder.take_scene();
     s.source = path;
+    // A pbrt file without an Integrator directive asks for pbrt-v4's default, volpath: phos's path.
+    if (!s.settings.integrator) s.settings.integrator = "path";
     return s;
 }
 
