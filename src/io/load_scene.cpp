@@ -16,7 +16,10 @@ scene::Scene load_scene(const std::string& path, const LoadOptions& options) {
                    [](unsigned char c) { return char(std::tolower(c)); });
     if (!std::filesystem::exists(path)) throw ParseError(path, 0, 0, "cannot open scene file: no such file");
     if (std::filesystem::is_directory(path)) throw ParseError(path, 0, 0, "is a directory, not a scene file");
-    if (ext == ".scn") return load_scn(path, ScnOptions{options.raw_materials, options.legacy_attenuation});
+    if (ext == ".scn")
+        return load_scn(path, ScnOptions{.raw_materials = options.raw_materials,
+                                         .no_default_lights = options.no_default_lights,
+                                         .legacy_attenuation = options.legacy_attenuation});
     if (ext == ".pbrt") return load_pbrt(path, PbrtOptions{options.strict});
     throw ParseError(path, 0, 0, "unknown scene format '" + ext + "' (phos reads .scn and .pbrt)");
 }

@@ -11,6 +11,7 @@ struct LoadOptions {
     bool raw_materials = false;       // .scn: keep kd + ks + kt > 1 as written (default: scaled to 1)
     bool legacy_attenuation = false;  // .scn: keep (ca, la, qa) attenuation without warning
     bool strict = false;              // pbrt: unused parameters are errors
+    bool no_default_lights = false;   // .scn: no default lights for a scene without lights
 };
 
 // Throws ParseError / InputError on malformed or missing files.

@@ -211,7 +211,7 @@ TEST(Options, NoLightsWarnsOnceNamingTheCause) {
                                       "material 0 0 0  .5 .5 .5  0 0 0  0 0 0  1 1 1  1 1 0\n"
                                       "sphere 0  0 0 0  1\n");
     for (const char* integrator : {"path", "photonmap", "sppm"}) {
-        const auto r = run_phos("render " + scn + " --width 8 --spp 1 --integrator " +
+        const auto r = run_phos("render " + scn + " --width 8 --spp 1 --no-default-lights --integrator " +
                                 std::string(integrator) + " -o " + dir.file("d.pfm"));
         EXPECT_EQ(r.exit_code, 0) << r.output;
         EXPECT_EQ(count(r.output, "warning"), 1u) << integrator << ": " << r.output;

@@ -260,8 +260,10 @@ void run_render(const RenderCommand& command) {
     scene::Scene scene;
     {
         ScopedTimer t(stats, "load");
-        scene = io::load_scene(cmd.scene_path,
-                               {cmd.scene.raw_materials, cmd.scene.legacy_attenuation, cmd.run.strict});
+        scene = io::load_scene(cmd.scene_path, {.raw_materials = cmd.scene.raw_materials,
+                                                .legacy_attenuation = cmd.scene.legacy_attenuation,
+                                                .strict = cmd.run.strict,
+                                                .no_default_lights = cmd.scene.no_default_lights});
         if (cmd.scene.emission_lights) {
             const int n = scene::emissive_shapes_to_lights(scene);
             if (n == 0) log::warn("--emission-lights: the scene has no emissive surfaces");

@@ -68,6 +68,10 @@ const options::Table& scene_options() {
             "raw-materials", &SceneOptions::raw_materials,
             ".scn: keep materials with kd + ks + kt > 1 as written (they create light; by default each such "
             "channel is scaled to sum to 1, with a warning)");
+        b.flag(
+            "no-default-lights", &SceneOptions::no_default_lights,
+            ".scn: a scene without lights gets none (by default it gets the seed renderer's two directional "
+            "lights, with a warning)");
         return b.build();
     }();
     return table;

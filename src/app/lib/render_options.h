@@ -33,9 +33,10 @@ struct RunOptions {
 struct SceneOptions {
     bool schlick = false;
     bool legacy_attenuation = false;
-    bool emission_lights = false;  // glowing .scn surfaces become area lights
-    bool real = false;             // the seed's -real: now the default (accepted, no effect)
-    bool raw_materials = false;    // keep energy-creating .scn materials as written
+    bool emission_lights = false;    // glowing .scn surfaces become area lights
+    bool real = false;               // the seed's -real: now the default (accepted, no effect)
+    bool raw_materials = false;      // keep energy-creating .scn materials as written
+    bool no_default_lights = false;  // .scn: no default lights for a scene without lights
 };
 
 const options::Table& run_options();

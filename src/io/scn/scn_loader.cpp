@@ -2,6 +2,7 @@
 // lights is reported once, for every format, by `phos render`.)
 #include "io/scn/scn_loader.h"
 
+#include "core/log.h"
 #include "io/scn/scn_parser.h"
 
 namespace phos::io {
@@ -11,6 +12,23 @@ scene::Scene load_scn(const std::string& path, const ScnOptions& options) {
     scene.source = path;
     scn::Parser parser(scene, options);
     parser.parse_top(path);
+    if (scene.lights.empty() && !options.no_default_lights) {
+        // The seed's scene reader lights a scene that has no light with these two.
+        const struct {
+            Vec3 direction;
+            float e;
+        } defaults[2] = {{Vec3(-3, -4, -5), 1.0f}, {Vec3(3, 2, 3), 0.5f}};
+        for (const auto& d : defaults) {
+            scene::Light l;
+            l.kind = scene::Light::Kind::Directional;
+            l.color = Rgb(d.e);
+            l.direction = normalize(d.direction);
+            scene.lights.push_back(l);
+        }
+        log::warn(path +
+                  ": the scene has no lights; added the seed renderer's two default directional lights "
+                  "(irradiance 1 along (-3,-4,-5), 0.5 along (3,2,3)); --no-default-lights refuses them");
+    }
     return scene;
 }
 

@@ -13,6 +13,10 @@ struct ScnOptions {
     // creating energy; by default each such channel is scaled down to sum to 1 (what the seed's
     // `-real` flag did), with one warning per material naming its factors.
     bool raw_materials = false;
+    // A scene without any light command gets the seed's two default directional lights (white,
+    // travelling along (-3,-4,-5), and half as bright along (3,2,3)) with one warning; this refuses
+    // them (the scene then renders black except for emission).
+    bool no_default_lights = false;
     // Keep non-physical light attenuation constants silently (they are stored in Light::attenuation
     // either way; without this flag each light with constants other than 0 0 1 gets a warning).
     bool legacy_attenuation = false;

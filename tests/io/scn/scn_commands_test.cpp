@@ -64,10 +64,11 @@ TEST_F(ScnCommand, MaterialFields) {
 
 TEST_F(ScnCommand, OverbrightMaterialIsScaledByDefaultOrKeptRaw) {
     const std::string text = "material 0 0 0  0.8 0.2 0.2  0.5 0.2 0.2  0 0 0  0 0 0  10 1 0\n";
-    // By default (what the seed's -real did): scaled, one warning naming the factors.
+    // By default (what the seed's -real did): scaled, one warning naming the factors (plus one for
+    // the default lights this light-less scene gets).
     const int before = log::warning_count();
     auto s = load(text);
-    EXPECT_EQ(log::warning_count() - before, 1);
+    EXPECT_EQ(log::warning_count() - before, 2);
     const auto& m = s.materials[0];
     EXPECT_NEAR(m.diffuse.r, 0.8f / 1.3f, 1e-6f);
     EXPECT_NEAR(m.specular.r, 0.5f / 1.3f, 1e-6f);
@@ -80,7 +81,7 @@ TEST_F(ScnCommand, OverbrightMaterialIsScaledByDefaultOrKeptRaw) {
     raw.raw_materials = true;
     const int before_raw = log::warning_count();
     s = load(text, raw);
-    EXPECT_EQ(log::warning_count() - before_raw, 1);
+    EXPECT_EQ(log::warning_count() - before_raw, 2);
     EXPECT_EQ(s.materials[0].diffuse, Rgb(0.8f, 0.2f, 0.2f));
 }
 
@@ -352,15 +353,32 @@ TEST_F(ScnCommand, NonPhysicalAttenuationWarnsOncePerLightUnlessLegacy) {
     expect_vec(s.lights[0].attenuation, {1, 0, 0});
 }
 
-// A scene without lights is reported once by `phos render` for every format
-// (tests/app/options_test.cpp, NoLightsWarnsOnceNamingTheCause); the loader itself stays silent.
-TEST_F(ScnCommand, NoLightsIsNotTheLoadersWarning) {
+// A scene without lights gets the seed renderer's two default directional lights, with one
+// warning; --no-default-lights leaves it dark (and `phos render` then warns once, for every
+// format: tests/app/options_test.cpp, NoLightsWarnsOnceNamingTheCause).
+TEST_F(ScnCommand, NoLightsGetsTheSeedsDefaultLights) {
     const int before = log::warning_count();
-    load(kMat + "sphere 0 0 0 0 1\n");
-    EXPECT_EQ(log::warning_count() - before, 0);
+    auto s = load(kMat + "sphere 0 0 0 0 1\n");
+    EXPECT_EQ(log::warning_count() - before, 1);
+    ASSERT_EQ(s.lights.size(), 2u);
+    EXPECT_EQ(s.lights[0].kind, scene::Light::Kind::Directional);
+    expect_vec(s.lights[0].direction, normalize(Vec3(-3, -4, -5)));
+    EXPECT_EQ(s.lights[0].color, Rgb(1.0f));
+    expect_vec(s.lights[1].direction, normalize(Vec3(3, 2, 3)));
+    EXPECT_EQ(s.lights[1].color, Rgb(0.5f));
+
+    ScnOptions none;
+    none.no_default_lights = true;
+    const int before_none = log::warning_count();
+    s = load(kMat + "sphere 0 0 0 0 1\n", none);
+    EXPECT_EQ(log::warning_count() - before_none, 0);
+    EXPECT_TRUE(s.lights.empty());
+
+    // Any light, even a black one (the seed's way to suppress them), means no default lights.
     const int before2 = log::warning_count();
-    load(kMat + "sphere 0 0 0 0 1\npoint_light 1 1 1  0 2 0  0 0 1\n");
+    s = load(kMat + "sphere 0 0 0 0 1\npoint_light 0 0 0  0 2 0  0 0 1\n");
     EXPECT_EQ(log::warning_count() - before2, 0);
+    EXPECT_EQ(s.lights.size(), 1u);
 }
 
 // Writes a width x 1 RGB PNG with the given 8-bit pixels.
