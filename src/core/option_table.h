@@ -196,6 +196,7 @@ public:
     }
 
     Option& last() { return table_.options.back(); }
+    std::vector<Option>& options() { return table_.options; }
     Table build() { return std::move(table_); }
 
     static void check_range(double v, const Range& r) {

@@ -1,6 +1,7 @@
 // The option table of the two-pass photon mapper (see photon_map_options.h).
 #include "integrators/photon_map_options.h"
 
+#include <algorithm>
 #include <string>
 
 namespace phos::integrators {
@@ -106,6 +107,14 @@ const options::Table& photon_map_options() {
                   "do not follow mirror reflections from the camera", false));
         pm(b.flag("no-transmissive", &PhotonMapOptions::transmissive,
                   "do not follow refraction through glass from the camera", false));
+        // The seed renderer's spellings (-no_direct, -photon_viz...): the same switches.
+        for (const char* name : {"no-direct", "no-caustic", "no-indirect", "no-specular", "no-transmissive",
+                                 "photon-viz", "fast-global"}) {
+            std::string seed = name;
+            std::replace(seed.begin(), seed.end(), '-', '_');
+            for (options::Option& o : b.options())
+                if (o.name == name) o.aliases.push_back(seed);
+        }
         return b.build();
     }();
     return table;

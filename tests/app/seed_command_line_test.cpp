@@ -3,6 +3,7 @@
 // sanely by default (scaled as the seed's -real did) with the raw behaviour behind --raw-materials.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -49,6 +50,20 @@ TEST(SeedCommandLine, PositionalOutput) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_FALSE(std::filesystem::exists(dir.file("c.pfm")));
     EXPECT_FALSE(std::filesystem::exists(dir.file("d.pfm")));
+}
+
+TEST(SeedCommandLine, SeedSpellingsOfTheComponentSwitches) {
+    TempDir dir;
+    const std::string scene = dir.write("s.scn", kScene);
+    const std::string common =
+        " --integrator photonmap --global 2000 --caustic 2000 -resolution 8 8 -aa 0 -q ";
+    for (const std::string seed : {"no_direct", "no_indirect", "photon_viz", "fast_global"}) {
+        std::string phos = seed;
+        std::replace(phos.begin(), phos.end(), '_', '-');
+        ASSERT_EQ(run_phos(scene + " " + dir.file("a.pfm") + common + "-" + seed).exit_code, 0) << seed;
+        ASSERT_EQ(run_phos(scene + " " + dir.file("b.pfm") + common + "--" + phos).exit_code, 0) << seed;
+        EXPECT_EQ(read_bytes(dir.file("a.pfm")), read_bytes(dir.file("b.pfm"))) << seed;
+    }
 }
 
 TEST(SeedCommandLine, EnergyCreatingMaterialsAreScaledByDefault) {
