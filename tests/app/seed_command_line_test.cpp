@@ -85,6 +85,34 @@ TEST(SeedCommandLine, EnergyCreatingMaterialsAreScaledByDefault) {
     EXPECT_GT(raw, 10.0 * sane);
 }
 
+// --quality presets set the budgets together; explicit options win.
+TEST(SeedCommandLine, QualityPresetsSetBudgetsTogether) {
+    TempDir dir;
+    const std::string scene = dir.write("s.scn", kScene);
+    const std::string common = " --width 16 --threads 2 -o ";
+    auto r = run_phos("render " + scene + common + dir.file("draft.pfm") + " --quality draft");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("4 spp (--quality draft)"), std::string::npos) << r.output;
+    ASSERT_EQ(run_phos("render " + scene + common + dir.file("explicit.pfm") +
+                       " --spp 4 --global 50000 --caustic 25000 --indirect 50000 --gather-rays 4 -q")
+                  .exit_code,
+              0);
+    EXPECT_EQ(read_bytes(dir.file("draft.pfm")), read_bytes(dir.file("explicit.pfm")));
+    r = run_phos("render " + scene + common + dir.file("mixed.pfm") +
+                 " --quality high --spp 2 --global 3000");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("2 spp (command line)"), std::string::npos) << r.output;
+    ASSERT_EQ(run_phos("render " + scene + common + dir.file("mixed2.pfm") +
+                       " --spp 2 --global 3000 --caustic 500000 --indirect 1000000 --gather-rays 16 -q")
+                  .exit_code,
+              0);
+    EXPECT_EQ(read_bytes(dir.file("mixed.pfm")), read_bytes(dir.file("mixed2.pfm")));
+    r = run_phos("render " + scene + common + dir.file("x.pfm") + " --quality ultra");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.output.find("--quality: 'ultra' is not one of draft|normal|high"), std::string::npos)
+        << r.output;
+}
+
 // The photon mapper is the default where the scene names no integrator: a point-lit glass
 // sphere's caustic (which path tracing cannot find from a point light) is there by default.
 TEST(SeedCommandLine, PhotonMapperIsTheDefaultForScnScenes) {

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <set>
 #include <sstream>
 
 #include "core/error.h"
@@ -111,7 +112,8 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
 // the option tables by name, for options the command line did not give. A value outside the
 // option's range is an error at the parameter; a parameter no option takes is a warning (an error
 // with --strict).
-void apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
+std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
+    std::set<std::string> applied;
     const scene::RenderSettings& st = scene.settings;
     const bool own = !st.integrator || *st.integrator == cmd.run.integrator;
     for (const scene::IntegratorParameter& p : st.integrator_parameters) {
@@ -137,11 +139,29 @@ void apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
                 what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
         try {
             opt->set(object, p.values);
+            applied.insert(opt->name);
         } catch (const options::ValueError& e) {
             throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
         }
         if (opt->name == "iterations" && !cmd.was_given("spp") && !cmd.was_given("aa"))
             cmd.render.spp = cmd.progressive.iterations;
+    }
+    return applied;
+}
+
+// The --quality preset: its options, except those given on the command line or by the scene file
+// (the sample count only where it is still the default).
+void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, Sources& src) {
+    for (const auto& [name, value] : quality_preset(cmd.run.quality)) {
+        if (cmd.was_given(name) || from_scene.count(name)) continue;
+        if (name == "spp") {
+            if (src.spp.rfind("default", 0) != 0 || cmd.was_given("aa") || cmd.was_given("iterations") ||
+                cmd.was_given("time"))
+                continue;
+            src.spp = "--quality " + cmd.run.quality;
+        }
+        for (const BoundTable& b : cmd.tables())
+            if (const options::Option* o = b.table->find(name)) o->set(b.object, {value});
     }
 }
 
@@ -277,8 +297,8 @@ void run_render(const RenderCommand& command) {
         output = p.is_absolute() ? p.string() : p.filename().string();  // written to the current directory
     }
     check_output(output);
-    const Sources sources = resolve_settings(cmd, scene);
-    apply_scene_parameters(cmd, scene);
+    Sources sources = resolve_settings(cmd, scene);
+    apply_quality(cmd, apply_scene_parameters(cmd, scene), sources);
     check_options(cmd);
     const std::string& integrator_name = cmd.run.integrator;
     const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";

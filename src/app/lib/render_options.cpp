@@ -45,6 +45,13 @@ const options::Table& run_options() {
         b.number("exposure", &RunOptions::exposure, "STOPS", between(-64, 64),
                  "exposure in stops for .png/.bmp output")
             .effect = Effect::None;
+        auto& q =
+            b.choice("quality", &RunOptions::quality, {"draft", "normal", "high"},
+                     "budget preset: samples per pixel, photon-map budgets, final-gather rays and photons "
+                     "per iteration together (draft: spp 4, 50k/25k photons, 4 gather rays, 50k per "
+                     "iteration; normal: the defaults; high: spp 64, 1M/500k photons, 16 gather rays, 1M "
+                     "per iteration); options given explicitly or by the scene file win");
+        q.effect = Effect::None;  // what it sets is recorded option by option
         b.flag("strict", &RunOptions::strict, "pbrt: unused scene parameters are errors").effect =
             Effect::None;
         return b.build();
@@ -75,6 +82,17 @@ const options::Table& scene_options() {
         return b.build();
     }();
     return table;
+}
+
+const std::vector<std::pair<std::string, std::string>>& quality_preset(const std::string& quality) {
+    static const std::vector<std::pair<std::string, std::string>> draft{
+        {"spp", "4"},          {"global", "50000"},  {"caustic", "25000"},
+        {"indirect", "50000"}, {"gather-rays", "4"}, {"photons-per-iter", "50000"}};
+    static const std::vector<std::pair<std::string, std::string>> normal{};
+    static const std::vector<std::pair<std::string, std::string>> high{
+        {"spp", "64"},           {"global", "1000000"}, {"caustic", "500000"},
+        {"indirect", "1000000"}, {"gather-rays", "16"}, {"photons-per-iter", "1000000"}};
+    return quality == "draft" ? draft : quality == "high" ? high : normal;
 }
 
 std::vector<BoundTable> RenderCommand::tables() {

@@ -27,6 +27,7 @@ struct RunOptions {
     bool progress = false;  // forced on or off (given on the command line), else automatic
     float exposure = 0;
     bool strict = false;
+    std::string quality = "normal";  // budget preset (quality_preset)
 };
 
 // How the scene is read and shaded (they change the image).
@@ -64,6 +65,10 @@ struct RenderCommand {
     std::vector<BoundTable> tables();
     bool was_given(const std::string& name) const { return given.count(name) > 0; }
 };
+
+// The options a --quality preset sets ("draft", "normal", "high"), as (option name, value) pairs;
+// options given on the command line or by the scene file keep their values.
+const std::vector<std::pair<std::string, std::string>>& quality_preset(const std::string& quality);
 
 // The tables of `phos render` over default structs (for docs and lookups).
 std::vector<const options::Table*> all_tables();
