@@ -56,11 +56,8 @@ LightSet::LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds,
         switch (l.kind) {
             case K::Point:
             case K::Spot:
-                if (!options.legacy_attenuation && !(l.attenuation == Vec3(0, 0, 1)))
-                    log::warn_once("light-attenuation-" + std::to_string(i),
-                                   name +
-                                       ": non-physical attenuation ignored (physical 1/d^2 used; "
-                                       "--legacy-attenuation honours it for direct light)");
+                // Non-physical attenuation constants are ignored unless legacy_attenuation; the
+                // .scn loader, which reads them, warns once per light at its file location.
                 if (l.kind == K::Point)
                     lights_.push_back(std::make_unique<PointLight>(l, options));
                 else

@@ -118,7 +118,7 @@ TEST(LightSet, BadReferencesAndNonPhysicalAttenuation) {
     log::set_quiet(true);
     const int before = log::warning_count();
     const LightSet physical(t, unit_bounds());
-    EXPECT_EQ(log::warning_count() - before, 1);
+    EXPECT_EQ(log::warning_count() - before, 0);  // the .scn loader warns, once, with the location
     log::set_quiet(false);
     EXPECT_NEAR(physical[0].sample_Li({0, 2, 0}, {}).L.r, 0.25f, 1e-6f);
     const LightSet legacy(t, unit_bounds(), {.legacy_attenuation = true});

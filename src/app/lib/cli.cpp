@@ -15,6 +15,7 @@
 
 #include "accel/version.h"
 #include "app/lib/diff_command.h"
+#include "app/lib/image_commands.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
 #include "integrators/progressive_checkpoint.h"
@@ -23,7 +24,7 @@ namespace phos::app {
 namespace {
 
 constexpr const char* kVersion = "0.2.0";
-const std::vector<std::string> kCommands{"render", "diff", "options", "help"};
+const std::vector<std::string> kCommands{"render", "diff", "info", "montage", "options", "help"};
 
 std::string version_text() {
     std::string s = std::string("phos ") + kVersion + "\n";
@@ -215,6 +216,18 @@ int run_cli(int argc, char** argv) {
     diff->add_option("--window", dc.window, "pixel window x0 x1 y0 y1 (half-open, y from the top)")
         ->expected(4);
 
+    std::vector<std::string> info_paths;
+    CLI::App* info =
+        app.add_subcommand("info", "per image: size, mean, fraction of black pixels, non-finite values");
+    info->add_option("images", info_paths, "images (.exr, .pfm, .png, ...)")->required();
+    std::string montage_out;
+    std::vector<std::string> montage_in;
+    int montage_cell = 128;
+    CLI::App* mont = app.add_subcommand("montage", "a contact sheet of images in a grid");
+    mont->add_option("output", montage_out, "output image")->required();
+    mont->add_option("images", montage_in, "images to place, in order")->required();
+    mont->add_option("--cell", montage_cell, "cell size in pixels (default 128)");
+
     CLI::App* opts = app.add_subcommand("options", "print every render option (markdown: docs/options.md)");
     bool markdown = false;
     opts->add_flag("--markdown", markdown, "markdown table (the default; kept for scripts)");
@@ -238,7 +251,7 @@ int run_cli(int argc, char** argv) {
             const std::string guess = nearest(args[0], kCommands);
             return print_error("unknown command '" + args[0] + "'" +
                                (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
-                               " (commands: render, diff, options, help)");
+                               " (commands: render, diff, info, montage, options, help)");
         }
     }
 
@@ -335,6 +348,8 @@ int run_cli(int argc, char** argv) {
             run_render(rc);
         }
         if (diff->parsed()) run_diff(dc);
+        if (info->parsed()) run_info(info_paths);
+        if (mont->parsed()) run_montage(montage_out, montage_in, montage_cell);
         return 0;
     } catch (const ParseError& e) {
         std::fprintf(stderr, "%s\n", e.what());
