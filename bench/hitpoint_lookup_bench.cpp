@@ -32,7 +32,7 @@ const Data& data() {
         opt.width = opt.height = 256;
         static Stats stats;
         static integrators::Prepared P(s, opt, {}, stats);
-        const integrators::sppm::PixelFootprint fp(P);
+        const integrators::CameraModel::Footprint fp = P.camera.pixel_footprint();
         RayCounts rays;
         for (int y = 0; y < 256; ++y)
             for (int x = 0; x < 256; ++x) {

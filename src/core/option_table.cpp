@@ -140,11 +140,12 @@ void validate(const Table& table, const void* object) {
     }
 }
 
-std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object,
-                                                        Effect effect) {
+std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object, Effect effect,
+                                                        const std::string& integrator) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Option& o : table.options)
-        if (o.effect == effect) out.emplace_back(o.flag_name(), o.get(object));
+        if (o.effect == effect && (integrator.empty() || o.applies(integrator)))
+            out.emplace_back(o.flag_name(), o.get(object));
     return out;
 }
 

@@ -242,8 +242,9 @@ std::string option_error(const Option& o, const std::string& why);
 // with option_error's wording for the first invalid one.
 void validate(const Table& table, const void* object);
 
-// "name=value" for each option of `table` whose effect is `effect`, as stored in `object`.
-std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object,
-                                                        Effect effect);
+// (flag, value) for each option of `table` whose effect is `effect`, as stored in `object`; with
+// `integrator`, only the options that apply to it.
+std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object, Effect effect,
+                                                        const std::string& integrator = "");
 
 }  // namespace phos::options

@@ -6,6 +6,7 @@
 #include "core/warp.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
+#include "integrators/factory.h"
 #include "integrators/pixel_loop.h"
 #include "shading/surface_walk.h"
 
@@ -63,7 +64,7 @@ Stage next_stage(Stage s, bool delta_bounce) {
 
 void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
     if (prepared.options.layers) {
-        render_layers(prepared, film, progress, "render", {"direct", "caustic", "indirect", "specular"},
+        render_layers(prepared, film, progress, "render", integrator_layers("path"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });

@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "integrators/factory.h"
 #include "integrators/photon_map_radiance.h"
 #include "integrators/pixel_loop.h"
 #include "photon/projection_map.h"
@@ -132,7 +133,7 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
     const PhotonMapOptions o = resolve(options_, P);
     const PhotonMapRadiance R(P, o, maps);
     if (P.options.layers) {
-        render_layers(P, film, progress, "photonmap", {"direct", "caustic", "indirect", "specular"},
+        render_layers(P, film, progress, "photonmap", integrator_layers("photonmap"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           parts = R.camera_ray(ray, sampler, rays);
                           return parts.total();

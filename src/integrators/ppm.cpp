@@ -23,7 +23,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
     const int direct_samples = direct_samples_for(opt_, true);
-    const InitialRadius initial{opt_.radius, opt_.radius_pixels, PixelFootprint(P)};
+    const InitialRadius initial{opt_.radius, opt_.radius_pixels, P.camera.pixel_footprint()};
     std::vector<VisiblePoint> vps(slots);
     tbb::parallel_for(0, ro.height, [&](int y) {
         RayCounts rays;
@@ -43,7 +43,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         P.stats.add_rays(rays);
     });
 
-    const uint64_t photons = photons_per_iteration(opt_);
+    const uint64_t photons = opt_.photons_per_iter;
     PhotonAccumulator acc(slots);
     photon::HitPointGrid grid;
     auto resolve_film = [&] { resolve(state.slots, eye, 1.0, state.photons_emitted, film, ro.layers); };

@@ -46,10 +46,6 @@ public:
     }
     // Radiance arriving along an escaped ray with direction `dir` from infinite lights.
     Rgb escaped(Vec3 dir) const;
-    // True if the material at `hit` is only a medium boundary (rays pass straight through).
-    bool passes_through(const accel::SurfaceHit& hit) const {
-        return scene.materials[size_t(hit.material)].interface_only;
-    }
 
 private:
     static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,

@@ -53,8 +53,6 @@ struct ProgressiveOptions {
     std::shared_ptr<uint64_t> iterations_done = std::make_shared<uint64_t>(0);
 };
 
-inline uint64_t photons_per_iteration(const ProgressiveOptions& o) { return o.photons_per_iter; }
-
 // Light samples per visible point: --direct-samples, else 4 per iteration for sppm (one leaves
 // the direct light's noise dominant on area-lit scenes; 4 cost ~10 % more time per iteration and
 // cut cornell-diffuse's relMSE at 60 iterations from 0.00095 to 0.00074), 16 once for ppm (it

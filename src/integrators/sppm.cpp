@@ -17,10 +17,10 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
     ProgressiveState state = start_state(P, opt_, "sppm", 1);
 
-    const uint64_t photons = photons_per_iteration(opt_);
+    const uint64_t photons = opt_.photons_per_iter;
     const int direct_samples = direct_samples_for(opt_, false);
     const float radius_pixels = opt_.radius_pixels;
-    const InitialRadius initial{opt_.radius, radius_pixels, PixelFootprint(P)};
+    const InitialRadius initial{opt_.radius, radius_pixels, P.camera.pixel_footprint()};
     // The pilot refines the automatic (footprint) radius only; an explicit --radius is kept.
     PilotRadius pilot;
     if (opt_.radius <= 0) {

@@ -42,17 +42,12 @@ struct VisiblePoint {
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays);
 
-// Film footprint model for the automatic initial radius: the camera's (camera.h).
-struct PixelFootprint : CameraModel::Footprint {
-    explicit PixelFootprint(const Prepared& P) : CameraModel::Footprint(P.camera.pixel_footprint()) {}
-};
-
 // The automatic or explicit initial radius of a visible point, before any photon pass: `radius`
 // (--radius) when > 0, else `radius_pixels` pixel footprints at the point's path length.
 struct InitialRadius {
     float radius;
     float radius_pixels;
-    PixelFootprint footprint;
+    CameraModel::Footprint footprint;  // the camera's pixel footprint (camera.h)
     double r2(const VisiblePoint& vp) const {
         const float r = radius > 0 ? radius : radius_pixels * footprint.at(vp.path_length);
         return double(r) * double(r);

@@ -4,6 +4,7 @@
 
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
+#include "integrators/factory.h"
 #include "integrators/pixel_loop.h"
 #include "shading/surface_walk.h"
 
@@ -11,7 +12,7 @@ namespace phos::integrators {
 
 void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
     if (prepared.options.layers) {
-        render_layers(prepared, film, progress, "render", {"direct", "specular"},
+        render_layers(prepared, film, progress, "render", integrator_layers("whitted"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });

@@ -201,9 +201,8 @@ std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cm
     std::vector<std::pair<std::string, std::string>> out;
     for (const BoundTable& b : cmd.tables()) {
         if (b.table == &run_options()) continue;  // the integrator is recorded by name
-        for (const options::Option& o : b.table->options)
-            if (o.effect == options::Effect::Image && o.applies(cmd.run.integrator))
-                out.emplace_back(o.flag_name(), o.get(b.object));
+        const auto v = options::values(*b.table, b.object, options::Effect::Image, cmd.run.integrator);
+        out.insert(out.end(), v.begin(), v.end());
     }
     return out;
 }
@@ -356,10 +355,11 @@ void run_render(const RenderCommand& command) {
         ScopedTimer t(stats, "aov");
         integrators::render_aovs(*prepared, film);
     }
+    const std::vector<std::string> layers = written_layers(film, opt);
     {
         ScopedTimer t(stats, "write");
         io::write_image(output, film.image(), {cmd.run.exposure});
-        for (const std::string& name : written_layers(film, opt))
+        for (const std::string& name : layers)
             io::write_image(layer_path(output, name), film.find_layer(name)->image(), {cmd.run.exposure});
     }
     if (cmd.run.verbose) {
@@ -370,7 +370,7 @@ void run_render(const RenderCommand& command) {
         std::fputs(stats.report().c_str(), stderr);
     }
     std::string also;
-    for (const std::string& name : written_layers(film, opt)) also += (also.empty() ? "" : ", ") + name;
+    for (const std::string& name : layers) also += (also.empty() ? "" : ", ") + name;
     log::info("phos: wrote " + output + (also.empty() ? "" : " (and layers " + also + ")"));
 }
 
