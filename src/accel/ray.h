@@ -40,5 +40,7 @@ Ray spawn_ray(const SurfaceHit& hit, Vec3 dir);
 Ray spawn_ray_to(const SurfaceHit& hit, Vec3 target);
 // A shadow ray between two surface points, offset at both ends.
 Ray spawn_ray_between(const SurfaceHit& from, const SurfaceHit& to);
+// A shadow ray from a point off any surface (in a medium) towards point `target`.
+Ray ray_to(Vec3 from, Vec3 target);
 
 }  // namespace phos::accel

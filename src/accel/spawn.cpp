@@ -42,6 +42,14 @@ Ray spawn_ray_to(const SurfaceHit& hit, Vec3 target) {
     return r;
 }
 
+Ray ray_to(Vec3 from, Vec3 target) {
+    Ray r;
+    r.origin = from;
+    r.dir = target - from;
+    r.tmax = 1.0f - kShadowEpsilon;
+    return r;
+}
+
 Ray spawn_ray_between(const SurfaceHit& from, const SurfaceHit& to) {
     const Vec3 po = offset_origin(from, to.p - from.p);
     const Vec3 pt = offset_origin(to, po - to.p);

@@ -118,5 +118,7 @@ struct Rgb {
     bool is_finite() const { return std::isfinite(r) && std::isfinite(g) && std::isfinite(b); }
 };
 constexpr Rgb operator*(float s, Rgb c) { return c * s; }
+inline Rgb max(Rgb a, Rgb b) { return {std::max(a.r, b.r), std::max(a.g, b.g), std::max(a.b, b.b)}; }
+inline Rgb exp(Rgb a) { return {std::exp(a.r), std::exp(a.g), std::exp(a.b)}; }
 
 }  // namespace phos

@@ -10,12 +10,23 @@ namespace phos::integrators {
 
 // One light chosen in proportion to its power, one point on it, one shadow ray. With `mis`, area
 // and infinite lights are weighted against BSDF sampling by the power heuristic (the caller then
-// adds BSDF-sampled emission with the complementary weight).
+// adds BSDF-sampled emission with the complementary weight). `medium` is the medium the path
+// arrived in: shadow rays are attenuated by the media they cross (shadow_transmittance).
 Rgb sample_one_light(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
-                     Sampler& sampler, RayCounts& rays, bool mis);
+                     Sampler& sampler, RayCounts& rays, bool mis, int medium = -1);
 
 // Every light, one sample each (no MIS): the classic Whitted / photon-map direct term.
 Rgb sample_all_lights(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
-                      Sampler& sampler, RayCounts& rays);
+                      Sampler& sampler, RayCounts& rays, int medium = -1);
+
+// In-scattered direct light at point p inside `medium` (wo towards the viewer): one light chosen
+// by power, phase * L * transmittance / pdf, weighted against phase sampling with `mis`.
+Rgb sample_one_light_in_medium(const Prepared& P, Vec3 p, Vec3 wo, int medium, Sampler& sampler,
+                               RayCounts& rays, bool mis);
+
+// The unoccluded part of that estimate for one given light sample direction: used where the
+// caller chose the point itself (equiangular sampling along a camera ray).
+Rgb light_in_medium(const Prepared& P, const shading::LightLiSample& ls, Vec3 p, Vec3 wo, int medium,
+                    Sampler& sampler, RayCounts& rays);
 
 }  // namespace phos::integrators

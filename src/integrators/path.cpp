@@ -46,6 +46,16 @@ Rgb RadianceParts::*sampled_part(Stage s) {
     return &RadianceParts::indirect;
 }
 
+// Russian roulette once the path has some length; survivors are reweighted.
+bool survives_roulette(int depth, Rgb& beta, Sampler& sampler) {
+    if (depth > 3) {
+        const float q = std::max(0.05f, 1.0f - beta.max());
+        if (sampler.next() < q) return false;
+        beta *= 1.0f / (1.0f - q);
+    }
+    return beta.is_finite();
+}
+
 Stage next_stage(Stage s, bool delta_bounce) {
     switch (s) {
         case Stage::Camera:
@@ -88,11 +98,33 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
     Stage stage = Stage::Camera;
     BsdfSampledFrom from{};  // the last vertex, when !specular_bounce
     int depth = 0;
-    shading::SurfaceWalk walk(P.accel);
+    const shading::MediaSet* media = P.active_media();
+    shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     while (true) {
         accel::SurfaceHit hit;
-        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
-        if (event == shading::SurfaceWalk::Event::Lost) break;
+        Rgb emitted(0.0f);
+        const shading::SurfaceWalk::Event event =
+            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        if (!emitted.is_black()) add(emitted, found_part(stage));
+        if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
+            break;
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            // A real scattering event in a medium: light sampling and phase sampling, MIS-weighted
+            // against each other like a surface vertex (the phase function is its own pdf).
+            if (depth++ == P.options.max_depth) break;
+            const Vec3 p = walk.medium_point(), wo = walk.medium_wo();
+            add(beta * sample_one_light_in_medium(P, p, wo, walk.medium(), sampler, rays, true),
+                sampled_part(stage));
+            Vec3 wi;
+            const float pdf = P.media[walk.medium()].phase().sample(wo, sampler.next2(), wi);
+            specular_bounce = false;
+            stage = next_stage(stage, false);
+            from = {p, pdf};
+            ray = accel::Ray{p, wi};
+            ++rays.bounce;
+            if (!survives_roulette(depth, beta, sampler)) break;
+            continue;
+        }
         if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
             if (specular_bounce || P.options.background_light)
@@ -117,7 +149,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         const shading::Bsdf bsdf = P.bsdf(hit);
 
         if (bsdf.has_non_specular())
-            add(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true), sampled_part(stage));
+            add(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()),
+                sampled_part(stage));
 
         const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2());
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
@@ -126,15 +159,9 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         stage = next_stage(stage, specular_bounce);
         from = {hit.p, bs->pdf};
         ray = accel::spawn_ray(hit, bs->wi);
+        walk.leave(hit, bs->wi);
         ++rays.bounce;
-
-        // Russian roulette once the path has some length; survivors are reweighted.
-        if (depth > 3) {
-            const float q = std::max(0.05f, 1.0f - beta.max());
-            if (sampler.next() < q) break;
-            beta *= 1.0f / (1.0f - q);
-        }
-        if (!beta.is_finite()) break;
+        if (!survives_roulette(depth, beta, sampler)) break;
     }
     return L;
 }

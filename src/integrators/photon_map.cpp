@@ -29,8 +29,9 @@ std::string fmt(const char* f, double v) {
 PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
     PhotonMapOptions r = o;
     const float scene_radius = shading::SceneSphere::from_bounds(P.accel.bounds()).radius;
-    for (PhotonMapSettings* s : {&r.global, &r.caustic, &r.indirect})
+    for (PhotonMapSettings* s : {&r.global, &r.caustic, &r.indirect, &r.volume, &r.volume_caustic})
         if (!(s->radius > 0)) s->radius = std::max(s->radius_fraction * scene_radius, 1e-6f);
+    if (!(r.volume_step > 0)) r.volume_step = 0.5f * r.volume.radius;
     return r;
 }
 
@@ -58,6 +59,12 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     to.target[photon::kGlobalMap] = o.global.photons;
     to.target[photon::kCausticMap] = o.caustic.photons;
     to.target[photon::kIndirectMap] = o.indirect.photons;
+    // Media: multiple scattering and volume caustics (single scattering is sampled from the lights).
+    const bool media = P.active_media() != nullptr && !o.photon_viz;
+    to.wanted[photon::kVolumeMap] = media && o.indirect_light;
+    to.wanted[photon::kVolumeCausticMap] = media && o.caustics && has_delta_materials(P.scene);
+    to.target[photon::kVolumeMap] = o.volume.photons;
+    to.target[photon::kVolumeCausticMap] = o.volume_caustic.photons;
     to.emit = o.photons;
     uint64_t largest = 0;
     for (int m = 0; m < photon::kMapCount; ++m)
@@ -69,7 +76,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     to.seed = P.options.seed;
     to.caustic_projection = o.projection_maps;
 
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
     auto t0 = std::chrono::steady_clock::now();
     photon::TracedPhotons traced = photon::trace_photons(ps, to);
     const double trace_s = seconds_since(t0);

@@ -19,11 +19,13 @@ namespace phos::integrators {
 // The photon maps built by pass 1 (kd-trees with powers already divided by their emission count).
 struct PhotonMaps {
     photon::PhotonKdTree map[photon::kMapCount];
-    uint64_t emitted[photon::kMapCount] = {0, 0, 0};
+    uint64_t emitted[photon::kMapCount] = {};
     photon::IrradianceCache cache;  // empty unless --irradiance-cache
     const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }
     const photon::PhotonKdTree& caustic() const { return map[photon::kCausticMap]; }
     const photon::PhotonKdTree& indirect() const { return map[photon::kIndirectMap]; }
+    const photon::PhotonKdTree& volume() const { return map[photon::kVolumeMap]; }
+    const photon::PhotonKdTree& volume_caustic() const { return map[photon::kVolumeCausticMap]; }
 };
 
 class PhotonMapIntegrator : public Integrator {

@@ -57,6 +57,25 @@ void add_map(B& b, const std::string& name, PhotonMapSettings PhotonMapOptions::
         .applies_to = "photonmap";
 }
 
+// --NAME N, --NAME-samples K, --NAME-radius R for a volume map (always a box kernel).
+void add_volume_map(B& b, const std::string& name, PhotonMapSettings PhotonMapOptions::*map,
+                    const std::string& what, const std::string& radius_default) {
+    auto& n = b.number(
+        name + "-photons", [map](auto& o) -> auto& { return (o.*map).photons; }, "N",
+        between(0, 2147483648.0), "stored photons wanted in the " + what + " map (scenes with media)");
+    n.applies_to = "photonmap";
+    n.effect = options::Effect::Image;
+    b.number(
+         name + "-samples", [map](auto& o) -> auto& { return (o.*map).samples; }, "K", between(1, 100000),
+         "photons per " + what + " radiance estimate (k nearest)")
+        .applies_to = "photonmap";
+    auto& r = b.number(
+        name + "-radius", [map](auto& o) -> auto& { return (o.*map).radius; }, "R", between(0, 1e30),
+        "maximum " + what + " estimate radius in scene units (0 = automatic)");
+    r.applies_to = "photonmap";
+    r.default_text = "automatic: " + radius_default + " x the scene's bounding-sphere radius";
+}
+
 }  // namespace
 
 const options::Table& photon_map_options() {
@@ -65,10 +84,15 @@ const options::Table& photon_map_options() {
         add_map(b, "global", &PhotonMapOptions::global, "global (final gather)", "0.1");
         add_map(b, "caustic", &PhotonMapOptions::caustic, "caustic", "0.05");
         add_map(b, "indirect", &PhotonMapOptions::indirect, "indirect (--fast-global)", "0.1");
+        add_volume_map(b, "volume", &PhotonMapOptions::volume, "volume (multiple scattering)", "0.1");
+        add_volume_map(b, "volume-caustic", &PhotonMapOptions::volume_caustic, "volume caustic", "0.05");
         auto pm = [&](options::Option& o) -> options::Option& {
             o.applies_to = "photonmap";
             return o;
         };
+        pm(b.number("volume-step", &PhotonMapOptions::volume_step, "D", between(0, 1e30),
+                    "ray-marching step along camera rays in media, scene units (0 = automatic)"))
+            .default_text = "automatic: the volume radius / 2";
         pm(b.number("photons", &PhotonMapOptions::photons, "N", between(0, 1099511627776.0),
                     "photons to emit (0 = until every map holds its budget)"))
             .default_text = "0 (until every map holds its budget)";

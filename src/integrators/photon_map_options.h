@@ -25,6 +25,10 @@ struct PhotonMapOptions {
     PhotonMapSettings global{200000, 100, 0, 0.1f, photon::FilterKind::Box, 1.1f};
     PhotonMapSettings caustic{100000, 60, 0, 0.05f, photon::FilterKind::Cone, 1.1f};
     PhotonMapSettings indirect{200000, 100, 0, 0.1f, photon::FilterKind::Box, 1.1f};
+    // Participating media (docs/media.md): multiple scattering and volume caustics, box kernel.
+    PhotonMapSettings volume{200000, 60, 0, 0.1f, photon::FilterKind::Box, 1.1f};
+    PhotonMapSettings volume_caustic{200000, 40, 0, 0.05f, photon::FilterKind::Box, 1.1f};
+    float volume_step = 0;            // ray-marching step along camera rays in media (0 = automatic)
     uint64_t photons = 0;             // --photons: photons to emit (0 = until the map budgets are met)
     uint64_t max_emitted = 0;         // stop emitting here even if a budget is unmet (0 = automatic)
     int max_photon_depth = 16;        // scattering events per photon path

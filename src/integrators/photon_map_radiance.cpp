@@ -11,6 +11,10 @@
 // Light arriving at x through glossy lobes is covered by the same split (the lobes are sampled by
 // the gather and evaluated by the direct and caustic estimates), so there is no separate glossy
 // recursion to double count.
+// In participating media the camera ray gains, along every stretch in a medium (Jensen &
+// Christensen 1998, eq. 12), the same three parts: single scattering L V (light sampling), volume
+// caustics L S+ V and multiple scattering L ... {D|V} V (the volume maps' estimates, by ray
+// marching), while what lies behind is attenuated by the stretch's transmittance.
 #include "integrators/photon_map_radiance.h"
 
 #include <algorithm>
@@ -19,6 +23,7 @@
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/pixel_loop.h"
+#include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
@@ -29,8 +34,10 @@ using photon::kIndirectMap;
 
 PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps)
     : P_(P), o_(o), maps_(maps) {
-    const PhotonMapSettings* s[photon::kMapCount] = {&o.global, &o.caustic, &o.indirect};
-    for (int m = 0; m < photon::kMapCount; ++m) {
+    volume_est_ = {o.volume.samples, o.volume.radius};
+    volume_caustic_est_ = {o.volume_caustic.samples, o.volume_caustic.radius};
+    const PhotonMapSettings* s[3] = {&o.global, &o.caustic, &o.indirect};
+    for (int m = 0; m < 3; ++m) {
         est_[m].k = s[m]->samples;
         est_[m].max_radius = s[m]->radius;
         est_[m].filter.kind = s[m]->filter;
@@ -53,11 +60,19 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
     RadianceParts out;
     Rgb beta(1.0f);
     bool via_delta = false;
-    shading::SurfaceWalk walk(P_.accel);  // its distance() scales the pixel footprint
+    // Its distance() scales the pixel footprint.
+    shading::SurfaceWalk walk(P_.accel, P_.active_media(), P_.camera_medium());
     for (int depth = 0;;) {
         Rgb& seen = via_delta ? out.specular : out.direct;
         accel::SurfaceHit hit;
-        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
+        const shading::SurfaceWalk::Event event =
+            walk.next_segments(ray, hit, [&](const shading::Medium& m, Vec3 o, Vec3 d, float t_end) {
+                const MediumStretch s = march(m, walk.medium(), o, d, t_end, sampler, rays);
+                (via_delta ? out.specular : out.direct) += beta * s.single;
+                (via_delta ? out.specular : out.caustic) += beta * s.caustic;
+                (via_delta ? out.specular : out.indirect) += beta * s.multiple;
+                beta *= s.T;
+            });
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
             seen += beta * (P_.scene.background + P_.escaped(normalize(ray.dir)));
@@ -75,7 +90,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
                 Rgb& d = via_delta ? out.specular : out.direct;
                 Rgb& c = via_delta ? out.specular : out.caustic;
                 Rgb& i = via_delta ? out.specular : out.indirect;
-                if (o_.direct) d += beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays);
+                if (o_.direct) d += beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays, walk.medium());
                 if (o_.caustics) {
                     photon::SurfaceQuery qc = q;
                     qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
@@ -86,7 +101,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
                         i += beta *
                              photon::radiance_estimate(maps_.indirect(), est_[kIndirectMap], q, wo, bsdf);
                     else
-                        i += beta * final_gather(hit, bsdf, wo, sampler, rays);
+                        i += beta * final_gather(hit, bsdf, wo, walk.medium(), sampler, rays);
                 }
             }
         }
@@ -101,6 +116,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         via_delta = true;
         ray = accel::spawn_ray(hit, s->wi);
+        walk.leave(hit, s->wi);
         ++rays.bounce;
         ++depth;
     }
@@ -108,7 +124,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
 }
 
 Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
-                                    Sampler& sampler, RayCounts& rays) const {
+                                    int medium, Sampler& sampler, RayCounts& rays) const {
     const uint32_t non_delta = bsdf.split_lobes(wo).non_delta;
     const int n = std::max(o_.gather_rays, 1);
     if (!non_delta) return Rgb(0.0f);
@@ -120,18 +136,38 @@ Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading:
         const auto s = bsdf.sample_lobes(non_delta, wo, u_lobe, u);
         if (!s || s->is_specular() || s->weight.is_black()) continue;
         ++rays.bounce;
-        sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi), sampler, rays);
+        sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi),
+                                      shading::SurfaceWalk::medium_after(hit, s->wi, medium), sampler, rays);
     }
     return sum * (1.0f / float(n));
 }
 
-Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
+Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, RayCounts& rays) const {
     Rgb L(0.0f), beta(1.0f);
-    shading::SurfaceWalk walk(P_.accel);
+    const shading::MediaSet* media = P_.active_media();
+    shading::SurfaceWalk walk(P_.accel, media, medium);
     for (int depth = 0; depth <= P_.options.max_depth;) {
         accel::SurfaceHit hit;
+        Rgb emitted(0.0f);
+        const shading::SurfaceWalk::Event event =
+            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        L += emitted;
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            // The free flight's weight carries sigma_s / sigma_maj...: what remains is the radiance
+            // in-scattered at x, int p L_i = direct (light sampling) + volume estimates / sigma_s.
+            const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
+            const shading::Medium& m = P_.media[walk.medium()];
+            Rgb Ls = sample_one_light_in_medium(P_, x, wo, walk.medium(), sampler, rays, false);
+            Rgb est = photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, m.phase()) +
+                      photon::volume_radiance_estimate(maps_.volume_caustic(), volume_caustic_est_, x, wo,
+                                                       m.phase());
+            const Rgb sigma_s = m.at(x).sigma_s;
+            for (int c = 0; c < 3; ++c) Ls[c] += sigma_s[c] > 0 ? est[c] / sigma_s[c] : 0.0f;
+            L += beta * Ls;
+            break;
+        }
         // Sky light arriving this way is direct light: an escaped ray adds nothing.
-        if (walk.next(ray, hit) != shading::SurfaceWalk::Event::Surface) break;
+        if (event != shading::SurfaceWalk::Event::Surface) break;
         const Vec3 wo = -normalize(ray.dir);
         const shading::Bsdf bsdf = P_.bsdf(hit);
         if (bsdf.has_non_specular()) {
@@ -150,10 +186,104 @@ Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& r
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         ray = accel::spawn_ray(hit, s->wi);
+        walk.leave(hit, s->wi);
         ++rays.bounce;
         ++depth;
     }
     return L;
+}
+
+namespace {
+
+// Where a ray from o along unit d leaves the scene's bounding sphere (0 if it never is inside).
+float exit_distance(const shading::SceneSphere& s, Vec3 o, Vec3 d) {
+    const Vec3 oc = o - s.center;
+    const float b = dot(oc, d), c = dot(oc, oc) - s.radius * s.radius;
+    const float disc = b * b - c;
+    return disc > 0 ? std::max(0.0f, -b + std::sqrt(disc)) : 0.0f;
+}
+
+}  // namespace
+
+PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium& medium, int medium_index,
+                                                          Vec3 o, Vec3 d, float t_end, Sampler& sampler,
+                                                          RayCounts& rays) const {
+    MediumStretch s;
+    if (t_end >= kInf) t_end = exit_distance(shading::SceneSphere::from_bounds(P_.accel.bounds()), o, d);
+    if (!(t_end > 0)) return s;
+    if (o_.direct) s.single = single_scattering(medium, medium_index, o, d, t_end, sampler, rays);
+    // Ray marching with a jittered start: every step adds T(t) dt times the volume estimates (and
+    // the medium's emission); T is exact in homogeneous media and marched in grids.
+    const int n = std::clamp(int(std::ceil(t_end / o_.volume_step)), 1, 4096);
+    const float dt = t_end / float(n);
+    const float jitter = sampler.next();
+    const Vec3 wo = -d;
+    Rgb T(1.0f);
+    float t_prev = 0;
+    for (int k = 0; k < n; ++k) {
+        const float t = (float(k) + jitter) * dt;
+        const Vec3 x = o + d * t;
+        const shading::MediumCoefficients c = medium.at(x);
+        T = medium.homogeneous() ? exp(medium.sigma_t() * -t) : T * exp(c.sigma_t() * -(t - t_prev));
+        t_prev = t;
+        if (T.max() < 1e-4f) break;
+        const Rgb w = T * dt;
+        if (o_.caustics)
+            s.caustic += w * photon::volume_radiance_estimate(maps_.volume_caustic(), volume_caustic_est_, x,
+                                                              wo, medium.phase());
+        if (o_.indirect_light)
+            s.multiple +=
+                w * photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, medium.phase());
+        if (!c.Le.is_black()) s.single += w * c.sigma_a * c.Le;
+    }
+    s.T = medium.homogeneous() ? exp(medium.sigma_t() * -t_end)
+                               : T * exp(medium.at(o + d * t_end).sigma_t() * -(t_end - t_prev));
+    return s;
+}
+
+Rgb PhotonMapRadiance::single_scattering(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d,
+                                         float t_end, Sampler& sampler, RayCounts& rays) const {
+    const float u_light = sampler.next(), u_t = sampler.next();
+    const Vec2 u = sampler.next2();
+    if (P_.lights.size() == 0) return Rgb(0.0f);
+    float pmf = 0;
+    const size_t li = P_.lights.choose(u_light, pmf);
+    if (!(pmf > 0)) return Rgb(0.0f);
+    const scene::Light& light = P_.scene.lights[li];
+    float t, pdf_t;
+    if (light.kind == scene::Light::Kind::Point || light.kind == scene::Light::Kind::Spot) {
+        // Equiangular: t = h + D tan(theta), theta uniform between the stretch's ends as seen from
+        // the light (Kulla & Fajardo 2012, eq. 6); pdf D / ((theta_b - theta_a)(D^2 + (t - h)^2)).
+        const float h = dot(light.position - o, d);
+        const float D = std::max(length(light.position - (o + d * h)), 1e-6f);
+        const float ta = std::atan2(-h, D), tb = std::atan2(t_end - h, D);
+        if (!(tb > ta)) return Rgb(0.0f);
+        const float theta = ta + u_t * (tb - ta);
+        t = std::clamp(h + D * std::tan(theta), 0.0f, t_end);
+        pdf_t = D / ((tb - ta) * (D * D + (t - h) * (t - h)));
+    } else {
+        // Proportional to exp(-sigma t) on [0, t_end] with sigma the mean extinction (uniform for
+        // grids or clear media).
+        const float sigma = medium.homogeneous() ? medium.sigma_t().average() : 0.0f;
+        if (sigma * t_end > 1e-3f) {
+            const float norm = -std::expm1(-sigma * t_end);
+            t = std::min(-std::log1p(-u_t * norm) / sigma, t_end);
+            pdf_t = sigma * std::exp(-sigma * t) / norm;
+        } else {
+            t = u_t * t_end;
+            pdf_t = 1 / t_end;
+        }
+    }
+    if (!(pdf_t > 0)) return Rgb(0.0f);
+    const Vec3 x = o + d * t;
+    const shading::MediumCoefficients c = medium.at(x);
+    if (c.sigma_s.is_black()) return Rgb(0.0f);
+    const shading::LightLiSample ls = P_.lights[li].sample_Li(x, u);
+    if (!(ls.pdf > 0)) return Rgb(0.0f);
+    const Rgb Li = light_in_medium(P_, ls, x, -d, medium_index, sampler, rays);
+    if (Li.is_black()) return Li;
+    const Rgb T = shading::transmittance(medium, o, d, t, sampler);
+    return T * c.sigma_s * Li * (1.0f / (pdf_t * ls.pdf * pmf));
 }
 
 }  // namespace phos::integrators

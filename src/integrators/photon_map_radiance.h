@@ -8,6 +8,7 @@
 #include "integrators/pixel_loop.h"
 #include "integrators/prepared.h"
 #include "photon/estimate.h"
+#include "photon/volume_estimate.h"
 
 namespace phos::integrators {
 
@@ -17,11 +18,26 @@ public:
     RadianceParts camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const;
 
     // Indirect radiance reflected at a non-specular hit towards wo by final gathering.
-    Rgb final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler,
-                     RayCounts& rays) const;
-    // Radiance along `ray` as the global map sees it: follows delta bounces, then takes the
-    // global estimate (or the irradiance cache) at each non-specular hit; emitters give nothing.
-    Rgb gather_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const;
+    Rgb final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo, int medium,
+                     Sampler& sampler, RayCounts& rays) const;
+    // Radiance along `ray` (starting in `medium`) as the global map sees it: follows delta
+    // bounces, then takes the global estimate (or the irradiance cache) at each non-specular hit;
+    // emitters give nothing. In media it samples a free flight and, where the ray scatters, takes
+    // the light in-scattered there (light sampling plus the volume maps).
+    Rgb gather_ray(accel::Ray ray, int medium, Sampler& sampler, RayCounts& rays) const;
+
+    // Light scattered towards the camera along one stretch of a camera ray in a medium (Jensen &
+    // Christensen 1998, eq. 12, by ray marching), split as the surface radiance is, and the
+    // stretch's transmittance.
+    struct MediumStretch {
+        Rgb single, caustic, multiple, T{1.0f};
+    };
+    MediumStretch march(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d, float t_end,
+                        Sampler& sampler, RayCounts& rays) const;
+    // Single scattering along a stretch: one light chosen by power and one distance, sampled
+    // equiangularly (Kulla & Fajardo 2012) towards point and spot lights, by transmittance otherwise.
+    Rgb single_scattering(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d, float t_end,
+                          Sampler& sampler, RayCounts& rays) const;
 
     const photon::EstimateOptions& estimate_options(int map) const { return est_[map]; }
 
@@ -30,6 +46,7 @@ private:
     const PhotonMapOptions& o_;
     const PhotonMaps& maps_;
     photon::EstimateOptions est_[photon::kMapCount];
+    photon::VolumeEstimateOptions volume_est_, volume_caustic_est_;
     // The caustic estimate's minimum radius at distance d along a camera path: offset + slope d
     // (pixel footprints measured at the image centre, times the option's pixel count).
     float footprint_offset_ = 0, footprint_slope_ = 0;

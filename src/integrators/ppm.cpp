@@ -38,7 +38,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
                 PixelStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
-                if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
+                if (vps[i].present() && st.r2 == 0) st.r2 = initial.r2(vps[i]);
             }
         P.stats.add_rays(rays);
     });
@@ -46,7 +46,12 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const uint64_t photons = opt_.photons_per_iter;
     PhotonAccumulator acc(slots);
     photon::HitPointGrid grid;
-    auto resolve_film = [&] { resolve(state.slots, eye, 1.0, state.photons_emitted, film, ro.layers); };
+    // Hit points in media (free flights of the eye pass) take the 3D estimate.
+    std::vector<uint8_t> volume_slot(slots, 0);
+    for (size_t i = 0; i < slots; ++i) volume_slot[i] = vps[i].volume() ? 1 : 0;
+    auto resolve_film = [&] {
+        resolve(state.slots, eye, 1.0 / eye, 1.0, state.photons_emitted, film, ro.layers, volume_slot);
+    };
 
     ProgressiveBudget budget(ro, opt_, state, film, progress);
     while (budget.next()) {

@@ -19,6 +19,7 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
     : scene(scene_),
       accel(scene_),
       lights(scene_, accel.bounds(), prepare.lights),
+      media(scene_),
       camera(camera_for(scene_, accel, prepare), options_.width, options_.height),
       options(options_),
       bsdf_options(prepare.bsdf),

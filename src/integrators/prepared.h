@@ -11,6 +11,7 @@
 #include "scene/scene.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
+#include "shading/medium.h"
 
 namespace phos::integrators {
 
@@ -31,6 +32,7 @@ public:
     const scene::Scene& scene;
     accel::EmbreeScene accel;
     shading::LightSet lights;
+    shading::MediaSet media;
     CameraModel camera;
     RenderOptions options;
     shading::BsdfOptions bsdf_options;
@@ -46,6 +48,10 @@ public:
     }
     // Radiance arriving along an escaped ray with direction `dir` from infinite lights.
     Rgb escaped(Vec3 dir) const;
+    // The media walks and shadow rays use (null when no ray can travel in a medium).
+    const shading::MediaSet* active_media() const { return media.active() ? &media : nullptr; }
+    // The medium camera rays start in.
+    int camera_medium() const { return media.active() ? scene.camera_medium : -1; }
 
 private:
     static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,

@@ -15,7 +15,15 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
-    ProgressiveState state = start_state(P, opt_, "sppm", 1);
+    // With media each pixel has two slots, one for surface and one for volume visible points, so
+    // each keeps statistics of one kernel dimension; the pixel is their sum.
+    const size_t per_pixel = P.active_media() ? 2 : 1;
+    ProgressiveState state = start_state(P, opt_, "sppm", uint32_t(per_pixel));
+    std::vector<uint8_t> volume_slot;
+    if (per_pixel == 2) {
+        volume_slot.assign(pixels * 2, 0);
+        for (size_t i = 0; i < pixels; ++i) volume_slot[2 * i + 1] = 1;
+    }
 
     const uint64_t photons = opt_.photons_per_iter;
     const int direct_samples = direct_samples_for(opt_, false);
@@ -29,14 +37,14 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         pilot.min_scale = std::min(1.0, lo * lo);
         pilot.max_scale = std::max(1.0, hi * hi);
     }
-    std::vector<VisiblePoint> vps(pixels);
-    PhotonAccumulator acc(pixels);
+    std::vector<VisiblePoint> vps(pixels * per_pixel);
+    PhotonAccumulator acc(pixels * per_pixel);
     photon::HitPointGrid grid;
     const auto tiles = film::make_tiles(ro.width, ro.height);
     // Pixel = direct sum / iterations + τ / (π R² N_emitted).
     auto resolve_film = [&] {
-        resolve(state.slots, 1, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
-                state.photons_emitted, film, ro.layers);
+        resolve(state.slots, int(per_pixel), 1.0, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
+                state.photons_emitted, film, ro.layers, volume_slot);
     };
 
     ProgressiveBudget budget(ro, opt_, state, film, progress);
@@ -56,18 +64,28 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                     const accel::Ray ray =
                         P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                     ++rays.camera;
-                    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
-                    PixelStats& st = state.slots[i];
+                    const size_t base = i * per_pixel;
+                    VisiblePoint& vp = vps[base];
+                    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+                    if (per_pixel == 2) {  // the volume slot takes a volume point
+                        VisiblePoint& vv = vps[base + 1];
+                        vv.bsdf.reset();
+                        vv.medium = -1;
+                        if (vp.volume()) std::swap(vp, vv);
+                    }
+                    PixelStats& st = state.slots[base];
                     if (L.is_finite())
                         for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);
-                    if (vps[i].bsdf && st.r2 == 0) st.r2 = initial.r2(vps[i]);
+                    for (size_t s = base; s < base + per_pixel; ++s)
+                        if (vps[s].present() && state.slots[s].r2 == 0)
+                            state.slots[s].r2 = initial.r2(vps[s]);
                 }
             P.stats.add_rays(rays);
         });
         const bool is_pilot = it == 0 && pilot.k > 0;
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
-            for (size_t i = 0; i < pixels; ++i)
-                if (vps[i].bsdf) state.slots[i].r2 *= pilot.max_scale;
+            for (size_t i = 0; i < vps.size(); ++i)
+                if (vps[i].present()) state.slots[i].r2 *= pilot.max_scale;
 
         // Photon pass: photons within each visible point's radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);

@@ -14,6 +14,7 @@
 #include "integrators/direct_light.h"
 #include "integrators/progressive_budget.h"
 #include "photon/photon_path.h"
+#include "shading/phase.h"
 
 namespace phos::integrators::sppm {
 
@@ -84,15 +85,21 @@ PhotonAccumulator::PhotonAccumulator(size_t slots) : slots_(new Slot[slots]), co
 PhotonAccumulator::~PhotonAccumulator() = default;
 
 namespace {
-GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth) {
+GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepared& P) {
     GatherPoint g;
+    if (vp.volume()) {
+        g.kind = GatherPoint::kVolume;
+        g.max_bounces = max_depth - 1 - vp.depth;
+        g.kd_pi.r = P.media[vp.medium].phase().g;
+        return g;
+    }
     if (!vp.bsdf) return g;
     const Bsdf& b = *vp.bsdf;
     const float s = dot(vp.wo, b.geometric_normal()) >= 0 ? 1.0f : -1.0f;
     g.ng = b.geometric_normal() * s;
     g.ns = b.frame().n * s;
     g.max_bounces = max_depth - 1 - vp.depth;
-    g.lambert = b.is_lambertian() ? 1 : 0;
+    g.kind = b.is_lambertian() ? GatherPoint::kLambert : GatherPoint::kSurface;
     g.kd_pi = b.diffuse_albedo() * float(1 / M_PI);
     return g;
 }
@@ -108,8 +115,8 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     scale_ = 0x1p32 / std::max(double(P.lights.total_power().average()), 1e-30);
     gather_.resize(vps.size());
     tbb::parallel_for(size_t(0), vps.size(),
-                      [&](size_t i) { gather_[i] = make_gather_point(vps[i], max_depth); });
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
+                      [&](size_t i) { gather_[i] = make_gather_point(vps[i], max_depth, P); });
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
     const photon::PhotonPathOptions popt{max_depth - 1};
     constexpr uint64_t kBlock = 4096;
     const uint64_t blocks = (count + kBlock - 1) / kBlock;
@@ -124,14 +131,39 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
         }
         uint64_t rays = 0;
         const uint64_t end = std::min(count, (blk + 1) * kBlock);
+        // Adds contribution c of a photon to point i's sums.
+        const auto add = [&](uint32_t i, const Rgb& c) {
+            if (c.is_black() || !c.is_finite()) return;
+            int64_t q[3];
+            for (int k = 0; k < 3; ++k) q[k] = int64_t(std::min(double(c[k]) * scale, 0x1p52) + 0.5);
+            if (local) {
+                LocalSlot& s = local[i];
+                for (int k = 0; k < 3; ++k) s.phi[k] += q[k];
+                ++s.m;
+            } else {
+                Slot& s = slots_[i];
+                for (int k = 0; k < 3; ++k) s.phi[k].fetch_add(q[k], std::memory_order_relaxed);
+                s.m.fetch_add(1, std::memory_order_relaxed);
+            }
+        };
+        // Photons scattering in a medium (not straight from a light: single scattering is sampled
+        // at the visible point) reach the volume points whose ball holds them.
+        const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
+            if (h.bounces == 0) return;
+            grid.query(h.p, [&](uint32_t i) {
+                const GatherPoint& g = gather_[i];
+                if (g.kind != GatherPoint::kVolume || h.bounces > g.max_bounces) return;
+                add(i, h.power * shading::henyey_greenstein(dot(-vps[i].wo, h.wi), g.kd_pi.r));
+            });
+        };
         for (uint64_t idx = blk * kBlock; idx < end; ++idx) {
-            rays += photon::trace_photon(ps, seed, pass, idx, popt, [&](const photon::PhotonHit& h) {
+            const auto on_surface = [&](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
                 grid.query(h.hit.p, [&](uint32_t i) {
                     const GatherPoint& g = gather_[i];
-                    if (h.bounces > g.max_bounces) return;
+                    if (g.kind == GatherPoint::kVolume || h.bounces > g.max_bounces) return;
                     Rgb c;
-                    if (g.lambert) {
+                    if (g.kind == GatherPoint::kLambert) {
                         // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side of ng and ns.
                         if (!(dot(h.wi, g.ng) > 0 && dot(h.wi, g.ns) > 0)) return;
                         c = g.kd_pi * h.power;
@@ -139,20 +171,10 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
                         const VisiblePoint& vp = vps[i];
                         c = vp.bsdf->eval(vp.wo, h.wi) * h.power;
                     }
-                    if (c.is_black() || !c.is_finite()) return;
-                    int64_t q[3];
-                    for (int k = 0; k < 3; ++k) q[k] = int64_t(std::min(double(c[k]) * scale, 0x1p52) + 0.5);
-                    if (local) {
-                        LocalSlot& s = local[i];
-                        for (int k = 0; k < 3; ++k) s.phi[k] += q[k];
-                        ++s.m;
-                    } else {
-                        Slot& s = slots_[i];
-                        for (int k = 0; k < 3; ++k) s.phi[k].fetch_add(q[k], std::memory_order_relaxed);
-                        s.m.fetch_add(1, std::memory_order_relaxed);
-                    }
+                    add(i, c);
                 });
-            });
+            };
+            rays += photon::trace_photon(ps, seed, pass, idx, popt, photon::Visitor{on_surface, on_volume});
         }
         total_rays.fetch_add(rays, std::memory_order_relaxed);
     });
@@ -183,18 +205,24 @@ void PhotonAccumulator::drain(F&& f) {
 void PhotonAccumulator::pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,
                               const PilotRadius& a) {
     drain([&](size_t i, uint64_t m, const int64_t*) {
-        if (vps[i].bsdf) stats[i].r2 = pilot_r2(a, stats[i].r2, m);
+        if (vps[i].volume())
+            stats[i].r2 = pilot_r2_volume(a, stats[i].r2, m);
+        else if (vps[i].bsdf)
+            stats[i].r2 = pilot_r2(a, stats[i].r2, m);
     });
 }
 
 void PhotonAccumulator::update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,
                                float alpha) {
     drain([&](size_t i, uint64_t m, const int64_t* sum) {
-        if (m == 0 || !vps[i].bsdf) return;
+        if (m == 0 || !vps[i].present()) return;
         const Rgb& beta = vps[i].beta;
         double phi[3];  // β Φ_i: the flux the camera path carries to the pixel
         for (int k = 0; k < 3; ++k) phi[k] = double(beta[k]) * (double(sum[k]) / scale_);
-        progressive_update(stats[i], m, phi, double(alpha));
+        if (vps[i].volume())
+            progressive_update_volume(stats[i], m, phi, double(alpha));
+        else
+            progressive_update(stats[i], m, phi, double(alpha));
     });
 }
 
@@ -203,15 +231,16 @@ void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps
     std::vector<Vec3> pos(vps.size());
     std::vector<float> r2(vps.size(), 0.0f);
     for (size_t i = 0; i < vps.size(); ++i)
-        if (vps[i].bsdf) {
+        if (vps[i].present()) {
             pos[i] = vps[i].p;
             r2[i] = float(stats[i].r2);
         }
     grid.build(pos, r2);
 }
 
-void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double direct_scale,
-             uint64_t photons_emitted, film::Film& film, bool layers) {
+void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double slot_weight,
+             double direct_scale, uint64_t photons_emitted, film::Film& film, bool layers,
+             const std::vector<uint8_t>& volume_slot) {
     const int w = film.width(), h = film.height();
     const double inv_photons = photons_emitted > 0 ? 1.0 / double(photons_emitted) : 0.0;
     // Layers are created here, before the parallel loop (Film::layer is not thread-safe).
@@ -221,9 +250,11 @@ void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double d
         for (int x = 0; x < w; ++x) {
             double sum[3] = {0, 0, 0}, direct[3] = {0, 0, 0}, indirect[3] = {0, 0, 0};
             for (int s = 0; s < slots_per_pixel; ++s) {
-                const PixelStats& st =
-                    stats[(size_t(y) * size_t(w) + size_t(x)) * size_t(slots_per_pixel) + size_t(s)];
-                const double k = radiance_scale(st.r2, inv_photons);  // eq. 12
+                const size_t i = (size_t(y) * size_t(w) + size_t(x)) * size_t(slots_per_pixel) + size_t(s);
+                const PixelStats& st = stats[i];
+                const double k = !volume_slot.empty() && volume_slot[i]
+                                     ? volume_radiance_scale(st.r2, inv_photons)
+                                     : radiance_scale(st.r2, inv_photons);  // eq. 12
                 for (int c = 0; c < 3; ++c) {
                     const double d = st.direct[c] * direct_scale, l = st.tau[c] * k;
                     sum[c] += d + l;
@@ -231,7 +262,7 @@ void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double d
                     indirect[c] += l;
                 }
             }
-            const double inv = 1.0 / slots_per_pixel;
+            const double inv = slot_weight;
             auto mean = [&](const double* v) {
                 return Rgb(float(v[0] * inv), float(v[1] * inv), float(v[2] * inv));
             };

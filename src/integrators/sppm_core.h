@@ -25,14 +25,20 @@
 
 namespace phos::integrators::sppm {
 
-// Where a camera path met its first non-specular surface (after following specular bounces).
+// Where a camera path met its first non-specular surface (after following specular bounces), or
+// scattered in a participating medium (free-flight sampling): a volume visible point, whose
+// statistics use a 3D kernel (a ball) instead of a disc (Knaus & Zwicker 2011, sec. 4.3: the same
+// progressive radius reduction with the kernel's dimension d = 3).
 struct VisiblePoint {
     Vec3 p;
     Vec3 wo;
     Rgb beta;       // camera-path throughput (over the path's selection probabilities)
     int depth = 0;  // specular bounces before it (limits photon bounces: total ≤ max_depth)
     float path_length = 0;
-    std::optional<shading::Bsdf> bsdf;  // empty: no visible point this iteration
+    std::optional<shading::Bsdf> bsdf;  // a surface visible point
+    int medium = -1;                    // >= 0: a volume visible point in this medium
+    bool present() const { return bsdf || medium >= 0; }
+    bool volume() const { return medium >= 0; }
 };
 
 // Traces a camera ray: adds emission seen along the specular chain, and at the first non-specular
@@ -49,9 +55,13 @@ struct InitialRadius {
     float radius_pixels;
     CameraModel::Footprint footprint;  // the camera's pixel footprint (camera.h)
     double r2(const VisiblePoint& vp) const {
-        const float r = radius > 0 ? radius : radius_pixels * footprint.at(vp.path_length);
+        float r = radius > 0 ? radius : radius_pixels * footprint.at(vp.path_length);
+        // A ball around a volume point holds far fewer photons than a disc of the same radius on
+        // a surface (photons in thin media are sparse): it starts kVolumeRadiusScale times wider.
+        if (vp.volume()) r *= kVolumeRadiusScale;
         return double(r) * double(r);
     }
+    static constexpr float kVolumeRadiusScale = 4.0f;
 };
 
 // The state a progressive render starts from: a fresh one (`slots_per_pixel` slots per pixel) for
@@ -67,8 +77,9 @@ struct GatherPoint {
     Vec3 ng;               // geometric normal turned to wo's side (zero: no visible point)
     int max_bounces = -1;  // photons that bounced more often would make the path exceed max_depth
     Vec3 ns;               // shading normal turned like ng
-    uint32_t lambert = 0;  // 1: the BSDF is one Lambert lobe, f = kd_pi when wi is above ng and ns
-    Rgb kd_pi;             // kd / π of a Lambert-only point
+    uint32_t kind = 0;     // kSurface, kLambert (one Lambert lobe: f = kd_pi above ng and ns), kVolume
+    Rgb kd_pi;             // kd / π of a Lambert-only point; kd_pi.r = the phase g of a volume point
+    static constexpr uint32_t kSurface = 0, kLambert = 1, kVolume = 2;
 };
 
 // Per-hit-point photon statistics of one iteration, summed in 64-bit fixed point: per-thread
@@ -80,11 +91,12 @@ public:
     ~PhotonAccumulator();
     // Traces photons [0, count) of pass `pass` on all cores, adding f(wo, wi) × power to each hit
     // point within its radius (photons straight from a light excluded: direct light is computed by
-    // shadow rays). Returns the number of photon rays traced.
+    // shadow rays); photons scattering in media add phase(wo, wi) × power to the volume points
+    // whose ball holds them. Returns the number of photon rays traced.
     uint64_t photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
                          const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass, uint64_t count);
-    // Applies progressive_update (eq. 9-11) to `stats` (one per visible point) with each point's
-    // M_i and β Φ_i, and clears the sums.
+    // Applies progressive_update (eq. 9-11; the 3D form for volume points) to `stats` (one per
+    // visible point) with each point's M_i and β Φ_i, and clears the sums.
     void update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
     // The pilot pass instead of update(): sets each visible point's r2 (the pilot's gathering disc)
     // by pilot_r2 from the photon count alone and clears the sums; N and τ stay 0 (see PilotRadius).
@@ -113,10 +125,12 @@ private:
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
                 const std::vector<PixelStats>& stats);
 
-// Final radiance of each pixel: mean over its `slots_per_pixel` slots of
-// direct × direct_scale + τ / (π R² N_emitted) (eq. 12). With `layers`, also the film layers
-// "direct" (the first term) and "indirect" (the photon estimate), which sum to the image.
-void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double direct_scale,
-             uint64_t photons_emitted, film::Film& film, bool layers);
+// Final radiance of each pixel: slot_weight × the sum over its `slots_per_pixel` slots of
+// direct × direct_scale + τ / (π R² N_emitted) (eq. 12; τ / (4/3 π R³ N_emitted) for the slots
+// `volume_slot` marks). With `layers`, also the film layers "direct" (the first term) and
+// "indirect" (the photon estimate), which sum to the image.
+void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double slot_weight,
+             double direct_scale, uint64_t photons_emitted, film::Film& film, bool layers,
+             const std::vector<uint8_t>& volume_slot);
 
 }  // namespace phos::integrators::sppm

@@ -1,5 +1,7 @@
 // The eye path of PPM and SPPM: from the camera through mirrors and glass to the first
 // non-specular surface, where a visible point is stored and direct light sampled (see sppm_core.h).
+// In participating media the path samples free flights (delta tracking) and may instead stop at a
+// scattering event in the medium: a volume visible point with single scattering sampled there.
 #include "core/error.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
@@ -13,12 +15,40 @@ using shading::Bsdf;
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays) {
     vp.bsdf.reset();
+    vp.medium = -1;
     Rgb L(0.0f), beta(1.0f);
-    shading::SurfaceWalk walk(P.accel);  // its distance() is the visible point's path length
+    const shading::MediaSet* media = P.active_media();
+    // Its distance() is the visible point's path length.
+    shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     for (int depth = 0;;) {
         accel::SurfaceHit hit;
-        const shading::SurfaceWalk::Event event = walk.next(ray, hit);
-        if (event == shading::SurfaceWalk::Event::Lost) break;
+        Rgb emitted(0.0f);
+        const shading::SurfaceWalk::Event event =
+            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        L += emitted;
+        if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
+            break;
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            if (depth == P.options.max_depth) break;
+            const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
+            Rgb direct(0.0f);
+            const int n = std::max(1, direct_samples);
+            for (int k = 0; k < n; ++k)
+                direct += sample_one_light_in_medium(P, x, wo, walk.medium(), sampler, rays, false);
+            L += beta * direct * (1.0f / float(n));
+            // beta holds the free flight's sigma_s weight; the photon estimate's density already
+            // counts sigma_s (photons are stored at scattering events), so divide it out once.
+            const Rgb sigma_s = P.media[walk.medium()].at(x).sigma_s;
+            Rgb w;
+            for (int c = 0; c < 3; ++c) w[c] = sigma_s[c] > 0 ? beta[c] / sigma_s[c] : 0.0f;
+            vp.p = x;
+            vp.wo = wo;
+            vp.beta = w;
+            vp.depth = depth;
+            vp.path_length = walk.distance();
+            vp.medium = walk.medium();
+            break;
+        }
         if (event == shading::SurfaceWalk::Event::Escaped) {
             // Every vertex so far was specular, so escaped light is seen directly.
             L += beta * (P.scene.background + P.escaped(normalize(ray.dir)));
@@ -37,7 +67,8 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
             const Rgb w = beta * (1 / p_ns);
             Rgb direct(0.0f);
             const int n = std::max(1, direct_samples);
-            for (int k = 0; k < n; ++k) direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false);
+            for (int k = 0; k < n; ++k)
+                direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false, walk.medium());
             L += w * direct * (1.0f / float(n));
             vp.p = hit.p;
             vp.wo = wo;
@@ -52,6 +83,7 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
         if (!s || s->weight.is_black() || !s->weight.is_finite()) break;
         beta *= s->weight * (1 / (1 - p_ns));
         ray = accel::spawn_ray(hit, s->wi);
+        walk.leave(hit, s->wi);
         ++rays.bounce;
         ++depth;
         if (!beta.is_finite() || beta.max() <= 0) break;

@@ -52,11 +52,26 @@ inline void progressive_update(PixelStats& s, uint64_t m, const double phi[3], d
     s.r2 = r2_next;
 }
 
+// The same in a medium (Knaus & Zwicker 2011 with kernel dimension 3): the ball's volume shrinks
+// by (N + αM)/(N + M), so R² shrinks by its 2/3 power and τ by the volume ratio.
+inline void progressive_update_volume(PixelStats& s, uint64_t m, const double phi[3], double alpha) {
+    if (m == 0) return;
+    const double n_next = next_n(s.n, alpha, double(m));
+    const double shrink = n_next / (s.n + double(m));  // R³_{i+1} / R³_i
+    for (int k = 0; k < 3; ++k) s.tau[k] = next_tau(s.tau[k], phi[k], shrink);
+    s.n = n_next;
+    s.r2 *= std::cbrt(shrink * shrink);
+}
+
 // Eq. 12's normalisation 1 / (π R² N_emitted) for a slot of squared radius r2, given
 // inv_emitted = 1 / N_emitted (0 before any photon): multiplies τ into radiance. 0 when r2 = 0
 // (no visible point yet).
 inline double radiance_scale(double r2, double inv_emitted) {
     return r2 > 0 ? inv_emitted / (M_PI * r2) : 0.0;
+}
+// The same for a volume slot: 1 / (4/3 π R³ N_emitted).
+inline double volume_radiance_scale(double r2, double inv_emitted) {
+    return r2 > 0 ? inv_emitted / (4.0 / 3.0 * M_PI * r2 * std::sqrt(r2)) : 0.0;
 }
 
 // Per-pixel initial radius from a pilot photon pass (SPPM, --radius-photons): the first
@@ -79,6 +94,11 @@ struct PilotRadius {
 inline double pilot_r2(const PilotRadius& a, double r2, uint64_t m) {
     if (m == 0) return r2 / a.max_scale;
     return r2 * std::clamp(a.k / double(m), a.min_scale / a.max_scale, 1.0);
+}
+// The same for a volume point: a ball holds k photons at R² = R_p² (k / M_p)^(2/3).
+inline double pilot_r2_volume(const PilotRadius& a, double r2, uint64_t m) {
+    if (m == 0) return r2 / a.max_scale;
+    return r2 * std::clamp(std::cbrt((a.k / double(m)) * (a.k / double(m))), a.min_scale / a.max_scale, 1.0);
 }
 
 }  // namespace phos::integrators::sppm

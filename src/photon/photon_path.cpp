@@ -6,7 +6,7 @@
 
 namespace phos::photon::detail {
 
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power) {
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power, int& medium) {
     if (ps.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = ps.lights.choose(sampler.next(), pmf);
@@ -17,6 +17,7 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& 
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (1.0f / pmf);
+    medium = ps.scene.lights[li].medium;
     return true;
 }
 

@@ -1,7 +1,10 @@
 // One photon's random walk from a light through the scene (Jensen's photon tracing): emission by a
 // power-chosen light, Russian roulette on the material's lobe albedos with per-channel power
 // rescaling, and a callback at every non-specular surface hit where photon maps / SPPM store or
-// splat it. Shared by the photon-map, PPM and SPPM integrators.
+// splat it. In participating media (Jensen & Christensen 1998) the photon takes free flights
+// (delta tracking, shading/medium_tracking.h), and at every real scattering event the visitor sees
+// a volume hit; the photon then survives with probability = the albedo (Russian roulette) and
+// scatters by the phase function. Shared by the photon-map, PPM and SPPM integrators.
 #pragma once
 
 #include <cstdint>
@@ -22,6 +25,7 @@ struct PhotonScene {
     const accel::EmbreeScene& accel;
     const shading::LightSet& lights;
     shading::BsdfOptions bsdf_options;
+    const shading::MediaSet* media = nullptr;  // null or inactive: every ray travels in vacuum
 };
 
 // A photon arriving at a surface with a non-specular (diffuse or glossy) component.
@@ -35,6 +39,25 @@ struct PhotonHit {
     bool after_specular;  // the bounces so far were all specular and there was at least one (L S+ D)
 };
 
+// A photon scattering in a participating medium (a real collision chosen by delta tracking).
+struct PhotonVolumeHit {
+    Vec3 p;
+    Vec3 wi;     // unit direction towards where the photon came from
+    Rgb power;   // as PhotonHit::power, already weighted by the scattering albedo at p
+    int medium;  // index into the scene's media
+    int bounces;
+    bool after_diffuse;   // some earlier scattering was non-specular (surface or medium)
+    bool after_specular;  // every earlier scattering was specular and there was one (L S+ V)
+};
+
+// A visitor made of one lambda per kind of hit: Visitor{on_surface, on_volume}.
+template <class... F>
+struct Visitor : F... {
+    using F::operator()...;
+};
+template <class... F>
+Visitor(F...) -> Visitor<F...>;
+
 class ProjectionMap;  // photon/projection_map.h
 
 struct PhotonPathOptions {
@@ -45,8 +68,9 @@ struct PhotonPathOptions {
 
 // Traces photon `index` of pass `pass` (random numbers keyed by (seed, pass, index)), calling
 // `visit(const PhotonHit&)` at every surface hit that has a non-specular component, before the
-// photon scatters on (a visitor that returns bool ends the path by returning false). Returns the number of
-// rays traced.
+// photon scatters on (a visitor that returns bool ends the path by returning false), and, if the
+// visitor accepts one, `visit(const PhotonVolumeHit&)` at every scattering event in a medium.
+// Returns the number of rays traced.
 template <class Visitor>
 uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
                       const PhotonPathOptions& options, Visitor&& visit);
@@ -55,11 +79,22 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
 
 namespace detail {
 // Emits the photon: picks a light by power and samples a ray from it. Returns false when the
-// scene has no light with power. `power` is the sample weight divided by the light's pmf.
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power);
+// scene has no light with power. `power` is the sample weight divided by the light's pmf;
+// `medium` is the light's medium.
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power, int& medium);
 // The same through a projection map (defined in projection_map.cpp).
 bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
-                    Rgb& power);
+                    Rgb& power, int& medium);
+// Calls the visitor and tells whether the path goes on (visitors returning void always go on).
+template <class Visitor, class Hit>
+bool visit_hit(Visitor& visit, const Hit& h) {
+    if constexpr (std::is_same_v<std::invoke_result_t<Visitor&, const Hit&>, bool>) {
+        return visit(h);
+    } else {
+        visit(h);
+        return true;
+    }
+}
 // Russian roulette on the lobe kinds at a hit, then sampling of the chosen kind in Importance
 // mode. Returns false when the photon is absorbed; otherwise updates `power` (per-channel exact
 // expectation) and sets `wi_out` and whether the chosen lobe was specular.
@@ -73,25 +108,47 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
     Sampler sampler(seed, 0x70686f746f6eULL ^ pass, index);
     accel::Ray ray;
     Rgb power;
-    if (!(options.projection ? detail::emit_projected(*options.projection, ps, sampler, ray, power)
-                             : detail::emit_photon(ps, sampler, ray, power)))
+    int medium = -1;
+    if (!(options.projection ? detail::emit_projected(*options.projection, ps, sampler, ray, power, medium)
+                             : detail::emit_photon(ps, sampler, ray, power, medium)))
         return 0;
     bool after_diffuse = false, after_specular = false;
-    shading::SurfaceWalk walk(ps.accel);
+    const shading::MediaSet* media = ps.media && ps.media->active() ? ps.media : nullptr;
+    shading::SurfaceWalk walk(ps.accel, media, medium);
     for (int bounces = 0; bounces <= options.max_bounces;) {
         accel::SurfaceHit hit;
-        if (walk.next(ray, hit) != shading::SurfaceWalk::Event::Surface) break;
+        const Rgb power_before = power;
+        Rgb emitted;  // media emission is not traced from the camera side only; photons ignore it
+        const shading::SurfaceWalk::Event event =
+            media ? walk.next(ray, hit, sampler, power, emitted) : walk.next(ray, hit);
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            const PhotonVolumeHit vh{walk.medium_point(), walk.medium_wo(), power, walk.medium(), bounces,
+                                     after_diffuse,       after_specular};
+            if constexpr (std::is_invocable_v<Visitor&, const PhotonVolumeHit&>) {
+                if (!detail::visit_hit(visit, vh)) break;
+            }
+            if (bounces == options.max_bounces) break;
+            // Russian roulette on the albedo the tracking weight applied: keep the power of a
+            // grey medium's photon constant (Jensen & Christensen 1998).
+            const float q = std::min(1.0f, power.average() / std::max(power_before.average(), 1e-30f));
+            if (!(sampler.next() < q)) break;
+            power *= 1.0f / q;
+            Vec3 wi;
+            ps.media->operator[](walk.medium()).phase().sample(walk.medium_wo(), sampler.next2(), wi);
+            ray = accel::Ray{walk.medium_point(), wi};
+            after_diffuse = true;
+            after_specular = false;
+            ++bounces;
+            continue;
+        }
+        if (event != shading::SurfaceWalk::Event::Surface) break;
         const Vec3 wo = -normalize(ray.dir);
         const shading::Bsdf bsdf(ps.scene.materials[size_t(hit.material)], hit, ps.scene, ps.bsdf_options);
         if (bsdf.has_non_specular()) {
             const PhotonHit ph{hit, bsdf, wo, power, bounces, after_diffuse, after_specular};
             // A visitor returning bool may end the path (false): e.g. once no map it fills can
             // take this photon any more.
-            if constexpr (std::is_same_v<std::invoke_result_t<Visitor&, const PhotonHit&>, bool>) {
-                if (!visit(ph)) break;
-            } else {
-                visit(ph);
-            }
+            if (!detail::visit_hit(visit, ph)) break;
         }
         if (bounces == options.max_bounces) break;
         Vec3 wi;
@@ -104,6 +161,7 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
             after_specular = false;
         }
         ray = accel::spawn_ray(hit, wi);
+        walk.leave(hit, wi);
         ++bounces;
     }
     return walk.rays();

@@ -204,7 +204,8 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
     if (fraction_ > 0) choose_ = shading::Distribution1D(weights);
 }
 
-bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power) const {
+bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power,
+                         int& medium) const {
     if (empty()) return false;
     float pmf = 0;
     const size_t li = choose_.sample_discrete(sampler.next(), &pmf);
@@ -220,13 +221,14 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ra
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (lc.fraction / pmf);
+    medium = ps.scene.lights[li].medium;
     return true;
 }
 
 namespace detail {
 bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
-                    Rgb& power) {
-    return map.emit(ps, sampler, ray, power);
+                    Rgb& power, int& medium) {
+    return map.emit(ps, sampler, ray, power, medium);
 }
 }  // namespace detail
 

@@ -58,25 +58,37 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     po.max_bounces = o.max_depth;
     po.projection = projection;
     NormalCodes normals;
+    // Volume photons: no normal; the volume map takes those after a non-specular scattering, the
+    // volume caustic map those after specular bounces only (single scattering is not stored).
+    const auto store = [&](const Photon& ph, const bool into[kMapCount], const Rgb& power, uint64_t j) {
+        for (int m = 0; m < kMapCount; ++m) {
+            if (!active[m] || !into[m]) continue;
+            s.photons[m].push_back(ph);
+            s.power[m].push_back(power);
+            s.emission[m].push_back(uint32_t(j));
+        }
+    };
     for (uint64_t j = 0; j < count; ++j) {
-        s.rays += trace_photon(ps, o.seed, pass, first + j, po, [&](const PhotonHit& h) {
+        const auto on_volume = [&](const PhotonVolumeHit& h) {
+            const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
+            store(Photon(h.p, Rgb(0.0f), h.wi, Vec3(0.0f)), into, h.power, j);
+            // After a scattering in a medium the path can only feed the non-caustic maps.
+            return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
+        };
+        const auto on_surface = [&](const PhotonHit& h) {
             // Normal on the side the photon arrived from: the estimate compares it with the
             // query's normal turned towards the viewer.
             const Vec3 n = dot(h.hit.ng, h.wi) >= 0 ? h.hit.ng : -h.hit.ng;
             Photon ph(h.hit.p, Rgb(0.0f), h.wi, Vec3(0.0f));
             ph.normal_axis = normals.get(n);  // = set_normal(n), split axis bits as constructed
-            const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse};
-            for (int m = 0; m < kMapCount; ++m) {
-                if (!active[m] || !into[m]) continue;
-                s.photons[m].push_back(ph);
-                s.power[m].push_back(h.power);
-                s.emission[m].push_back(uint32_t(j));
-            }
-            // Only the caustic map still filling: a path that went diffuse can never store a
+            const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse, false, false};
+            store(ph, into, h.power, j);
+            // Only caustic maps still filling: a path that went diffuse can never store a
             // caustic photon again, so stop it here (most of the caustic map's rounds).
-            return active[kGlobalMap] || active[kIndirectMap] ||
+            return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
                    (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
-        });
+        };
+        s.rays += trace_photon(ps, o.seed, pass, first + j, po, Visitor{on_surface, on_volume});
     }
 }
 
@@ -90,6 +102,10 @@ const char* map_name(int kind) {
             return "caustic";
         case kIndirectMap:
             return "indirect";
+        case kVolumeMap:
+            return "volume";
+        case kVolumeCausticMap:
+            return "volume caustic";
     }
     return "?";
 }
@@ -182,25 +198,27 @@ TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
     TracedPhotons out;
     bool wanted[kMapCount];
     for (int m = 0; m < kMapCount; ++m) wanted[m] = o.wanted[m];
-    if (!(o.caustic_projection && wanted[kCausticMap])) {
+    if (!(o.caustic_projection && (wanted[kCausticMap] || wanted[kVolumeCausticMap]))) {
         run_stream(ps, o, wanted, 0, nullptr, out);
         return out;
     }
-    // Caustic photons through projection maps in their own stream (pass 1, its own N emitted);
-    // the global and indirect maps keep the full emission (pass 0).
-    wanted[kCausticMap] = false;
+    // Caustic photons (surface and volume) through projection maps in their own stream (pass 1,
+    // its own N emitted); the other maps keep the full emission (pass 0).
+    const bool caustic_only[kMapCount] = {false, wanted[kCausticMap], false, false,
+                                          wanted[kVolumeCausticMap]};
+    wanted[kCausticMap] = wanted[kVolumeCausticMap] = false;
     run_stream(ps, o, wanted, 0, nullptr, out);
     auto t0 = std::chrono::steady_clock::now();
     const ProjectionMap pm(ps, o.projection_resolution);
     out.caustic_fraction = pm.fraction();
     out.projection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const bool caustic_only[kMapCount] = {false, true, false};
     if (!pm.empty()) {
         t0 = std::chrono::steady_clock::now();
         run_stream(ps, o, caustic_only, 1, &pm, out);
         out.caustic_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     } else {
-        out.reached[kCausticMap] = true;  // no light can reach a specular object: nothing to store
+        // No light can reach a specular object: nothing to store.
+        out.reached[kCausticMap] = out.reached[kVolumeCausticMap] = true;
     }
     return out;
 }

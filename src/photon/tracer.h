@@ -1,6 +1,9 @@
 // The photon-tracing pass of the two-pass photon mapper: emits photons (photon_path.h) on all cores
-// in fixed batches of photon indices and sorts the non-specular hits into the global (L{S|D}*D),
-// caustic (LS+D) and indirect (L{S|D}*DD) maps, each up to its own budget of stored photons.
+// in fixed batches of photon indices and sorts the non-specular hits into the global (L{S|D|V}*D),
+// caustic (LS+D) and indirect (L{S|D|V}*{D|V}D) maps, and the scattering events in media into the
+// volume (L{S|D|V}*{D|V}V: multiple scattering) and volume caustic (LS+V) maps, each up to its own
+// budget of stored photons. Photons straight from a light (single scattering, LV) are not stored:
+// the renderer computes them by light sampling.
 //
 // With projection maps (the default) the caustic map has its own emission stream: photons leave
 // the lights only towards specular objects (projection_map.h); its N counts those emissions.
@@ -19,16 +22,23 @@
 
 namespace phos::photon {
 
-enum MapKind : int { kGlobalMap = 0, kCausticMap = 1, kIndirectMap = 2, kMapCount = 3 };
-const char* map_name(int kind);  // "global", "caustic", "indirect"
+enum MapKind : int {
+    kGlobalMap = 0,
+    kCausticMap = 1,
+    kIndirectMap = 2,
+    kVolumeMap = 3,
+    kVolumeCausticMap = 4,
+    kMapCount = 5
+};
+const char* map_name(int kind);  // "global", "caustic", "indirect", "volume", "volume caustic"
 
 struct TraceOptions {
     // Per map: wanted = false leaves the map empty (no photon is stored in it). A wanted map with
     // target > 0 stores photons until it holds `target` of them (the photons of the emission that
     // crossed the target included) and then stops; target == 0 means "every photon of the
     // `emit` emitted ones".
-    bool wanted[kMapCount] = {true, true, false};
-    uint64_t target[kMapCount] = {0, 0, 0};
+    bool wanted[kMapCount] = {true, true, false, false, false};
+    uint64_t target[kMapCount] = {0, 0, 0, 0, 0};
     uint64_t emit = 0;      // photons to emit; 0 = until every target is met
     uint64_t max_emit = 0;  // stop emitting here even if a target is not met (0 = 2^32 - 1)
     int max_depth = 16;     // scattering events per photon path
@@ -41,15 +51,19 @@ struct TraceOptions {
 };
 
 struct TracedPhotons {
-    std::vector<Photon> photons[kMapCount];           // power already divided by emitted[m]
-    uint64_t emitted[kMapCount] = {0, 0, 0};          // N of each map (photon power = flux share / N)
-    bool reached[kMapCount] = {false, false, false};  // the target was met (false if capped by max_emit)
-    uint64_t total_emitted = 0;                       // photon paths traced
+    std::vector<Photon> photons[kMapCount];  // power already divided by emitted[m]
+    uint64_t emitted[kMapCount] = {};        // N of each map (photon power = flux share / N)
+    bool reached[kMapCount] = {};            // the target was met (false if capped by max_emit)
+    uint64_t total_emitted = 0;              // photon paths traced
     uint64_t rays = 0;
     double caustic_fraction = 1;    // share of the emitted power the projection maps sample
     double projection_seconds = 0;  // building the projection maps
     double caustic_seconds = 0;     // tracing the caustic stream (projection maps only)
-    uint64_t stored() const { return photons[0].size() + photons[1].size() + photons[2].size(); }
+    uint64_t stored() const {
+        uint64_t n = 0;
+        for (const auto& p : photons) n += p.size();
+        return n;
+    }
 };
 
 // Traces photons in the calling thread's oneTBB arena. A scene without lights gives empty maps.

@@ -32,6 +32,8 @@ struct Light {
     // Infinite: lat-long radiance map (texture index, -1 = constant) and its orientation.
     int texture = -1;
     Transform to_world;
+    // The medium the light sits in (point, spot and area lights; -1 = vacuum): photons start in it.
+    int medium = -1;
 };
 
 }  // namespace phos::scene

@@ -1,19 +1,76 @@
-// The walk to the next scattering surface through medium interfaces (see surface_walk.h).
+// The walk to the next scattering event through medium interfaces and media (see surface_walk.h).
 #include "shading/surface_walk.h"
+
+#include "shading/medium_tracking.h"
 
 namespace phos::shading {
 
+bool SurfaceWalk::cross(accel::Ray& ray, const accel::SurfaceHit& hit) {
+    if (++crossings_ > kMaxCrossings) return false;
+    medium_ = medium_after(hit, ray.dir, medium_);
+    ray = accel::spawn_ray(hit, ray.dir);
+    return true;
+}
+
 SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit) {
+    return next_segments(ray, hit, [](const Medium&, Vec3, Vec3, float) {});
+}
+
+SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
+                                     Rgb& emitted) {
     const scene::Scene& scene = accel_.scene();
     while (true) {
         ++rays_;
-        if (!accel_.intersect(ray, hit)) return Event::Escaped;
-        distance_ += hit.t * length(ray.dir);
+        const bool found = accel_.intersect(ray, hit);
+        const float len = length(ray.dir);
+        if (media_ && medium_ >= 0) {
+            const Vec3 d = ray.dir / len;
+            const FreeFlight f =
+                sample_free_flight((*media_)[medium_], ray.origin, d, found ? hit.t * len : kInf, sampler);
+            emitted += beta * f.emitted;
+            beta *= f.weight;
+            if (f.scattered) {
+                medium_p_ = ray.origin + d * f.t;
+                medium_wo_ = -d;
+                distance_ += f.t;
+                return Event::Medium;
+            }
+            if (beta.is_black()) return Event::Absorbed;
+        }
+        if (!found) return Event::Escaped;
+        distance_ += hit.t * len;
         if (!scene.materials[size_t(hit.material)].interface_only) return Event::Surface;
-        // Media: the ray enters hit.media.inside or .outside here (by the side of ng it leaves to).
-        if (++crossings_ > kMaxCrossings) return Event::Lost;
-        ray = accel::spawn_ray(hit, ray.dir);
+        if (!cross(ray, hit)) return Event::Lost;
     }
+}
+
+Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, accel::Ray ray, int medium,
+                         Sampler& sampler) {
+    if (!media || !media->active()) return accel.occluded(ray) ? Rgb(0.0f) : Rgb(1.0f);
+    const scene::Scene& scene = accel.scene();
+    Rgb T(1.0f);
+    for (int crossings = 0; crossings <= SurfaceWalk::kMaxCrossings; ++crossings) {
+        accel::SurfaceHit hit;
+        const bool found = accel.intersect(ray, hit);
+        if (found && !scene.materials[size_t(hit.material)].interface_only) return Rgb(0.0f);
+        const float len = length(ray.dir);
+        if (medium >= 0) {
+            const float t_end = (found ? hit.t : std::fmin(ray.tmax, kInf)) * len;
+            T *= transmittance((*media)[medium], ray.origin, ray.dir / len, t_end, sampler);
+            if (T.is_black()) return T;
+        }
+        if (!found) return T;
+        // Continue beyond the interface towards the same end point.
+        medium = SurfaceWalk::medium_after(hit, ray.dir, medium);
+        accel::Ray next = accel::spawn_ray(hit, ray.dir);
+        if (ray.tmax < kInf) {
+            const Vec3 end = ray.origin + ray.dir * ray.tmax;
+            next.tmax = dot(end - next.origin, ray.dir) / dot(ray.dir, ray.dir);
+            if (!(next.tmax > next.tmin)) return T;
+        }
+        ray = next;
+    }
+    return Rgb(0.0f);
 }
 
 }  // namespace phos::shading

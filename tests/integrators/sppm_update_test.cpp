@@ -156,8 +156,8 @@ TEST(SppmResolve, PixelValueAndLayers) {
     }
     const double direct_scale = 1.0 / 7, emitted = 12345;
     film::Film plain(w, h), layered(w, h);
-    resolve(stats, spp, direct_scale, uint64_t(emitted), plain, false);
-    resolve(stats, spp, direct_scale, uint64_t(emitted), layered, true);
+    resolve(stats, spp, 1.0 / spp, direct_scale, uint64_t(emitted), plain, false, {});
+    resolve(stats, spp, 1.0 / spp, direct_scale, uint64_t(emitted), layered, true, {});
     EXPECT_EQ(plain.find_layer("direct"), nullptr);
     const film::Layer* direct = layered.find_layer("direct");
     const film::Layer* indirect = layered.find_layer("indirect");

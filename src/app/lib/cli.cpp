@@ -220,6 +220,12 @@ int run_cli(int argc, char** argv) {
     CLI::App* info =
         app.add_subcommand("info", "per image: size, mean, fraction of black pixels, non-finite values");
     info->add_option("images", info_paths, "images (.exr, .pfm, .png, ...)")->required();
+    std::vector<int> info_windows;
+    info->add_option("--window", info_windows,
+                     "also print the mean luminance in pixel window x0 x1 y0 y1 (half-open, y from the top; "
+                     "repeatable)")
+        ->expected(4)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     std::string montage_out;
     std::vector<std::string> montage_in;
     int montage_cell = 128;
@@ -348,7 +354,7 @@ int run_cli(int argc, char** argv) {
             run_render(rc);
         }
         if (diff->parsed()) run_diff(dc);
-        if (info->parsed()) run_info(info_paths);
+        if (info->parsed()) run_info(info_paths, info_windows);
         if (mont->parsed()) run_montage(montage_out, montage_in, montage_cell);
         return 0;
     } catch (const ParseError& e) {

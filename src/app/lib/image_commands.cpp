@@ -32,11 +32,29 @@ ImageInfo image_info(const Image& image) {
     return info;
 }
 
-void run_info(const std::vector<std::string>& paths) {
+double window_luminance(const Image& image, int x0, int x1, int y0, int y1) {
+    x0 = std::max(x0, 0), y0 = std::max(y0, 0);
+    x1 = std::min(x1, image.width), y1 = std::min(y1, image.height);
+    double sum = 0;
+    int n = 0;
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            sum += double(image.at(x, y).luminance());
+            ++n;
+        }
+    return n > 0 ? sum / n : 0.0;
+}
+
+void run_info(const std::vector<std::string>& paths, const std::vector<int>& windows) {
     for (const std::string& path : paths) {
-        const ImageInfo i = image_info(io::read_image(path));
+        const Image image = io::read_image(path);
+        const ImageInfo i = image_info(image);
         std::printf("%s %dx%d mean %.6g black %.4f nonfinite %llu\n", path.c_str(), i.width, i.height, i.mean,
                     i.black_fraction, static_cast<unsigned long long>(i.non_finite));
+        for (size_t w = 0; w + 3 < windows.size(); w += 4)
+            std::printf("  window %d %d %d %d luminance %.6g\n", windows[w], windows[w + 1], windows[w + 2],
+                        windows[w + 3],
+                        window_luminance(image, windows[w], windows[w + 1], windows[w + 2], windows[w + 3]));
     }
 }
 

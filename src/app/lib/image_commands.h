@@ -18,8 +18,13 @@ struct ImageInfo {
 };
 ImageInfo image_info(const Image& image);
 
-// Prints one line per image: "path WxH mean M black B nonfinite N". Throws InputError.
-void run_info(const std::vector<std::string>& paths);
+// Mean Rec. 709 luminance over the half-open pixel window [x0, x1) x [y0, y1) (y from the top),
+// clipped to the image (0 when empty).
+double window_luminance(const Image& image, int x0, int x1, int y0, int y1);
+
+// Prints one line per image: "path WxH mean M black B nonfinite N", then for each window
+// (x0 x1 y0 y1, four numbers each) "  window x0 x1 y0 y1 luminance L". Throws InputError.
+void run_info(const std::vector<std::string>& paths, const std::vector<int>& windows = {});
 
 // The contact sheet: ceil(sqrt(n)) columns of `cell` x `cell` pixel cells, each image scaled
 // (box filter, aspect kept, centred) into its cell; black background.

@@ -140,6 +140,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     }
     if (!light.color.is_finite()) loc.fail(d + ": emission is not finite");
     done(params, d);
+    light.medium = gs_.outside;  // pbrt-v4: a light sits in the current outside medium
     scene_.lights.push_back(light);
 }
 

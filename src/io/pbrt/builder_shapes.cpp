@@ -90,6 +90,7 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     const int index = scene_.add_area_light(std::move(shape), L, al.two_sided);
     scene_.lights[size_t(index)].position = position;
     scene_.lights[size_t(index)].direction = direction;
+    scene_.lights[size_t(index)].medium = gs_.outside;  // photons leave into the outside medium
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {

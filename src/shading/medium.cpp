@@ -1,0 +1,70 @@
+// Runtime media: coefficients and majorant segments (see medium.h).
+#include "shading/medium.h"
+
+#include <algorithm>
+
+namespace phos::shading {
+
+Medium::Medium(const scene::Medium& m)
+    : sigma_a_(m.sigma_a * m.scale),
+      sigma_s_(m.sigma_s * m.scale),
+      phase_{m.g},
+      to_medium_(m.to_world.inverse()) {
+    max_sigma_t_ = (sigma_a_ + sigma_s_).max();
+    grid_ = make_density_grid(m);
+    if (grid_) {
+        majorant_grid_ = std::make_unique<MajorantGrid>(*grid_);
+    } else {
+        Le_ = m.emission;  // emission is supported in homogeneous media
+    }
+}
+
+Medium::~Medium() = default;
+Medium::Medium(Medium&&) noexcept = default;
+
+MediumCoefficients Medium::at(Vec3 p) const {
+    if (!grid_) return {sigma_a_, sigma_s_, Le_};
+    const float d = grid_->density(to_medium_.point(p));
+    return {sigma_a_ * d, sigma_s_ * d, Rgb(0.0f)};
+}
+
+Medium::Majorants Medium::majorants(Vec3 o, Vec3 d, float t0, float t1) const {
+    Majorants it;
+    it.t0_ = t0, it.t1_ = t1;
+    if (!grid_) {
+        it.single_ = true;
+        it.sigma_ = max_sigma_t_;
+        it.done_ = !(t1 > t0);
+        return it;
+    }
+    it.single_ = false;
+    it.sigma_ = max_sigma_t_;
+    it.cells_ = majorant_grid_->segments(to_medium_.point(o), to_medium_.vector(d), t0, t1);
+    return it;
+}
+
+bool Medium::Majorants::next(float& ta, float& tb, float& sigma_maj) {
+    if (single_) {
+        if (done_) return false;
+        done_ = true;
+        ta = t0_, tb = t1_, sigma_maj = sigma_;
+        return true;
+    }
+    float dmax = 0;
+    if (!cells_.next(ta, tb, dmax)) return false;
+    sigma_maj = sigma_ * dmax;
+    return true;
+}
+
+MediaSet::MediaSet(const scene::Scene& scene) {
+    media_.reserve(scene.media.size());
+    for (const scene::Medium& m : scene.media) media_.emplace_back(m);
+    const auto valid = [&](int i) { return i >= 0 && size_t(i) < media_.size(); };
+    active_ = valid(scene.camera_medium);
+    for (const scene::Light& l : scene.lights) active_ |= valid(l.medium);
+    for (const scene::Shape& s : scene.shapes) active_ |= valid(s.media.inside) || valid(s.media.outside);
+    for (const scene::Object& o : scene.objects)
+        for (const scene::Shape& s : o.shapes) active_ |= valid(s.media.inside) || valid(s.media.outside);
+}
+
+}  // namespace phos::shading
