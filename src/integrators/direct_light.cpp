@@ -2,6 +2,7 @@
 #include "integrators/direct_light.h"
 
 #include "core/warp.h"
+#include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
@@ -86,6 +87,68 @@ Rgb sample_one_light_in_medium(const Prepared& P, Vec3 p, Vec3 wo, int medium, S
     float w = 1;
     if (mis && !ls.delta) w = warp::power_heuristic(pmf * ls.pdf, P.media[medium].phase().eval(wo, ls.wi));
     return c * (w / (pmf * ls.pdf));
+}
+
+namespace {
+// Where a ray from o along unit d leaves the scene's bounding sphere (0 if it never is inside).
+float exit_distance(const shading::SceneSphere& s, Vec3 o, Vec3 d) {
+    const Vec3 oc = o - s.center;
+    const float b = dot(oc, d), c = dot(oc, oc) - s.radius * s.radius;
+    const float disc = b * b - c;
+    return disc > 0 ? std::max(0.0f, -b + std::sqrt(disc)) : 0.0f;
+}
+}  // namespace
+
+float finite_stretch(const Prepared& P, Vec3 o, Vec3 d, float t_end) {
+    return t_end < kInf ? t_end : exit_distance(shading::SceneSphere::from_bounds(P.accel.bounds()), o, d);
+}
+
+Rgb single_scattering(const Prepared& P, int medium_index, Vec3 o, Vec3 d, float t_end, Sampler& sampler,
+                      RayCounts& rays) {
+    const shading::Medium& medium = P.media[medium_index];
+    t_end = finite_stretch(P, o, d, t_end);
+    if (!(t_end > 0)) return Rgb(0.0f);
+    const float u_light = sampler.next(), u_t = sampler.next();
+    const Vec2 u = sampler.next2();
+    if (P.lights.size() == 0) return Rgb(0.0f);
+    float pmf = 0;
+    const size_t li = P.lights.choose(u_light, pmf);
+    if (!(pmf > 0)) return Rgb(0.0f);
+    const scene::Light& light = P.scene.lights[li];
+    float t, pdf_t;
+    if (light.kind == scene::Light::Kind::Point || light.kind == scene::Light::Kind::Spot) {
+        // Equiangular: t = h + D tan(theta), theta uniform between the stretch's ends as seen from
+        // the light (Kulla & Fajardo 2012, eq. 6); pdf D / ((theta_b - theta_a)(D^2 + (t - h)^2)).
+        const float h = dot(light.position - o, d);
+        const float D = std::max(length(light.position - (o + d * h)), 1e-6f);
+        const float ta = std::atan2(-h, D), tb = std::atan2(t_end - h, D);
+        if (!(tb > ta)) return Rgb(0.0f);
+        const float theta = ta + u_t * (tb - ta);
+        t = std::clamp(h + D * std::tan(theta), 0.0f, t_end);
+        pdf_t = D / ((tb - ta) * (D * D + (t - h) * (t - h)));
+    } else {
+        // Proportional to exp(-sigma t) on [0, t_end] with sigma the mean extinction (uniform for
+        // grids or clear media).
+        const float sigma = medium.homogeneous() ? medium.sigma_t().average() : 0.0f;
+        if (sigma * t_end > 1e-3f) {
+            const float norm = -std::expm1(-sigma * t_end);
+            t = std::min(-std::log1p(-u_t * norm) / sigma, t_end);
+            pdf_t = sigma * std::exp(-sigma * t) / norm;
+        } else {
+            t = u_t * t_end;
+            pdf_t = 1 / t_end;
+        }
+    }
+    if (!(pdf_t > 0)) return Rgb(0.0f);
+    const Vec3 x = o + d * t;
+    const shading::MediumCoefficients c = medium.at(x);
+    if (c.sigma_s.is_black()) return Rgb(0.0f);
+    const shading::LightLiSample ls = P.lights[li].sample_Li(x, u);
+    if (!(ls.pdf > 0)) return Rgb(0.0f);
+    const Rgb Li = light_in_medium(P, ls, x, -d, medium_index, sampler, rays);
+    if (Li.is_black()) return Li;
+    const Rgb T = shading::transmittance(medium, o, d, t, sampler);
+    return T * c.sigma_s * Li * (1.0f / (pdf_t * ls.pdf * pmf));
 }
 
 }  // namespace phos::integrators

@@ -24,6 +24,17 @@ Rgb sample_all_lights(const Prepared& P, const accel::SurfaceHit& hit, const sha
 Rgb sample_one_light_in_medium(const Prepared& P, Vec3 p, Vec3 wo, int medium, Sampler& sampler,
                                RayCounts& rays, bool mis);
 
+// The length of a stretch of ray that ends at t_end, or for an escaping ray (t_end = kInf) where
+// it leaves the scene's bounding sphere (nothing lies beyond to scatter light back).
+float finite_stretch(const Prepared& P, Vec3 o, Vec3 d, float t_end);
+
+// Single scattering along the stretch o + t d, t in [0, t_end) (d unit, kInf: up to the scene's
+// bounding sphere) of a camera ray in `medium`: int T(t) sigma_s(t) int p L_light T_light dt,
+// estimated with one light chosen by power and one distance, sampled equiangularly (Kulla &
+// Fajardo 2012, eq. 6) towards point and spot lights, proportionally to exp(-sigma_t t) otherwise.
+Rgb single_scattering(const Prepared& P, int medium, Vec3 o, Vec3 d, float t_end, Sampler& sampler,
+                      RayCounts& rays);
+
 // The unoccluded part of that estimate for one given light sample direction: used where the
 // caller chose the point itself (equiangular sampling along a camera ray).
 Rgb light_in_medium(const Prepared& P, const shading::LightLiSample& ls, Vec3 p, Vec3 wo, int medium,

@@ -193,25 +193,13 @@ Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, 
     return L;
 }
 
-namespace {
-
-// Where a ray from o along unit d leaves the scene's bounding sphere (0 if it never is inside).
-float exit_distance(const shading::SceneSphere& s, Vec3 o, Vec3 d) {
-    const Vec3 oc = o - s.center;
-    const float b = dot(oc, d), c = dot(oc, oc) - s.radius * s.radius;
-    const float disc = b * b - c;
-    return disc > 0 ? std::max(0.0f, -b + std::sqrt(disc)) : 0.0f;
-}
-
-}  // namespace
-
 PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium& medium, int medium_index,
                                                           Vec3 o, Vec3 d, float t_end, Sampler& sampler,
                                                           RayCounts& rays) const {
     MediumStretch s;
-    if (t_end >= kInf) t_end = exit_distance(shading::SceneSphere::from_bounds(P_.accel.bounds()), o, d);
+    if (o_.direct) s.single = single_scattering(P_, medium_index, o, d, t_end, sampler, rays);
+    t_end = finite_stretch(P_, o, d, t_end);
     if (!(t_end > 0)) return s;
-    if (o_.direct) s.single = single_scattering(medium, medium_index, o, d, t_end, sampler, rays);
     // Ray marching with a jittered start: every step adds T(t) dt times the volume estimates (and
     // the medium's emission); T is exact in homogeneous media and marched in grids.
     const int n = std::clamp(int(std::ceil(t_end / o_.volume_step)), 1, 4096);
@@ -239,51 +227,6 @@ PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium&
     s.T = medium.homogeneous() ? exp(medium.sigma_t() * -t_end)
                                : T * exp(medium.at(o + d * t_end).sigma_t() * -(t_end - t_prev));
     return s;
-}
-
-Rgb PhotonMapRadiance::single_scattering(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d,
-                                         float t_end, Sampler& sampler, RayCounts& rays) const {
-    const float u_light = sampler.next(), u_t = sampler.next();
-    const Vec2 u = sampler.next2();
-    if (P_.lights.size() == 0) return Rgb(0.0f);
-    float pmf = 0;
-    const size_t li = P_.lights.choose(u_light, pmf);
-    if (!(pmf > 0)) return Rgb(0.0f);
-    const scene::Light& light = P_.scene.lights[li];
-    float t, pdf_t;
-    if (light.kind == scene::Light::Kind::Point || light.kind == scene::Light::Kind::Spot) {
-        // Equiangular: t = h + D tan(theta), theta uniform between the stretch's ends as seen from
-        // the light (Kulla & Fajardo 2012, eq. 6); pdf D / ((theta_b - theta_a)(D^2 + (t - h)^2)).
-        const float h = dot(light.position - o, d);
-        const float D = std::max(length(light.position - (o + d * h)), 1e-6f);
-        const float ta = std::atan2(-h, D), tb = std::atan2(t_end - h, D);
-        if (!(tb > ta)) return Rgb(0.0f);
-        const float theta = ta + u_t * (tb - ta);
-        t = std::clamp(h + D * std::tan(theta), 0.0f, t_end);
-        pdf_t = D / ((tb - ta) * (D * D + (t - h) * (t - h)));
-    } else {
-        // Proportional to exp(-sigma t) on [0, t_end] with sigma the mean extinction (uniform for
-        // grids or clear media).
-        const float sigma = medium.homogeneous() ? medium.sigma_t().average() : 0.0f;
-        if (sigma * t_end > 1e-3f) {
-            const float norm = -std::expm1(-sigma * t_end);
-            t = std::min(-std::log1p(-u_t * norm) / sigma, t_end);
-            pdf_t = sigma * std::exp(-sigma * t) / norm;
-        } else {
-            t = u_t * t_end;
-            pdf_t = 1 / t_end;
-        }
-    }
-    if (!(pdf_t > 0)) return Rgb(0.0f);
-    const Vec3 x = o + d * t;
-    const shading::MediumCoefficients c = medium.at(x);
-    if (c.sigma_s.is_black()) return Rgb(0.0f);
-    const shading::LightLiSample ls = P_.lights[li].sample_Li(x, u);
-    if (!(ls.pdf > 0)) return Rgb(0.0f);
-    const Rgb Li = light_in_medium(P_, ls, x, -d, medium_index, sampler, rays);
-    if (Li.is_black()) return Li;
-    const Rgb T = shading::transmittance(medium, o, d, t, sampler);
-    return T * c.sigma_s * Li * (1.0f / (pdf_t * ls.pdf * pmf));
 }
 
 }  // namespace phos::integrators

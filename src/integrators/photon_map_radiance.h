@@ -34,10 +34,6 @@ public:
     };
     MediumStretch march(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d, float t_end,
                         Sampler& sampler, RayCounts& rays) const;
-    // Single scattering along a stretch: one light chosen by power and one distance, sampled
-    // equiangularly (Kulla & Fajardo 2012) towards point and spot lights, by transmittance otherwise.
-    Rgb single_scattering(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d, float t_end,
-                          Sampler& sampler, RayCounts& rays) const;
 
     const photon::EstimateOptions& estimate_options(int map) const { return est_[map]; }
 

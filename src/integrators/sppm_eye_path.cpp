@@ -1,7 +1,8 @@
 // The eye path of PPM and SPPM: from the camera through mirrors and glass to the first
 // non-specular surface, where a visible point is stored and direct light sampled (see sppm_core.h).
 // In participating media the path samples free flights (delta tracking) and may instead stop at a
-// scattering event in the medium: a volume visible point with single scattering sampled there.
+// scattering event in the medium: a volume visible point (multiple scattering and volume caustics
+// from the photons); single scattering is integrated along the camera ray's stretches in media.
 #include "core/error.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
@@ -23,19 +24,21 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
     for (int depth = 0;;) {
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);
+        // Single scattering is integrated over each whole stretch in a medium (equiangular
+        // sampling finds the glow around point lights); the free flight then decides whether the
+        // path stops in the medium (a volume visible point, for multiple scattering) or goes on.
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+            media ? walk.next(ray, hit, sampler, beta, emitted,
+                              [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
+                                  L += beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, rays);
+                              })
+                  : walk.next(ray, hit);
         L += emitted;
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
             break;
         if (event == shading::SurfaceWalk::Event::Medium) {
             if (depth == P.options.max_depth) break;
             const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
-            Rgb direct(0.0f);
-            const int n = std::max(1, direct_samples);
-            for (int k = 0; k < n; ++k)
-                direct += sample_one_light_in_medium(P, x, wo, walk.medium(), sampler, rays, false);
-            L += beta * direct * (1.0f / float(n));
             // beta holds the free flight's sigma_s weight; the photon estimate's density already
             // counts sigma_s (photons are stored at scattering events), so divide it out once.
             const Rgb sigma_s = P.media[walk.medium()].at(x).sigma_s;

@@ -16,34 +16,6 @@ SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit) {
     return next_segments(ray, hit, [](const Medium&, Vec3, Vec3, float) {});
 }
 
-SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
-                                     Rgb& emitted) {
-    const scene::Scene& scene = accel_.scene();
-    while (true) {
-        ++rays_;
-        const bool found = accel_.intersect(ray, hit);
-        const float len = length(ray.dir);
-        if (media_ && medium_ >= 0) {
-            const Vec3 d = ray.dir / len;
-            const FreeFlight f =
-                sample_free_flight((*media_)[medium_], ray.origin, d, found ? hit.t * len : kInf, sampler);
-            emitted += beta * f.emitted;
-            beta *= f.weight;
-            if (f.scattered) {
-                medium_p_ = ray.origin + d * f.t;
-                medium_wo_ = -d;
-                distance_ += f.t;
-                return Event::Medium;
-            }
-            if (beta.is_black()) return Event::Absorbed;
-        }
-        if (!found) return Event::Escaped;
-        distance_ += hit.t * len;
-        if (!scene.materials[size_t(hit.material)].interface_only) return Event::Surface;
-        if (!cross(ray, hit)) return Event::Lost;
-    }
-}
-
 Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, accel::Ray ray, int medium,
                          Sampler& sampler) {
     if (!media || !media->active()) return accel.occluded(ray) ? Rgb(0.0f) : Rgb(1.0f);

@@ -9,6 +9,7 @@
 #include "accel/ray.h"
 #include "core/rng.h"
 #include "shading/medium.h"
+#include "shading/medium_tracking.h"
 
 namespace phos::shading {
 
@@ -44,8 +45,16 @@ public:
 
     // The same with free-flight sampling in the media crossed (medium_tracking.h): returns Medium
     // when the path scatters in a medium, multiplies `beta` by the tracking weights, and adds to
-    // `emitted` the medium emission met on the way (already multiplied by beta).
-    Event next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted);
+    // `emitted` the medium emission met on the way (already multiplied by beta). Before each
+    // stretch in a medium, calls on_stretch(const Medium&, Vec3 o, Vec3 d, float t_end) with the
+    // whole stretch up to the next surface (as next_segments does) while `beta` still holds the
+    // throughput before it: for estimators that integrate over the stretch (single scattering).
+    Event next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted) {
+        return next(ray, hit, sampler, beta, emitted, [](const Medium&, Vec3, Vec3, float) {});
+    }
+    template <class OnStretch>
+    Event next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted,
+               OnStretch&& on_stretch);
 
     // The same without sampling: calls visit(const Medium&, Vec3 o, Vec3 d, float t_end) for
     // every stretch of the ray travelled in a medium before the returned event (d unit, t_end in
@@ -95,6 +104,37 @@ Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media,
                          Sampler& sampler);
 
 // ---- implementation ----
+
+template <class OnStretch>
+SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
+                                     Rgb& emitted, OnStretch&& on_stretch) {
+    const scene::Scene& scene = accel_.scene();
+    while (true) {
+        ++rays_;
+        const bool found = accel_.intersect(ray, hit);
+        const float len = length(ray.dir);
+        if (media_ && medium_ >= 0) {
+            const Vec3 d = ray.dir / len;
+            const float t_end = found ? hit.t * len : kInf;
+            const Medium& medium = (*media_)[medium_];
+            on_stretch(medium, ray.origin, d, t_end);
+            const FreeFlight f = sample_free_flight(medium, ray.origin, d, t_end, sampler);
+            emitted += beta * f.emitted;
+            beta *= f.weight;
+            if (f.scattered) {
+                medium_p_ = ray.origin + d * f.t;
+                medium_wo_ = -d;
+                distance_ += f.t;
+                return Event::Medium;
+            }
+            if (beta.is_black()) return Event::Absorbed;
+        }
+        if (!found) return Event::Escaped;
+        distance_ += hit.t * len;
+        if (!scene.materials[size_t(hit.material)].interface_only) return Event::Surface;
+        if (!cross(ray, hit)) return Event::Lost;
+    }
+}
 
 template <class Visit>
 SurfaceWalk::Event SurfaceWalk::next_segments(accel::Ray& ray, accel::SurfaceHit& hit, Visit&& visit) {
