@@ -5,7 +5,8 @@
 
 namespace phos::shading {
 
-FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler) {
+FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
+                              Rgb throughput) {
     FreeFlight f;
     Medium::Majorants segments = medium.majorants(o, d, 0.0f, t_max);
     float ta, tb, sigma_maj;
@@ -18,7 +19,8 @@ FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max,
             const MediumCoefficients c = medium.at(o + d * t);
             if (!c.Le.is_black()) f.emitted += f.weight * c.sigma_a * c.Le * (1.0f / sigma_maj);
             const Rgb sigma_n = max(Rgb(sigma_maj) - c.sigma_t(), Rgb(0.0f));
-            const float ws = (f.weight * c.sigma_s).average(), wn = (f.weight * sigma_n).average();
+            const Rgb w = throughput * f.weight;
+            const float ws = (w * c.sigma_s).average(), wn = (w * sigma_n).average();
             if (!(ws + wn > 0)) {  // nothing but absorption left: the walk ends here
                 f.weight = Rgb(0.0f);
                 return f;

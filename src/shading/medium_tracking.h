@@ -11,8 +11,9 @@
 // sigma_a Le / sigma_maj is collected, then the walk either scatters (probability P_s) or passes
 // through a null collision (P_n = 1 - P_s), with weights sigma_s / (sigma_maj P_s) and
 // sigma_n / (sigma_maj P_n). P_s and P_n are proportional to the channel averages of weight*sigma_s
-// and weight*sigma_n, so chromatic media stay unbiased and the weights stay bounded; for a grey
-// homogeneous medium the walk scatters at its first collision with weight = the albedo.
+// and weight*sigma_n (weight: the path throughput times the flight's weight so far), so chromatic media stay
+// unbiased and the weights stay bounded; for a grey homogeneous medium the walk scatters at its first
+// collision with weight = the albedo.
 #pragma once
 
 #include "core/rng.h"
@@ -32,8 +33,12 @@ struct FreeFlight {
     Rgb emitted{0.0f};
 };
 
-// One free flight from o along unit direction d over [0, t_max) (t_max may be kInf).
-FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler);
+// One free flight from o along unit direction d over [0, t_max) (t_max may be kInf). `throughput`
+// is the path's weight before the flight: the collision probabilities follow it (Kutz et al.'s
+// history-aware probabilities), which keeps the path weights bounded in chromatic media; without it
+// a channel whose sigma_t is the majorant would gain a factor ~1/P_s at every scattering event.
+FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
+                              Rgb throughput = Rgb(1.0f));
 
 // Transmittance between o and o + t_max d (unit d): exact for homogeneous media, ratio tracking
 // (unbiased, with Russian roulette once it is small) for grids.

@@ -118,7 +118,7 @@ SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sa
             const float t_end = found ? hit.t * len : kInf;
             const Medium& medium = (*media_)[medium_];
             on_stretch(medium, ray.origin, d, t_end);
-            const FreeFlight f = sample_free_flight(medium, ray.origin, d, t_end, sampler);
+            const FreeFlight f = sample_free_flight(medium, ray.origin, d, t_end, sampler, beta);
             emitted += beta * f.emitted;
             beta *= f.weight;
             if (f.scattered) {

@@ -132,7 +132,6 @@ private:
     int object_ = -1;  // index into scene_.objects while between ObjectBegin and ObjectEnd
     Loc object_loc_;
     int default_material_ = -1;
-    bool media_warned_ = false;
 };
 
 }  // namespace phos::io::pbrt

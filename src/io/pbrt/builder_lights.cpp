@@ -173,10 +173,6 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
     if (!params.has("type")) loc.fail("MakeNamedMedium \"" + name + "\": missing \"string type\"");
     const std::string type = params.get_string("type", "");
     const std::string d = "MakeNamedMedium \"" + name + "\" (" + type + ")";
-    if (!media_warned_) {
-        media_warned_ = true;
-        log::warn(loc.str() + ": note: participating media are loaded but not rendered yet");
-    }
     if (type != "homogeneous" && type != "uniformgrid") {
         warn(loc, d + ": medium type \"" + type + "\" is not supported; the medium is treated as vacuum");
         params.mark_all_used();
