@@ -3,7 +3,6 @@
 #include "integrators/whitted.h"
 
 #include "core/log.h"
-
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/factory.h"
@@ -14,8 +13,9 @@ namespace phos::integrators {
 
 void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
     if (prepared.active_media())
-        log::warn("whitted renders the scene as if its participating media were vacuum; path, photonmap, "
-                  "ppm and sppm render them");
+        log::warn(
+            "whitted renders the scene as if its participating media were vacuum; path, photonmap, "
+            "ppm and sppm render them");
     if (prepared.options.layers) {
         render_layers(prepared, film, progress, "render", integrator_layers("whitted"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
