@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/volume/volume_grid.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -173,7 +174,8 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
     if (!params.has("type")) loc.fail("MakeNamedMedium \"" + name + "\": missing \"string type\"");
     const std::string type = params.get_string("type", "");
     const std::string d = "MakeNamedMedium \"" + name + "\" (" + type + ")";
-    if (type != "homogeneous" && type != "uniformgrid") {
+    const bool sparse = type == "nanovdb" || type == "openvdb";
+    if (type != "homogeneous" && type != "uniformgrid" && !sparse) {
         warn(loc, d + ": medium type \"" + type + "\" is not supported; the medium is treated as vacuum");
         params.mark_all_used();
         media_[name] = -1;
@@ -214,6 +216,19 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
         m.p1 = params.get_point3("p1", {1, 1, 1});
         if (const Param* tp = params.find("temperature"))
             warn(tp->loc, d + ": \"temperature\" grids are not supported");
+    }
+    if (sparse) {
+        const Param* fp = params.find("filename");
+        if (!fp) loc.fail(d + ": missing \"string filename\"");
+        m.kind = scene::Medium::Kind::Sparse;
+        try {
+            m.sparse = io::read_volume_grid(resolve(params.get_string("filename", ""), fp->loc), "density");
+        } catch (const InputError& e) {
+            fp->loc.fail(d + ": " + e.what());
+        }
+        if (const Param* tp = params.find("temperature"))
+            warn(tp->loc, d + ": \"temperature\" grids are not supported");
+        params.mark_all_used();
     }
     done(params, d);
     media_[name] = int(scene_.media.size());
