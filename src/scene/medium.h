@@ -13,7 +13,7 @@ namespace phos::scene {
 
 // A sparse density grid read from an OpenVDB (.vdb) or NanoVDB (.nvdb) file, held as one NanoVDB
 // float grid (a position-independent, 32-byte-aligned buffer; io/volume builds it, the shading
-// layer reads it). Index space is the grid's own; `index_to_medium` maps it to medium space.
+// layer reads it). The grid's own index-to-world map defines medium space.
 struct SparseGrid {
     std::shared_ptr<const void> buffer;  // the NanoVDB grid (nanovdb::FloatGrid), aligned
     size_t bytes = 0;

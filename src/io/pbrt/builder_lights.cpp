@@ -214,6 +214,10 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
                      " values, nx*ny*nz = " + std::to_string(size_t(m.nx) * size_t(m.ny) * size_t(m.nz)));
         m.p0 = params.get_point3("p0", {0, 0, 0});
         m.p1 = params.get_point3("p1", {1, 1, 1});
+        if (!(m.p0.x < m.p1.x && m.p0.y < m.p1.y && m.p0.z < m.p1.z)) {
+            const Param* bp = params.has("p1") ? params.find("p1") : params.find("p0");
+            (bp ? bp->loc : loc).fail(d + ": p0 must be less than p1 in x, y and z");
+        }
         if (const Param* tp = params.find("temperature"))
             warn(tp->loc, d + ": \"temperature\" grids are not supported");
     }

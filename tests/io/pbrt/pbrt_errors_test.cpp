@@ -97,7 +97,40 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"MaterialRedefined",
              W + "MakeNamedMaterial \"a\" \"string type\" \"diffuse\"\nMakeNamedMaterial \"a\" \"string "
                  "type\" \"diffuse\"\n",
-             3, 1, "defined twice"}),
+             3, 1, "defined twice"},
+        // media ("MakeNamedMedium \"m\" \"string type\" " is 34 columns)
+        Case{"MediumNegativeSigma",
+             W + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"rgb sigma_a\" [0.1 -1 0]\n", 2, 1,
+             "coefficients must not be negative"},
+        Case{"MediumNegativeScale",
+             W + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float scale\" -2\n", 2, 1,
+             "coefficients must not be negative"},
+        Case{"MediumGTooLarge", W + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float g\" 1\n",
+             2, 49, "g must be in (-1, 1)"},
+        Case{"MediumGTooSmall",
+             W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"float g\" -1.5 \"float density\" "
+                 "[1]\n",
+             2, 49, "g must be in (-1, 1)"},
+        Case{"GridDensityCount",
+             W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" "
+                 "[1]\n",
+             2, 1, "\"density\" has 1 values, nx*ny*nz = 2"},
+        Case{"GridP0NotBelowP1",
+             W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"float density\" [1] \"point3 p0\" "
+                 "[0 0 0] \"point3 p1\" [1 0 1]\n",
+             2, 89, "p0 must be less than p1"},
+        Case{"GridP0AboveDefaultP1",
+             W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"float density\" [1] \"point3 p0\" "
+                 "[0 2 0]\n",
+             2, 69, "p0 must be less than p1"},
+        Case{"NanovdbMissingFile",
+             W + "MakeNamedMedium \"m\" \"string type\" \"nanovdb\" \"string filename\" \"nothere.nvdb\"\n",
+             2, 45, "cannot open"},
+        Case{"NanovdbNoFilename", W + "MakeNamedMedium \"m\" \"string type\" \"nanovdb\"\n", 2, 1,
+             "missing \"string filename\""},
+        Case{"OpenvdbMissingFile",
+             W + "MakeNamedMedium \"m\" \"string type\" \"openvdb\" \"string filename\" \"nothere.vdb\"\n", 2,
+             45, "cannot open"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.name); });
 
 TEST(PbrtErrorsFiles, ErrorInsideAnIncludedFileNamesThatFile) {
@@ -126,6 +159,30 @@ TEST(PbrtErrorsFiles, MissingPlyFileIsReportedAtTheParameter) {
     const std::string p =
         dir.write("m.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"none.ply\"\n");
     expect_pbrt_error(p, 2, 17, "cannot open", p);
+}
+
+TEST(PbrtErrorsFiles, UnreadableVolumeFileIsReportedAtTheFilename) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    dir.write("vol/garbage.nvdb", std::string(1000, 'x'));
+    dir.write("vol/garbage.vdb", std::string(1000, 'x'));
+    const std::string a =
+        dir.write("a.pbrt",
+                  "WorldBegin\n\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\"\n   \"string filename\" "
+                  "\"vol/garbage.nvdb\"\n");
+    expect_pbrt_error(a, 4, 4, "garbage.nvdb", a);
+    expect_pbrt_error(a, 4, 4, "not a valid nvdb file", a);
+    const std::string b =
+        dir.write("b.pbrt",
+                  "WorldBegin\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\" \"string filename\" "
+                  "\"vol/garbage.vdb\"\n");
+    expect_pbrt_error(b, 2, 45, "cannot read it as an OpenVDB file", b);
+    const std::string c =
+        dir.write("c.pbrt",
+                  "WorldBegin\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\" \"string filename\" "
+                  "\"vol/cloud.txt\"\n");
+    dir.write("vol/cloud.txt", "not a volume");
+    expect_pbrt_error(c, 2, 45, "unknown extension", c);
 }
 
 TEST(PbrtErrorsFiles, MalformedPlyIsReportedInThePlyFile) {

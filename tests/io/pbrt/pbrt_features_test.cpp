@@ -2,6 +2,11 @@
 // shapes and their orientation, materials, textures, lights, spectra, media, and the warnings for
 // anything unsupported or unused.
 #include <gtest/gtest.h>
+#include <nanovdb/NanoVDB.h>
+#include <nanovdb/util/IO.h>
+#include <nanovdb/util/OpenToNanoVDB.h>
+#include <openvdb/io/File.h>
+#include <openvdb/openvdb.h>
 
 #include <cmath>
 #include <cstring>
@@ -523,6 +528,51 @@ TEST(PbrtMedia, HomogeneousGridInterfaceAndCameraMedium) {
     EXPECT_EQ(grid.p1, Vec3(2, 1, 1));
     EXPECT_EQ(l.scene.shapes[0].media.inside, 1);
     EXPECT_EQ(l.scene.shapes[0].media.outside, 2);
+}
+
+TEST(PbrtMedia, NanovdbMediumReadsVdbAndNvdbFiles) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    openvdb::initialize();
+    auto grid = openvdb::FloatGrid::create(0.0f);
+    grid->setName("density");
+    grid->setTransform(openvdb::math::Transform::createLinearTransform(0.5));
+    grid->tree().setValue(openvdb::Coord(1, 2, 3), 3.0f);
+    grid->tree().setValue(openvdb::Coord(2, 2, 3), 1.5f);
+    std::filesystem::create_directories(dir.path() / "vol");
+    openvdb::io::File(dir.file("vol/smoke.vdb")).write({grid});
+    auto handle = nanovdb::openToNanoVDB(*grid);
+    nanovdb::io::writeGrid(dir.file("vol/smoke.nvdb"), handle);
+    const std::string path = dir.write(
+        "scene.pbrt",
+        "WorldBegin\nAttributeBegin\nTranslate 1 2 3\n"
+        "MakeNamedMedium \"smoke\" \"string type\" \"nanovdb\" \"string filename\" \"vol/smoke.vdb\"\n"
+        "  \"float scale\" 4 \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [2 2 2] \"float g\" 0.5 "
+        "\"rgb Le\" [1 0 0] \"float Lescale\" 2\nAttributeEnd\n"
+        "MakeNamedMedium \"nano\" \"string type\" \"nanovdb\" \"string filename\" \"vol/smoke.nvdb\"\n"
+        "MakeNamedMedium \"syn\" \"string type\" \"openvdb\" \"string filename\" \"vol/smoke.vdb\"\n"
+        "MediumInterface \"smoke\" \"\"\nShape \"sphere\"\n");
+    const scene::Scene sc = load_pbrt(path);
+    ASSERT_EQ(sc.media.size(), 3u);
+    for (const scene::Medium& m : sc.media) {
+        EXPECT_EQ(m.kind, scene::Medium::Kind::Sparse) << m.name;
+        ASSERT_NE(m.sparse.buffer, nullptr) << m.name;
+        EXPECT_GT(m.sparse.bytes, 0u);
+        const auto* g = static_cast<const nanovdb::FloatGrid*>(m.sparse.buffer.get());
+        EXPECT_EQ(g->gridType(), nanovdb::GridType::Float);
+        EXPECT_EQ(g->activeVoxelCount(), 2u);
+        EXPECT_FLOAT_EQ(g->tree().getValue(nanovdb::Coord(1, 2, 3)), 3.0f);
+        EXPECT_DOUBLE_EQ(g->voxelSize()[0], 0.5);
+    }
+    const scene::Medium& smoke = sc.media[0];
+    EXPECT_NE(smoke.sparse.file.find("smoke.vdb"), std::string::npos);
+    EXPECT_NE(sc.media[1].sparse.file.find("smoke.nvdb"), std::string::npos);
+    EXPECT_FLOAT_EQ(smoke.scale, 4.0f);
+    EXPECT_EQ(smoke.sigma_s, Rgb(2.0f));
+    EXPECT_FLOAT_EQ(smoke.g, 0.5f);
+    EXPECT_EQ(smoke.emission, Rgb(2, 0, 0));
+    expect_vec(smoke.to_world.point(Vec3(0)), Vec3(1, 2, 3));
+    EXPECT_EQ(sc.shapes[0].media.inside, 0);
 }
 
 }  // namespace
