@@ -232,7 +232,8 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
         }
         if (const Param* tp = params.find("temperature"))
             warn(tp->loc, d + ": \"temperature\" grids are not supported");
-        params.mark_all_used();
+        // pbrt-v4's nanovdb parameters phos reads no further: accepted without a warning.
+        for (const char* ignored : {"temperaturecutoff", "temperaturescale"}) params.find(ignored);
     }
     done(params, d);
     media_[name] = int(scene_.media.size());
