@@ -25,7 +25,8 @@ CameraModel::CameraModel(const scene::Camera& camera, int width, int height)
     const float half_short = camera.projection == scene::Camera::Projection::Perspective
                                  ? std::tan(0.5f * camera.fov)
                                  : camera.ortho_half_size;
-    if (width >= height) {
+    if (width >= height ||
+        (camera.fov_vertical && camera.projection == scene::Camera::Projection::Perspective)) {
         half_h_ = half_short;
         half_w_ = half_short * float(width) / float(height);
     } else {

@@ -6,6 +6,7 @@
 
 #include "core/error.h"
 #include "io/pbrt/pbrt_loader.h"
+#include "io/scene_format/scene_format_loader.h"
 #include "io/scn/scn_loader.h"
 
 namespace phos::io {
@@ -21,7 +22,8 @@ scene::Scene load_scene(const std::string& path, const LoadOptions& options) {
                                          .no_default_lights = options.no_default_lights,
                                          .legacy_attenuation = options.legacy_attenuation});
     if (ext == ".pbrt") return load_pbrt(path, PbrtOptions{options.strict});
-    throw ParseError(path, 0, 0, "unknown scene format '" + ext + "' (phos reads .scn and .pbrt)");
+    if (ext == ".scene") return load_scene_format(path);
+    throw ParseError(path, 0, 0, "unknown scene format '" + ext + "' (phos reads .scn, .pbrt and .scene)");
 }
 
 }  // namespace phos::io

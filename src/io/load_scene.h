@@ -1,4 +1,4 @@
-// The front door for scene files: picks the loader by extension (.scn, .pbrt).
+// The front door for scene files: picks the loader by extension (.scn, .pbrt, .scene).
 #pragma once
 
 #include <string>

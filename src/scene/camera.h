@@ -11,8 +11,10 @@ struct Camera {
     Vec3 eye{0, 0, 0};
     Vec3 forward{0, 0, -1};  // viewing direction (need not be normalised)
     Vec3 up{0, 1, 0};
-    // Perspective: FULL field-of-view angle in radians along the SHORTER image side.
+    // Perspective: FULL field-of-view angle in radians along the SHORTER image side (or along the
+    // image height when fov_vertical is set, as the .scene format's `d` defines it).
     float fov = 0.6981317f;
+    bool fov_vertical = false;
     // Orthographic: half-extent of the view along the shorter image side, in scene units.
     float ortho_half_size = 1.0f;
     // Thin lens (depth of field): aperture radius (0 = pinhole) and distance of the focal plane.

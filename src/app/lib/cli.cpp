@@ -18,6 +18,7 @@
 #include "app/lib/image_commands.h"
 #include "app/lib/render_command.h"
 #include "core/error.h"
+#include "core/spelling.h"
 #include "integrators/progressive_checkpoint.h"
 
 namespace phos::app {
@@ -36,32 +37,6 @@ std::string version_text() {
     s += "C++ standard: " + std::to_string(__cplusplus) + "\n";
     s += "Embree " + accel::embree_version() + ", oneTBB " + accel::tbb_version() + "\n";
     return s;
-}
-
-size_t edit_distance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t up = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (a[i - 1] == b[j - 1] ? 0 : 1)});
-            diag = up;
-        }
-    }
-    return row[b.size()];
-}
-
-// The nearest of `names` to `word`, if it is close enough to be a likely typo.
-std::string nearest(const std::string& word, const std::vector<std::string>& names) {
-    std::string best;
-    size_t best_d = 3;
-    for (const auto& n : names) {
-        const size_t d = edit_distance(word, n);
-        if (d < best_d || (d == best_d && best.empty() && n.rfind(word, 0) == 0)) best = n, best_d = d;
-    }
-    return best;
 }
 
 std::vector<std::string> normalise_args(int argc, char** argv, const std::set<std::string>& long_names) {
@@ -251,10 +226,10 @@ int run_cli(int argc, char** argv) {
     if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
         std::find(kCommands.begin(), kCommands.end(), args[0]) == kCommands.end()) {
         const std::string ext = std::filesystem::path(args[0]).extension().string();
-        if (ext == ".scn" || ext == ".pbrt") {
+        if (ext == ".scn" || ext == ".pbrt" || ext == ".scene") {
             args.insert(args.begin(), "render");  // the seed's `photonmap in.scn out.png`
         } else {
-            const std::string guess = nearest(args[0], kCommands);
+            const std::string guess = nearest_name(args[0], kCommands);
             return print_error("unknown command '" + args[0] + "'" +
                                (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
                                " (commands: render, diff, info, montage, options, help)");
@@ -281,8 +256,8 @@ int run_cli(int argc, char** argv) {
                 for (std::string word; words >> word;) {
                     if (word.rfind("--", 0) != 0) continue;
                     const std::string guess =
-                        nearest(word.substr(2, word.find('=') - 2),
-                                std::vector<std::string>(long_names.begin(), long_names.end()));
+                        nearest_name(word.substr(2, word.find('=') - 2),
+                                     std::vector<std::string>(long_names.begin(), long_names.end()));
                     if (!guess.empty()) what += " (did you mean --" + guess + "?)";
                     break;
                 }
@@ -306,7 +281,7 @@ int run_cli(int argc, char** argv) {
                                : nullptr) {
                 std::fputs(sub->help().c_str(), stdout);
             } else {
-                const std::string guess = nearest(help_topic, kCommands);
+                const std::string guess = nearest_name(help_topic, kCommands);
                 return print_error("no help on '" + help_topic + "'" +
                                    (guess.empty() ? "" : "; did you mean 'phos help " + guess + "'?"));
             }

@@ -6,9 +6,9 @@
 
 #include "core/error.h"
 #include "core/log.h"
-#include "io/image/image_io.h"
 #include "io/mesh/mesh_io.h"
 #include "io/scn/scn_parser.h"
+#include "io/text/image_texture.h"
 
 namespace phos::io::scn {
 namespace fs = std::filesystem;
@@ -132,23 +132,14 @@ int Parser::load_texture(const fs::path& path, const Token& at) {
     fs::path canonical = fs::weakly_canonical(path, ec);
     const std::string key = ec ? path.string() : canonical.string();
     if (const auto it = texture_cache_.find(key); it != texture_cache_.end()) return it->second;
-    Image img;
+    scene::Texture tex;
     try {
-        img = read_image(path.string(), /*srgb=*/true);
+        tex = text::read_image_texture(path.string());
     } catch (const ParseError&) {
         throw;
     } catch (const std::exception& e) {  // InputError, or a decoder library's own exception
-        fail(at, std::string("material: cannot read texture: ") + e.what());
+        fail(at, std::string("material: cannot read texture '") + at.text + "': " + e.what());
     }
-    if (img.width <= 0 || img.height <= 0) fail(at, "material: texture '" + at.text + "' is empty");
-    auto image = std::make_shared<scene::TextureImage>();
-    image->width = img.width;
-    image->height = img.height;
-    image->texels = std::move(img.pixels);
-    scene::Texture tex;
-    tex.kind = scene::Texture::Kind::Image;
-    tex.image = std::move(image);
-    tex.filename = path.string();
     const int index = int(scene_.textures.size());
     scene_.textures.push_back(std::move(tex));
     texture_cache_[key] = index;

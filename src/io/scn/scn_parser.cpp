@@ -16,13 +16,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
-
-std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
-    return s;
-}
-
 constexpr int kMaxIncludeDepth = 64;
 
 bool is_command(const std::string& s) {
@@ -36,49 +29,6 @@ bool is_command(const std::string& s) {
 }
 
 }  // namespace
-
-NumberKind parse_number(const std::string& text, double& value) {
-    // Plain decimal only: [+-] digits [. digits] [e [+-] digits], at least one mantissa digit.
-    // strtod would also take "nan", "inf" and hex floats, which no scene means.
-    size_t i = 0;
-    const size_t n = text.size();
-    if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
-    const size_t mantissa = i;
-    size_t digits = 0;
-    while (i < n && is_digit(text[i])) ++i, ++digits;
-    if (i < n && text[i] == '.') {
-        ++i;
-        while (i < n && is_digit(text[i])) ++i, ++digits;
-    }
-    bool ok = digits > 0;
-    if (ok && i < n && (text[i] == 'e' || text[i] == 'E')) {
-        ++i;
-        if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
-        size_t exp_digits = 0;
-        while (i < n && is_digit(text[i])) ++i, ++exp_digits;
-        ok = exp_digits > 0;
-    }
-    if (!ok || i != n) {
-        const std::string l = lower(text.substr(mantissa));
-        if (l == "nan" || l == "inf" || l == "infinity") return NumberKind::NotFinite;
-        return NumberKind::NotNumber;
-    }
-    double v = 0;
-    const char* first = text.data() + (text[0] == '+' ? 1 : 0);
-    const auto [ptr, ec] = std::from_chars(first, text.data() + n, v);
-    if (ec == std::errc::result_out_of_range) {
-        // Underflow to zero is harmless; overflow is not a finite float.
-        if (lower(text).find("e-") != std::string::npos) {
-            value = 0;
-            return NumberKind::Number;
-        }
-        return NumberKind::NotFinite;
-    }
-    if (ec != std::errc() || ptr != text.data() + n) return NumberKind::NotNumber;
-    if (!std::isfinite(v) || std::fabs(v) > double(FLT_MAX)) return NumberKind::NotFinite;
-    value = v;
-    return NumberKind::Number;
-}
 
 void Parser::fail(const Token& at, const std::string& message) const {
     throw ParseError(files_.back().name, at.line, at.col, message);

@@ -8,15 +8,18 @@
 #include <vector>
 
 #include "core/transform.h"
-#include "io/scn/scn_lexer.h"
 #include "io/scn/scn_loader.h"
+#include "io/text/text_lexer.h"
 #include "scene/scene.h"
 
 namespace phos::io::scn {
 
-// Classifies a token as a number; `value` is set when it is one.
-enum class NumberKind { Number, NotNumber, NotFinite };
-NumberKind parse_number(const std::string& text, double& value);
+using text::lex;
+using text::LexedFile;
+using text::NumberKind;
+using text::parse_number;
+using text::read_file_bytes;
+using text::Token;
 
 class Parser {
 public:

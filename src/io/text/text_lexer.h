@@ -1,11 +1,12 @@
-// Tokeniser for `.scn` files: splits a file into white-space separated tokens with their 1-based
-// line and column, drops `#` comments, and rejects binary or non-UTF-8 content with a located error.
+// Tokeniser for phos's line-oriented text formats (`.scn`, `.scene` / `.mesh` / `.mat`): splits a
+// file into white-space separated tokens with their 1-based line and column, drops `#` comments,
+// rejects binary or non-UTF-8 content with a located error, and classifies numbers strictly.
 #pragma once
 
 #include <string>
 #include <vector>
 
-namespace phos::io::scn {
+namespace phos::io::text {
 
 struct Token {
     std::string text;
@@ -26,4 +27,9 @@ LexedFile lex(const std::string& file, const std::string& content);
 // Reads a whole file as bytes; throws InputError when it cannot be opened.
 std::string read_file_bytes(const std::string& path);
 
-}  // namespace phos::io::scn
+// Classifies a token as a number (plain decimal: no nan, inf or hex floats); `value` is set when
+// it is one. Overflow beyond float range is NotFinite, underflow is 0.
+enum class NumberKind { Number, NotNumber, NotFinite };
+NumberKind parse_number(const std::string& text, double& value);
+
+}  // namespace phos::io::text

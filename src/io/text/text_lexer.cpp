@@ -1,15 +1,27 @@
 // The `.scn` tokeniser. Validation happens here, byte by byte, so a binary file or a file in a
 // legacy 8-bit encoding fails at the first bad byte instead of producing nonsense tokens.
-#include "io/scn/scn_lexer.h"
+#include "io/text/text_lexer.h"
 
+#include <algorithm>
+#include <cctype>
+#include <cfloat>
+#include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
 
-namespace phos::io::scn {
+namespace phos::io::text {
 namespace {
+
+bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+std::string lower(std::string s) {
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    return s;
+}
 
 // Length of the UTF-8 sequence starting at s[i] (1..4), or 0 when it is malformed (bad lead byte,
 // missing/invalid continuation, overlong form, surrogate, or beyond U+10FFFF).
@@ -107,4 +119,47 @@ std::string read_file_bytes(const std::string& path) {
     return ss.str();
 }
 
-}  // namespace phos::io::scn
+NumberKind parse_number(const std::string& text, double& value) {
+    // Plain decimal only: [+-] digits [. digits] [e [+-] digits], at least one mantissa digit.
+    // strtod would also take "nan", "inf" and hex floats, which no scene means.
+    size_t i = 0;
+    const size_t n = text.size();
+    if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
+    const size_t mantissa = i;
+    size_t digits = 0;
+    while (i < n && is_digit(text[i])) ++i, ++digits;
+    if (i < n && text[i] == '.') {
+        ++i;
+        while (i < n && is_digit(text[i])) ++i, ++digits;
+    }
+    bool ok = digits > 0;
+    if (ok && i < n && (text[i] == 'e' || text[i] == 'E')) {
+        ++i;
+        if (i < n && (text[i] == '+' || text[i] == '-')) ++i;
+        size_t exp_digits = 0;
+        while (i < n && is_digit(text[i])) ++i, ++exp_digits;
+        ok = exp_digits > 0;
+    }
+    if (!ok || i != n) {
+        const std::string l = lower(text.substr(mantissa));
+        if (l == "nan" || l == "inf" || l == "infinity") return NumberKind::NotFinite;
+        return NumberKind::NotNumber;
+    }
+    double v = 0;
+    const char* first = text.data() + (text[0] == '+' ? 1 : 0);
+    const auto [ptr, ec] = std::from_chars(first, text.data() + n, v);
+    if (ec == std::errc::result_out_of_range) {
+        // Underflow to zero is harmless; overflow is not a finite float.
+        if (lower(text).find("e-") != std::string::npos) {
+            value = 0;
+            return NumberKind::Number;
+        }
+        return NumberKind::NotFinite;
+    }
+    if (ec != std::errc() || ptr != text.data() + n) return NumberKind::NotNumber;
+    if (!std::isfinite(v) || std::fabs(v) > double(FLT_MAX)) return NumberKind::NotFinite;
+    value = v;
+    return NumberKind::Number;
+}
+
+}  // namespace phos::io::text
