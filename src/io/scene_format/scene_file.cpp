@@ -1,11 +1,13 @@
 // The `.scene` commands: objects (mesh, sphere), camera, point and rectangular area lights given
 // by flux, resolution, sky and the scene's medium; and, once all is read, the media on either side
 // of every boundary (docs/formats/scene.md).
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
 #include "core/log.h"
 #include "core/spelling.h"
+#include "io/scene_format/containment.h"
 #include "io/scene_format/reader.h"
 
 namespace phos::io::scene_format {
@@ -178,13 +180,35 @@ void Reader::add_object(scene::Shape shape, const MatFile& mat, const Token& at)
 }
 
 void Reader::finish() {
-    // A boundary has its material's medium (or none) inside and the scene's medium outside; other
-    // surfaces are no transition, so rays keep the medium they travel in.
-    for (const auto& [shape, inside] : boundaries_)
-        scene_.shapes[size_t(shape)].media = {inside, scene_medium_};
-    scene_.camera_medium = scene_medium_;
-    for (scene::Light& light : scene_.lights)
-        if (light.kind != scene::Light::Kind::Infinite) light.medium = scene_medium_;
+    // A boundary has its material's medium (or none) inside; outside, the medium of the innermost
+    // boundary containing it, else the scene's. Other surfaces are no transition: rays keep the
+    // medium they travel in. The camera and the lights sit in the medium around them.
+    std::vector<int> bounds;
+    for (const auto& [shape, inside] : boundaries_) {
+        bounds.push_back(shape);
+        scene_.shapes[size_t(shape)].media.inside = inside;
+    }
+    const auto medium_at = [&](Vec3 p, int skip) {
+        const int c = innermost_container(scene_.shapes, bounds, p, skip);
+        return c < 0 ? scene_medium_ : scene_.shapes[size_t(c)].media.inside;
+    };
+    for (int shape : bounds)
+        scene_.shapes[size_t(shape)].media.outside =
+            medium_at(reference_point(scene_.shapes[size_t(shape)]), shape);
+    scene_.camera_medium = scene_.camera ? medium_at(scene_.camera->eye, -1) : scene_medium_;
+    for (scene::Light& light : scene_.lights) {
+        if (light.kind == scene::Light::Kind::Point) light.medium = medium_at(light.position, -1);
+        if (light.kind == scene::Light::Kind::Area) {
+            const scene::Shape& s = scene_.shapes[size_t(light.shape)];
+            Vec3 c = s.center;
+            if (s.kind == scene::Shape::Kind::Mesh) {
+                c = Vec3(0.0f);
+                for (const Vec3& p : s.mesh.positions) c += s.to_world.point(p);
+                c = c * (1.0f / float(std::max<size_t>(s.mesh.positions.size(), 1)));
+            }
+            light.medium = medium_at(c, light.shape);
+        }
+    }
 }
 
 }  // namespace phos::io::scene_format

@@ -1,5 +1,6 @@
-// The .pbrt and .scn versions of each bench scene describe the same scene: camera, light power,
-// triangles (up to order and orientation), spheres and materials.
+// The .pbrt, .scn and .scene versions of each bench scene describe the same scene: camera, light
+// power, triangles (up to order and orientation), spheres and materials. The .scene twins live in
+// bench/dissertation (written from the .scn twins in ../shared/bench/scn).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 
 #include "core/log.h"
 #include "io/pbrt/pbrt_loader.h"
+#include "io/scene_format/scene_format_loader.h"
 #include "io/scn/scn_loader.h"
 
 namespace phos::io {
@@ -105,12 +107,7 @@ Rgb power(const scene::Scene& s) {
     return sum;
 }
 
-void compare(const std::string& name) {
-    log::set_quiet(true);
-    const scene::Scene p = load_pbrt(kShared + "/bench/scenes/" + name + ".pbrt");
-    const scene::Scene s = load_scn(kShared + "/bench/scn/" + name + ".scn");
-    log::set_quiet(false);
-
+void compare_scenes(const scene::Scene& p, const scene::Scene& s, const std::string& name) {
     // Camera
     ASSERT_TRUE(p.camera && s.camera);
     const scene::Camera &a = *p.camera, &b = *s.camera;
@@ -172,6 +169,34 @@ void compare(const std::string& name) {
                          name + " sphere");
     }
 }
+
+void compare(const std::string& name) {
+    log::set_quiet(true);
+    const scene::Scene p = load_pbrt(kShared + "/bench/scenes/" + name + ".pbrt");
+    const scene::Scene s = load_scn(kShared + "/bench/scn/" + name + ".scn");
+    log::set_quiet(false);
+    compare_scenes(p, s, name);
+}
+
+// The .scene twin against the .scn twin (and so, through the test above, against pbrt).
+void compare_scene_format(const std::string& name) {
+    log::set_quiet(true);
+    const scene::Scene d =
+        load_scene_format(std::string(PHOS_SOURCE_DIR) + "/bench/dissertation/" + name + ".scene");
+    const scene::Scene s = load_scn(kShared + "/bench/scn/" + name + ".scn");
+    log::set_quiet(false);
+    compare_scenes(d, s, name + " (.scene vs .scn)");
+    EXPECT_TRUE(d.camera->fov_vertical);
+    ASSERT_TRUE(d.settings.width && d.settings.height);
+    EXPECT_EQ(*d.settings.width, 256);
+    EXPECT_EQ(*d.settings.height, 256);
+    // Shared .mat files are one material each (plus the area light's black emitter).
+    EXPECT_EQ(d.materials.size(), s.materials.size()) << name;
+}
+
+TEST(SceneScnEquivalence, CornellDiffuse) { compare_scene_format("cornell-diffuse"); }
+TEST(SceneScnEquivalence, CornellGlassMirror) { compare_scene_format("cornell-glass-mirror"); }
+TEST(SceneScnEquivalence, CausticPoint) { compare_scene_format("caustic-point"); }
 
 TEST(PbrtScnEquivalence, CornellDiffuse) { compare("cornell-diffuse"); }
 TEST(PbrtScnEquivalence, CornellGlassMirror) { compare("cornell-glass-mirror"); }
