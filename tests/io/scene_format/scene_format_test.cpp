@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/log.h"
+#include "io/mesh/mesh_io.h"
 #include "io/scene_format/scene_format_loader.h"
 #include "test_util.h"
 
@@ -211,6 +212,25 @@ TEST(SceneFormat, TexturedMeshKeepsItsUv) {
     EXPECT_EQ(m.diffuse_texture, 0);
     ASSERT_TRUE(s.textures[0].image);
     EXPECT_EQ(s.textures[0].image->at(0, 0), Rgb(0.5f, 0.25f, 1.0f));  // PFM floats are linear
+}
+
+// A binary PLY with normals and uv, written by phos's own writer, is read through a .mesh.
+TEST(SceneFormat, BinaryPlyWithNormalsAndUv) {
+    testing::TempDir dir;
+    scene::TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+    m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
+    m.uvs = {{0, 0}, {1, 0}, {0, 1}};
+    m.indices = {0, 1, 2};
+    write_ply(dir.file("b.ply"), m, /*binary=*/true);
+    dir.write("t.mat", "diffuse 1 1 1\ntexture tex.pfm\n");
+    dir.write("tex.pfm", std::string("PF\n1 1\n-1\n") + std::string(12, '\0'));
+    dir.write("b.mesh", "ply b.ply\nmaterial t.mat\n");
+    const scene::Scene s = load(dir, "mesh b.mesh\n");
+    ASSERT_EQ(s.shapes.size(), 1u);
+    EXPECT_EQ(s.shapes[0].mesh.positions, m.positions);
+    EXPECT_EQ(s.shapes[0].mesh.normals, m.normals);
+    EXPECT_EQ(s.shapes[0].mesh.uvs, m.uvs);
 }
 
 }  // namespace
