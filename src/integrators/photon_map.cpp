@@ -10,6 +10,7 @@
 #include "integrators/factory.h"
 #include "integrators/photon_map_radiance.h"
 #include "integrators/pixel_loop.h"
+#include "photon/beam_estimate.h"
 #include "photon/projection_map.h"
 
 namespace phos::integrators {
@@ -94,6 +95,19 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     }
     const double build_s = seconds_since(t0);
     P.stats.add_time("photon map build", build_s);
+    if (o.volume_estimate == VolumeEstimate::Beam &&
+        (!maps.volume().empty() || !maps.volume_caustic().empty())) {
+        // Each volume photon's kernel radius from its k nearest neighbours, then the spheres' BVH.
+        t0 = std::chrono::steady_clock::now();
+        maps.volume_beams.build(photon::photon_spheres(maps.volume(), o.volume.samples, o.volume.radius));
+        maps.volume_caustic_beams.build(
+            photon::photon_spheres(maps.volume_caustic(), o.volume_caustic.samples, o.volume_caustic.radius));
+        P.stats.add_time("beam BVH build", seconds_since(t0));
+        P.stats.add_value(
+            "beam BVH memory",
+            fmt("%.3g MB",
+                double(maps.volume_beams.memory_bytes() + maps.volume_caustic_beams.memory_bytes()) / 1e6));
+    }
 
     P.stats.add_value("photons emitted", std::to_string(traced.total_emitted));
     for (int m = 0; m < photon::kMapCount; ++m) {

@@ -10,6 +10,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
+#include "photon/beam_bvh.h"
 #include "photon/irradiance_cache.h"
 #include "photon/kdtree.h"
 #include "photon/tracer.h"
@@ -21,6 +22,8 @@ struct PhotonMaps {
     photon::PhotonKdTree map[photon::kMapCount];
     uint64_t emitted[photon::kMapCount] = {};
     photon::IrradianceCache cache;  // empty unless --irradiance-cache
+    // The volume maps' photons with their kernel radii for --volume-estimate beam (else empty).
+    photon::BeamBvh volume_beams, volume_caustic_beams;
     const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }
     const photon::PhotonKdTree& caustic() const { return map[photon::kCausticMap]; }
     const photon::PhotonKdTree& indirect() const { return map[photon::kIndirectMap]; }

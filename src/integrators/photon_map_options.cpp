@@ -90,8 +90,26 @@ const options::Table& photon_map_options() {
             o.applies_to = "photonmap";
             return o;
         };
+        auto& ve = pm(b.custom(
+            "volume-estimate", "KIND", 1,
+            "volume estimate along camera rays in media: beam (one beam radiance estimate per stretch, "
+            "each photon's radius from its --volume-samples nearest) or march (ray marching, a k-nearest "
+            "estimate every --volume-step)",
+            [](PhotonMapOptions& o, const std::vector<std::string>& v) {
+                if (v.at(0) == "beam")
+                    o.volume_estimate = VolumeEstimate::Beam;
+                else if (v[0] == "march")
+                    o.volume_estimate = VolumeEstimate::March;
+                else
+                    throw ValueError("'" + v[0] + "' is not one of beam, march");
+            },
+            [](const PhotonMapOptions& o) {
+                return std::string(o.volume_estimate == VolumeEstimate::Beam ? "beam" : "march");
+            }));
+        ve.range_text = "beam|march";
         pm(b.number("volume-step", &PhotonMapOptions::volume_step, "D", between(0, 1e30),
-                    "ray-marching step along camera rays in media, scene units (0 = automatic)"))
+                    "ray-marching step along camera rays in media, scene units (0 = automatic); with "
+                    "--volume-estimate beam, the step of the transmittance table in grid media"))
             .default_text = "automatic: the volume radius / 2";
         pm(b.number("photons", &PhotonMapOptions::photons, "N", between(0, 1099511627776.0),
                     "photons to emit (0 = until every map holds its budget)"))

@@ -11,6 +11,10 @@
 
 namespace phos::integrators {
 
+// How camera rays gather the volume maps' light (docs/media.md): one beam radiance estimate per
+// stretch (Jarosz, Zwicker & Jensen 2008) or ray marching with a k-nearest estimate per step.
+enum class VolumeEstimate { Beam, March };
+
 // Budget and density-estimate settings of one photon map.
 struct PhotonMapSettings {
     uint64_t photons = 0;       // stored photons wanted (0 = all photons of --photons emitted ones)
@@ -28,6 +32,7 @@ struct PhotonMapOptions {
     // Participating media (docs/media.md): multiple scattering and volume caustics, box kernel.
     PhotonMapSettings volume{200000, 60, 0, 0.1f, photon::FilterKind::Box, 1.1f};
     PhotonMapSettings volume_caustic{200000, 40, 0, 0.05f, photon::FilterKind::Box, 1.1f};
+    VolumeEstimate volume_estimate = VolumeEstimate::Beam;
     float volume_step = 0;            // ray-marching step along camera rays in media (0 = automatic)
     uint64_t photons = 0;             // --photons: photons to emit (0 = until the map budgets are met)
     uint64_t max_emitted = 0;         // stop emitting here even if a budget is unmet (0 = automatic)

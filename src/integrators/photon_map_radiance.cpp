@@ -13,8 +13,9 @@
 // recursion to double count.
 // In participating media the camera ray gains, along every stretch in a medium (Jensen &
 // Christensen 1998, eq. 12), the same three parts: single scattering L V (light sampling), volume
-// caustics L S+ V and multiple scattering L ... {D|V} V (the volume maps' estimates, by ray
-// marching), while what lies behind is attenuated by the stretch's transmittance.
+// caustics L S+ V and multiple scattering L ... {D|V} V (the volume maps' estimates: one beam
+// radiance estimate per stretch, Jarosz, Zwicker & Jensen 2008, or ray marching), while what lies
+// behind is attenuated by the stretch's transmittance.
 #include "integrators/photon_map_radiance.h"
 
 #include <algorithm>
@@ -200,6 +201,23 @@ PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium&
     if (o_.direct) s.single = single_scattering(P_, medium_index, o, d, t_end, sampler, rays);
     t_end = finite_stretch(P_, o, d, t_end);
     if (!(t_end > 0)) return s;
+    if (o_.volume_estimate == VolumeEstimate::Beam) {
+        // The beam radiance estimate (photon/beam_estimate.h): one query of each volume map's photon
+        // spheres for the whole stretch, each photon weighted by T integrated over its chord (exact
+        // in homogeneous media, a table over the --volume-step steps in grids).
+        const photon::StretchTransmittance T(medium, o, d, t_end, o_.volume_step, sampler.next());
+        if (o_.caustics)
+            s.caustic += photon::beam_radiance_estimate(maps_.volume_caustic_beams, o, d, T, medium.phase());
+        if (o_.indirect_light)
+            s.multiple += photon::beam_radiance_estimate(maps_.volume_beams, o, d, T, medium.phase());
+        // Emission (homogeneous media only): int T sigma_a Le dt in closed form.
+        if (medium.homogeneous() && medium.emissive()) {
+            const shading::MediumCoefficients c = medium.at(o);
+            s.single += c.sigma_a * c.Le * T.integral(0.0f, T.end());
+        }
+        s.T = T.total();
+        return s;
+    }
     // Ray marching with a jittered start: every step adds T(t) dt times the volume estimates (and
     // the medium's emission); T is exact in homogeneous media and marched in grids.
     const int n = std::clamp(int(std::ceil(t_end / o_.volume_step)), 1, 4096);

@@ -7,6 +7,7 @@
 #include "integrators/photon_map.h"
 #include "integrators/pixel_loop.h"
 #include "integrators/prepared.h"
+#include "photon/beam_estimate.h"
 #include "photon/estimate.h"
 #include "photon/volume_estimate.h"
 
@@ -27,8 +28,8 @@ public:
     Rgb gather_ray(accel::Ray ray, int medium, Sampler& sampler, RayCounts& rays) const;
 
     // Light scattered towards the camera along one stretch of a camera ray in a medium (Jensen &
-    // Christensen 1998, eq. 12, by ray marching), split as the surface radiance is, and the
-    // stretch's transmittance.
+    // Christensen 1998, eq. 12: by the beam radiance estimate or by ray marching, as
+    // --volume-estimate says), split as the surface radiance is, and the stretch's transmittance.
     struct MediumStretch {
         Rgb single, caustic, multiple, T{1.0f};
     };
