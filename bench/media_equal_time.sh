@@ -10,12 +10,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
 extra="$*"
-phos=$build/phos
 scene=$here/../../shared/bench/media/fog-caustic.pbrt
 ref=$here/../../shared/bench/media/fog-caustic.exr
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; extra options: ${extra:-none}"
+. "$here/media_common.sh"
 printf '| %-9s | %-22s | %7s | %8s | %6s | %8s |\n' integrator budget wall relMSE ratio contrast
 printf '| %-9s | %-22s | %7s | %8s | %6s | %8s |\n' --- --- --- --- --- ---
 run() {  # integrator, budget text, phos options...
@@ -25,14 +22,10 @@ run() {  # integrator, budget text, phos options...
     t0=$(date +%s.%N)
     # shellcheck disable=SC2086
     "$phos" render "$scene" --integrator "$integ" "$@" $extra --quiet -o "$img"
-    t1=$(date +%s.%N)
-    d=$("$phos" diff "$img" "$ref")
-    rel=$(echo "$d" | awk '/relMSE/ {print $2}')
-    ratio=$(echo "$d" | awk '/mean_ratio/ {print $2}')
-    contrast=$("$phos" info "$img" --window 120 136 184 208 --window 96 112 184 208 --window 144 160 184 208 |
-        awk '/window/ {v[n++] = $NF} END {printf "%.4f", v[0] - (v[1] + v[2]) / 2}')
-    printf '| %-9s | %-22s | %7.1f | %8.5f | %6.3f | %8s |\n' "$integ" "$budget" "$(awk "BEGIN {print $t1 - $t0}")" \
-        "$rel" "$ratio" "$contrast"
+    wall=$(seconds_since "$t0")
+    measure "$img" "$ref"
+    printf '| %-9s | %-22s | %7.1f | %8.5f | %6.3f | %8s |\n' "$integ" "$budget" "$wall" "$rel" "$ratio" \
+        "$(caustic_contrast "$img")"
 }
 for spp in 16 64 256; do run path "--spp $spp" --spp "$spp"; done
 for spp in 1 4 16; do run photonmap "--spp $spp" --spp "$spp"; done

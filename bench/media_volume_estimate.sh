@@ -20,12 +20,9 @@ here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
 extra="$*"
-phos=$build/phos
 scene=$here/../../shared/bench/media/fog-caustic.pbrt
 ref=$here/../../shared/bench/media/fog-caustic.exr
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
-echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores; extra options: ${extra:-none}"
+. "$here/media_common.sh"
 printf '| %-8s | %-40s | %7s | %7s | %8s | %6s | %8s |\n' estimate budget wall cpu relMSE ratio contrast
 printf '| %-8s | %-40s | %7s | %7s | %8s | %6s | %8s |\n' --- --- --- --- --- --- ---
 run() {  # image name, estimate, phos options...
@@ -35,15 +32,11 @@ run() {  # image name, estimate, phos options...
     # shellcheck disable=SC2086
     /usr/bin/time -f '%U %S' -o "$out/time" \
         "$phos" render "$scene" --integrator photonmap --volume-estimate "$est" "$@" $extra --quiet -o "$img"
-    t1=$(date +%s.%N)
+    wall=$(seconds_since "$t0")
     cpu=$(awk '{print $1 + $2}' "$out/time")
-    d=$("$phos" diff "$img" "$ref")
-    rel=$(echo "$d" | awk '/relMSE/ {print $2}')
-    ratio=$(echo "$d" | awk '/mean_ratio/ {print $2}')
-    contrast=$("$phos" info "$img" --window 120 136 184 208 --window 96 112 184 208 --window 144 160 184 208 |
-        awk '/window/ {v[n++] = $NF} END {printf "%.4f", v[0] - (v[1] + v[2]) / 2}')
-    printf '| %-8s | %-40s | %7.1f | %7.1f | %8.5f | %6.3f | %8s |\n' "$est" "$*" "$(awk "BEGIN {print $t1 - $t0}")" \
-        "$cpu" "$rel" "$ratio" "$contrast"
+    measure "$img" "$ref"
+    printf '| %-8s | %-40s | %7.1f | %7.1f | %8.5f | %6.3f | %8s |\n' "$est" "$*" "$wall" "$cpu" "$rel" "$ratio" \
+        "$(caustic_contrast "$img")"
 }
 fg="--spp 4 --fast-global"
 run m1 march --spp 1
