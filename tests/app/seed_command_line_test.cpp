@@ -188,5 +188,66 @@ TEST(SeedCommandLine, EmittersEmitOnTheSameSideInEveryIntegrator) {
         EXPECT_EQ(render(out, "--integrator " + integrator), 0.0) << integrator;
 }
 
+// The seed's Makefile command lines run unchanged (output last, after the flags): the flags with a
+// phos equivalent take effect, the others are accepted with one warning each.
+TEST(SeedCommandLine, SeedMakefileCommandLinesRun) {
+    TempDir dir;
+    const std::string scene = source_path("scenes/cornell-diffuse.scn");
+    const std::string small = " --global 5000 --caustic 5000 ";
+    struct Line {
+        std::string flags;
+        size_t warnings;  // flags without effect
+    };
+    const Line lines[] = {
+        {"-resolution 32 32 -aa 2 -v -lt 64 -ss 0 -tt 64 -st 128 -md 128 -threads 8 -no_caustic -no_indirect "
+         "-no_transmissive -no_specular",
+         4},
+        {"-resolution 32 32 -aa 0 -v -lt 128 -no_rs -no_ss -no_fresnel -no_dt -no_ds -tt 32 -st 32 -md 8 "
+         "-threads 8",
+         8},
+        {"-resolution 32 32 -aa 1 -v -real -lt 64 -ss 64 -tt 128 -st 128 -md 64 -threads 8 -it 4", 4},
+        {"-resolution 32 32 -aa 0 -no_ambient -no-monte -absorb 0.01 -pd 8 -gs 40 -gd 0.2 -gf cone 1.1 -cs "
+         "30 "
+         "-cd 0.05 -cf gauss -cache -no_shadow -s 4",
+         4},
+    };
+    for (const Line& l : lines) {
+        const std::string out = dir.file("seed.png");
+        std::filesystem::remove(out);
+        const auto r = run_phos(scene + " " + l.flags + small + out);
+        ASSERT_EQ(r.exit_code, 0) << l.flags << "\n" << r.output;
+        EXPECT_TRUE(std::filesystem::exists(out)) << l.flags;
+        size_t warnings = 0;
+        for (size_t p = r.output.find("has no effect"); p != std::string::npos;
+             p = r.output.find("has no effect", p + 1))
+            ++warnings;
+        EXPECT_EQ(warnings, l.warnings) << l.flags << "\n" << r.output;
+    }
+}
+
+// The seed flags with a phos equivalent give the same image as the phos options themselves.
+TEST(SeedCommandLine, SeedFlagsMapToPhosOptions) {
+    TempDir dir;
+    const std::string scene = source_path("scenes/cornell-diffuse.scn");
+    const std::string common = " --resolution 24 24 --spp 2 --global 5000 --caustic 5000 -o ";
+    const auto a =
+        run_phos("render " + scene +
+                 " -md 3 -it 2 -gs 30 -gd 0.2 -gf cone 1.5 -cs 20 -cd 0.05 -cf gauss -pd 4 -cache" + common +
+                 dir.file("seed.pfm"));
+    ASSERT_EQ(a.exit_code, 0) << a.output;
+    const auto b = run_phos(
+        "render " + scene +
+        " --max-depth 3 --gather-rays 2 --global-samples 30 --global-radius 0.2 --global-filter cone "
+        "--global-cone-k 1.5 --caustic-samples 20 --caustic-radius 0.05 --caustic-filter gauss "
+        "--max-photon-depth 4 --irradiance-cache" +
+        common + dir.file("phos.pfm"));
+    ASSERT_EQ(b.exit_code, 0) << b.output;
+    EXPECT_EQ(read_bytes(dir.file("seed.pfm")), read_bytes(dir.file("phos.pfm")));
+    // and they change the image (the test would pass trivially if the flags were ignored)
+    const auto c = run_phos("render " + scene + common + dir.file("default.pfm"));
+    ASSERT_EQ(c.exit_code, 0) << c.output;
+    EXPECT_NE(read_bytes(dir.file("seed.pfm")), read_bytes(dir.file("default.pfm")));
+}
+
 }  // namespace
 }  // namespace phos::testing

@@ -17,7 +17,9 @@
 #include "app/lib/diff_command.h"
 #include "app/lib/image_commands.h"
 #include "app/lib/render_command.h"
+#include "app/lib/seed_flags.h"
 #include "core/error.h"
+#include "core/log.h"
 #include "core/spelling.h"
 #include "integrators/progressive_checkpoint.h"
 
@@ -220,7 +222,8 @@ int run_cli(int argc, char** argv) {
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
         for (const auto& n : o->get_lnames()) long_names.insert(n);
-    std::vector<std::string> args = normalise_args(argc, argv, long_names);
+    SeedFlagResult seed = translate_seed_flags(normalise_args(argc, argv, long_names));
+    std::vector<std::string> args = std::move(seed.args);
 
     // A misspelt command: say what was meant instead of "a subcommand is required".
     if (!args.empty() && !args[0].empty() && args[0][0] != '-' &&
@@ -235,6 +238,8 @@ int run_cli(int argc, char** argv) {
                                " (commands: render, diff, info, montage, options, help)");
         }
     }
+
+    move_trailing_output(args);
 
     // Returns -1 when parsing succeeded, else the exit code.
     auto parse = [&](std::vector<std::string> a) {
@@ -326,6 +331,8 @@ int run_cli(int argc, char** argv) {
             if (rc.was_given("resolution") && (rc.was_given("width") || rc.was_given("height")))
                 throw InputError("give either --resolution or --width/--height, not both");
             rc.command_line = checkpoint_arguments(render_args, rc.scene_path);
+            log::set_quiet(rc.run.quiet);
+            for (const std::string& w : seed.warnings) log::warn(w);
             run_render(rc);
         }
         if (diff->parsed()) run_diff(dc);
