@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/text/image_texture.h"
 #include "io/volume/volume_grid.h"
 
 namespace phos::io::pbrt {
@@ -119,13 +120,9 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
                 warn(fp->loc, d + ": equal-area (square) environment maps are not supported; a constant "
                                   "environment of the map's mean radiance is used");
             } else {
-                auto ti = std::make_shared<scene::TextureImage>();
-                ti->width = img.width;
-                ti->height = img.height;
-                ti->texels = std::move(img.pixels);
                 scene::Texture tex;
                 tex.kind = scene::Texture::Kind::Image;
-                tex.image = std::move(ti);
+                tex.image = text::to_texture_image(std::move(img));
                 tex.filename = path;
                 scene_.textures.push_back(std::move(tex));
                 light.texture = int(scene_.textures.size()) - 1;

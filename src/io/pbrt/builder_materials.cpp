@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/text/image_texture.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -208,10 +209,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& type_in, 
         } catch (const std::exception& e) {
             fp->loc.fail(d + ": " + e.what());
         }
-        auto ti = std::make_shared<scene::TextureImage>();
-        ti->width = img.width;
-        ti->height = img.height;
-        ti->texels = std::move(img.pixels);
+        auto ti = text::to_texture_image(std::move(img));
         for (Rgb& c : ti->texels) {
             if (gamma != 1.0f) c = Rgb(std::pow(c.r, gamma), std::pow(c.g, gamma), std::pow(c.b, gamma));
             if (grey) c = Rgb(c.average());

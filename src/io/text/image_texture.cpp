@@ -11,15 +11,19 @@ namespace phos::io::text {
 scene::Texture read_image_texture(const std::string& path) {
     Image img = read_image(path, /*srgb=*/true);
     if (img.width <= 0 || img.height <= 0) throw InputError("the image is empty");
+    scene::Texture tex;
+    tex.kind = scene::Texture::Kind::Image;
+    tex.image = to_texture_image(std::move(img));
+    tex.filename = path;
+    return tex;
+}
+
+std::shared_ptr<scene::TextureImage> to_texture_image(Image img) {
     auto image = std::make_shared<scene::TextureImage>();
     image->width = img.width;
     image->height = img.height;
     image->texels = std::move(img.pixels);
-    scene::Texture tex;
-    tex.kind = scene::Texture::Kind::Image;
-    tex.image = std::move(image);
-    tex.filename = path;
-    return tex;
+    return image;
 }
 
 }  // namespace phos::io::text
