@@ -146,6 +146,13 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
         P.stats.add_time("irradiance cache", seconds_since(t0));
         P.stats.add_value("irradiance cache points", std::to_string(maps.cache.size()));
     }
+    if (o.irradiance_cache && to.wanted[photon::kVolumeMap] && !maps.volume().empty()) {
+        t0 = std::chrono::steady_clock::now();
+        maps.volume_cache.build(maps.volume(), {o.volume.samples, o.volume.radius}, maps.volume_caustic(),
+                                {o.volume_caustic.samples, o.volume_caustic.radius}, o.cache_stride);
+        P.stats.add_time("volume cache", seconds_since(t0));
+        P.stats.add_value("volume cache points", std::to_string(maps.volume_cache.size()));
+    }
     return maps;
 }
 

@@ -14,6 +14,7 @@
 #include "photon/irradiance_cache.h"
 #include "photon/kdtree.h"
 #include "photon/tracer.h"
+#include "photon/volume_cache.h"
 
 namespace phos::integrators {
 
@@ -22,6 +23,8 @@ struct PhotonMaps {
     photon::PhotonKdTree map[photon::kMapCount];
     uint64_t emitted[photon::kMapCount] = {};
     photon::IrradianceCache cache;  // empty unless --irradiance-cache
+    // In-scattered light at volume photons for final-gather rays in media (with --irradiance-cache).
+    photon::VolumeCache volume_cache;
     // The volume maps' photons with their kernel radii for --volume-estimate beam (else empty).
     photon::BeamBvh volume_beams, volume_caustic_beams;
     const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }

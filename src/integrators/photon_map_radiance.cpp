@@ -159,7 +159,11 @@ Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, 
             const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
             const shading::Medium& m = P_.media[walk.medium()];
             Rgb Ls = sample_one_light_in_medium(P_, x, wo, walk.medium(), sampler, rays, false);
-            Rgb est = photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, m.phase()) +
+            // The volume cache's first-order estimate (photon/volume_cache.h) where it has a point
+            // nearby, else the two maps' k-nearest estimates.
+            Rgb est;
+            if (!maps_.volume_cache.lookup(x, volume_est_.max_radius, wo, m.phase().g, est))
+                est = photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, m.phase()) +
                       photon::volume_radiance_estimate(maps_.volume_caustic(), volume_caustic_est_, x, wo,
                                                        m.phase());
             const Rgb sigma_s = m.at(x).sigma_s;

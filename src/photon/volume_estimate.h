@@ -8,7 +8,9 @@
 // per unit length before attenuation.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <vector>
 
 #include "core/vec.h"
 #include "photon/kdtree.h"
@@ -20,6 +22,25 @@ struct VolumeEstimateOptions {
     uint32_t k = 50;          // photons per estimate
     float max_radius = 0.1f;  // scene units; fewer than k photons within it use this radius
 };
+
+// The photons of the k-nearest estimate at x: calls visit(photon) for each and returns 1 / V, the
+// inverse volume of the sphere they fill (the whole search sphere when fewer than k are found; 0
+// when none are).
+template <class Visit>
+float volume_estimate_photons(const PhotonKdTree& map, const VolumeEstimateOptions& o, Vec3 x, Visit&& visit,
+                              uint32_t* n_used = nullptr) {
+    if (n_used) *n_used = 0;
+    if (map.empty() || o.k == 0) return 0.0f;
+    thread_local std::vector<Neighbour> nb;
+    nb.resize(o.k);
+    const KnnResult r = map.knn(x, o.k, o.max_radius * o.max_radius, nb.data());
+    if (r.count == 0) return 0.0f;
+    const float r2 = r.count < o.k ? o.max_radius * o.max_radius : r.max_dist2;
+    if (!(r2 > 0)) return 0.0f;
+    for (uint32_t i = 0; i < r.count; ++i) visit(map.photon(nb[i].index));
+    if (n_used) *n_used = r.count;
+    return 1.0f / (4.0f / 3.0f * kPi * r2 * std::sqrt(r2));
+}
 
 // In-scattered radiance per unit length at x towards wo (unit, back along the viewing ray).
 Rgb volume_radiance_estimate(const PhotonKdTree& map, const VolumeEstimateOptions& o, Vec3 x, Vec3 wo,
