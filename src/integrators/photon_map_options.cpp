@@ -126,8 +126,9 @@ const options::Table& photon_map_options() {
         pm(b.flag("photon-viz", &PhotonMapOptions::photon_viz,
                   "show the global map's radiance estimate at the first hit (debug view)"));
         pm(b.flag("irradiance-cache", &PhotonMapOptions::irradiance_cache,
-                  "precomputed irradiance at global photons for the final gather", true,
-                  "no-irradiance-cache"));
+                  "precomputed irradiance at global photons (and in-scattered light at volume photons) for "
+                  "the final gather",
+                  true, "no-irradiance-cache"));
         pm(b.number("caustic-min-radius-pixels", &PhotonMapOptions::caustic_min_pixels, "P", between(0, 1e6),
                     "the caustic estimate's radius never shrinks below this many pixel footprints (0 = plain "
                     "k nearest)"));
