@@ -214,10 +214,19 @@ PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium&
             s.caustic += photon::beam_radiance_estimate(maps_.volume_caustic_beams, o, d, T, medium.phase());
         if (o_.indirect_light)
             s.multiple += photon::beam_radiance_estimate(maps_.volume_beams, o, d, T, medium.phase());
-        // Emission (homogeneous media only): int T sigma_a Le dt in closed form.
-        if (medium.homogeneous() && medium.emissive()) {
+        // Emission, int T sigma_a Le dt: in closed form in homogeneous media, by jittered steps of
+        // --volume-step in grids.
+        if (medium.emissive() && medium.homogeneous()) {
             const shading::MediumCoefficients c = medium.at(o);
             s.single += c.sigma_a * c.Le * T.integral(0.0f, T.end());
+        } else if (medium.emissive()) {
+            const int n = std::clamp(int(std::ceil(T.end() / o_.volume_step)), 1, 4096);
+            const float dt = T.end() / float(n), jitter = sampler.next();
+            for (int k = 0; k < n; ++k) {
+                const float t = (float(k) + jitter) * dt;
+                const shading::MediumCoefficients c = medium.at(o + d * t);
+                s.single += c.sigma_a * c.Le * T.at(t) * dt;
+            }
         }
         s.T = T.total();
         return s;

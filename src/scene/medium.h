@@ -28,7 +28,10 @@ struct Medium {
     Rgb sigma_s{0.0f};   // scattering, 1/scene-unit (density 1)
     float scale = 1.0f;  // multiplies sigma_a and sigma_s
     float g = 0.0f;      // Henyey-Greenstein asymmetry, in (-1, 1)
-    Rgb emission{0.0f};  // radiance emitted per unit absorption (homogeneous media)
+    Rgb emission{0.0f};  // radiance emitted per unit absorption (homogeneous and uniform-grid media)
+    // UniformGrid: per-cell factors on `emission` (pbrt "Lescale" with nx*ny*nz values), on the
+    // density's cells and reconstructed the same way; empty = 1 everywhere.
+    std::vector<float> emission_scale;
     // UniformGrid: density values nx*ny*nz (x fastest) over the box [p0, p1] in medium space,
     // reconstructed trilinearly between cell centres as pbrt-v4 does.
     int nx = 0, ny = 0, nz = 0;

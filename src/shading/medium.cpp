@@ -12,10 +12,15 @@ Medium::Medium(const scene::Medium& m)
       to_medium_(m.to_world.inverse()) {
     max_sigma_t_ = (sigma_a_ + sigma_s_).max();
     grid_ = make_density_grid(m);
+    Le_ = m.emission;
     if (grid_) {
         majorant_grid_ = std::make_unique<MajorantGrid>(*grid_);
-    } else {
-        Le_ = m.emission;  // emission is supported in homogeneous media
+        if (!m.emission_scale.empty() && !Le_.is_black()) {
+            // The emission factors live on the density's cells: the same grid class reads them.
+            scene::Medium scale = m;
+            scale.density = m.emission_scale;
+            le_scale_ = make_density_grid(scale);
+        }
     }
 }
 
@@ -24,8 +29,10 @@ Medium::Medium(Medium&&) noexcept = default;
 
 MediumCoefficients Medium::at(Vec3 p) const {
     if (!grid_) return {sigma_a_, sigma_s_, Le_};
-    const float d = grid_->density(to_medium_.point(p));
-    return {sigma_a_ * d, sigma_s_ * d, Rgb(0.0f)};
+    const Vec3 q = to_medium_.point(p);
+    const float d = grid_->density(q);
+    // Emission sigma_a(p) Le(p): through sigma_a it follows the density, times the Lescale grid.
+    return {sigma_a_ * d, sigma_s_ * d, le_scale_ ? Le_ * le_scale_->density(q) : Le_};
 }
 
 Medium::Majorants Medium::majorants(Vec3 o, Vec3 d, float t0, float t1) const {

@@ -56,6 +56,7 @@ private:
     Transform to_medium_;
     std::unique_ptr<DensityGrid> grid_;
     std::unique_ptr<MajorantGrid> majorant_grid_;
+    std::unique_ptr<DensityGrid> le_scale_;  // uniform grids: per-cell emission factors (pbrt "Lescale")
 };
 
 // The scene's media, indexed as scene::Scene::media (-1 = vacuum).

@@ -417,6 +417,66 @@ TEST(MediaRender, BitIdenticalAtOneAndTwoThreads) {
     }
 }
 
+// An emissive, purely absorbing medium (sigma_a 20, so exp(-sigma_a d) < 1e-8 beyond the unit
+// distance from the camera to the black walls) seen from inside: every pixel converges to its
+// emitted radiance Le, int_0^d sigma_a Le exp(-sigma_a t) dt = Le (1 - exp(-sigma_a d)). The same
+// for a homogeneous medium, a uniform grid of density 1 (emission follows sigma_a through the
+// density) and a grid whose "Lescale" doubles it, in every integrator that renders media.
+scene::Scene glowing_box(scene::Medium::Kind kind, float le_scale) {
+    scene::Scene s;
+    s.materials.push_back(scene::Material{});  // black walls
+    scene::Medium m = homogeneous(Rgb(20.0f), Rgb(0.0f), 0.0f);
+    m.emission = Rgb(0.7f, 0.5f, 0.3f);
+    if (kind == scene::Medium::Kind::UniformGrid) {
+        m.kind = kind;
+        m.nx = m.ny = m.nz = 2;
+        m.density.assign(8, 1.0f);
+        m.p0 = Vec3(-1.0f);
+        m.p1 = Vec3(1.0f);
+        if (le_scale != 1.0f) m.emission_scale.assign(8, le_scale);
+    }
+    s.media.push_back(m);
+    scene::Shape box = testing::box(Vec3(-1.0f), Vec3(1.0f));
+    box.material = 0;
+    box.media = {0, -1};
+    s.shapes.push_back(box);
+    scene::Light dark;  // a light outside, so that the integrators have one
+    dark.color = Rgb(0.0f);
+    dark.position = Vec3(5.0f);
+    s.lights.push_back(dark);
+    scene::Camera cam;
+    cam.forward = Vec3(0.3f, -0.2f, -1.0f);
+    cam.fov = 1.4f;
+    s.camera = cam;
+    s.camera_medium = 0;
+    return s;
+}
+
+TEST(MediaRender, EmissionOfHomogeneousAndGridMedia) {
+    using Kind = scene::Medium::Kind;
+    struct Case {
+        Kind kind;
+        float le_scale;
+    };
+    for (const Case k :
+         {Case{Kind::Homogeneous, 1}, Case{Kind::UniformGrid, 1}, Case{Kind::UniformGrid, 2}}) {
+        const scene::Scene s = glowing_box(k.kind, k.le_scale);
+        for (const char* name : {"path", "photonmap", "sppm"}) {
+            RenderSetup setup;
+            setup.spp = 8;
+            const Image img = render(name, s, setup, photon_budgets());
+            for (int c = 0; c < 3; ++c) {
+                const double expected = double(s.media[0].emission[c]) * k.le_scale;
+                const MeanAndError m = image_mean(img, c);
+                // every pixel has the same expectation: 5 standard errors of the pixels' mean plus
+                // 0.5 % for float accumulation
+                EXPECT_NEAR(m.mean, expected, 5 * m.std_error + 0.005 * expected)
+                    << name << ", kind " << int(k.kind) << ", Lescale " << k.le_scale << ", channel " << c;
+            }
+        }
+    }
+}
+
 // ---------------------------------------------------------------------------------------------
 // f. The beam radiance estimate (photonmap --volume-estimate beam, photon/beam_estimate.h) against
 // ray marching (--volume-estimate march) and path tracing. With one seed both estimators see the

@@ -199,8 +199,14 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
     if (m.sigma_a.r < 0 || m.sigma_a.g < 0 || m.sigma_a.b < 0 || m.sigma_s.r < 0 || m.sigma_s.g < 0 ||
         m.sigma_s.b < 0 || m.scale < 0)
         loc.fail(d + ": coefficients must not be negative");
-    if (auto le = color(params, "Le", SpectrumUse::Illuminant))
-        m.emission = *le * params.get_float("Lescale", 1.0f);
+    // Emission sigma_a Le: "Lescale" is one factor, or (uniformgrid) one per density cell.
+    std::vector<float> le_scale = params.get_floats("Lescale");
+    const Param* le_param = params.find("Le");
+    if (auto le = color(params, "Le", SpectrumUse::Illuminant)) m.emission = *le;
+    if (le_scale.size() == 1) {
+        m.emission = m.emission * le_scale[0];
+        le_scale.clear();
+    }
     if (type == "uniformgrid") {
         m.kind = scene::Medium::Kind::UniformGrid;
         m.nx = params.get_int("nx", 1), m.ny = params.get_int("ny", 1), m.nz = params.get_int("nz", 1);
@@ -217,8 +223,21 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
         }
         if (const Param* tp = params.find("temperature"))
             warn(tp->loc, d + ": \"temperature\" grids are not supported");
+        if (!le_scale.empty()) {
+            if (le_scale.size() != m.density.size())
+                params.find("Lescale")->loc.fail(d + ": \"Lescale\" has " + std::to_string(le_scale.size()) +
+                                                 " values, nx*ny*nz = " + std::to_string(m.density.size()));
+            m.emission_scale = std::move(le_scale);
+        }
+    } else if (!le_scale.empty()) {
+        params.find("Lescale")->loc.fail(d + ": \"Lescale\" takes one value here");
     }
     if (sparse) {
+        // pbrt-v4's nanovdb media emit only from a temperature grid.
+        if (le_param)
+            warn(le_param->loc, d + ": \"Le\" is ignored by nanovdb media (pbrt-v4 reads emission from "
+                                    "a \"temperature\" grid, which phos does not support)");
+        m.emission = Rgb(0.0f);
         const Param* fp = params.find("filename");
         if (!fp) loc.fail(d + ": missing \"string filename\"");
         m.kind = scene::Medium::Kind::Sparse;

@@ -123,6 +123,13 @@ INSTANTIATE_TEST_SUITE_P(
              W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"float density\" [1] \"point3 p0\" "
                  "[0 2 0]\n",
              2, 69, "p0 must be less than p1"},
+        Case{"GridLescaleCount",
+             W + "MakeNamedMedium \"m\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" "
+                 "[1 1] \"float Lescale\" [1 2 3]\n",
+             2, 86, "\"Lescale\" has 3 values, nx*ny*nz = 2"},
+        Case{"HomogeneousLescaleArray",
+             W + "MakeNamedMedium \"m\" \"string type\" \"homogeneous\" \"float Lescale\" [1 2]\n", 2, 49,
+             "\"Lescale\" takes one value here"},
         Case{"NanovdbMissingFile",
              W + "MakeNamedMedium \"m\" \"string type\" \"nanovdb\" \"string filename\" \"nothere.nvdb\"\n",
              2, 45, "cannot open"},

@@ -530,6 +530,23 @@ TEST(PbrtMedia, HomogeneousGridInterfaceAndCameraMedium) {
     EXPECT_EQ(l.scene.shapes[0].media.outside, 2);
 }
 
+// Emission: "Le" with a scalar "Lescale" (any medium) or one factor per cell (uniformgrid).
+TEST(PbrtMedia, EmissionAndLescale) {
+    const Loaded l = load_text(
+        kView +
+        "WorldBegin\nMakeNamedMedium \"a\" \"string type\" \"homogeneous\" \"rgb Le\" [1 2 3]\n"
+        "MakeNamedMedium \"b\" \"string type\" \"homogeneous\" \"rgb Le\" [1 2 3] \"float Lescale\" 2\n"
+        "MakeNamedMedium \"c\" \"string type\" \"uniformgrid\" \"integer nx\" 2 \"float density\" [1 1] "
+        "\"rgb Le\" [1 2 3] \"float Lescale\" [0.5 4]\n");
+    ASSERT_EQ(l.scene.media.size(), 3u);
+    const Rgb le = l.scene.media[0].emission;
+    EXPECT_GT(le.g, 0.0f);
+    for (int c = 0; c < 3; ++c) EXPECT_FLOAT_EQ(l.scene.media[1].emission[c], 2 * le[c]);
+    EXPECT_EQ(l.scene.media[2].emission, le);
+    EXPECT_EQ(l.scene.media[2].emission_scale, (std::vector<float>{0.5f, 4.0f}));
+    EXPECT_TRUE(l.scene.media[0].emission_scale.empty());
+}
+
 TEST(PbrtMedia, NanovdbMediumReadsVdbAndNvdbFiles) {
     QuietLog quiet;
     PbrtTempDir dir;
