@@ -31,6 +31,34 @@ TEST(Camera, FieldOfViewSpansTheShorterSide) {
     }
 }
 
+// The .scene format's d: the fov spans the image height whatever the aspect (a tall image is not
+// narrowed to keep the fov on its shorter, horizontal side).
+TEST(Camera, VerticalFieldOfView) {
+    scene::Camera c = test_camera();
+    c.fov_vertical = true;
+    for (auto [w, h] : {std::pair{256, 256}, std::pair{400, 200}, std::pair{200, 400}}) {
+        const CameraModel cam(c, w, h);
+        const accel::Ray top = cam.generate_ray(0.5f * float(w), 0, {0.5f, 0.5f});
+        EXPECT_NEAR(std::acos(dot(normalize(top.dir), Vec3(0, 0, -1))), 0.331613f, 1e-5f) << w << "x" << h;
+    }
+}
+
+// near / far (the .scn camera's clip distances) are measured along the viewing axis: a ray at
+// angle a to the axis starts at near / cos a and ends at far / cos a, so a wall the camera sits
+// against (spotlight2) is clipped away.
+TEST(Camera, NearAndFarClipAlongTheAxis) {
+    scene::Camera c = test_camera();
+    c.near_clip = 0.25f;
+    c.far_clip = 40.0f;
+    const CameraModel cam(c, 200, 100);
+    for (const auto& [fx, fy] : {std::pair{100.0f, 50.0f}, std::pair{0.5f, 0.5f}, std::pair{199.5f, 70.0f}}) {
+        const accel::Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
+        const float cos_a = dot(normalize(r.dir), Vec3(0, 0, -1));
+        EXPECT_NEAR(r.tmin * length(r.dir) * cos_a, 0.25f, 1e-5f);
+        EXPECT_NEAR(r.tmax * length(r.dir) * cos_a, 40.0f, 1e-3f);
+    }
+}
+
 TEST(Camera, ImageRightIsCrossOfForwardAndUpAndTopIsUp) {
     const CameraModel cam(test_camera(), 100, 100);
     const accel::Ray right = cam.generate_ray(99.5f, 50, {0.5f, 0.5f});
