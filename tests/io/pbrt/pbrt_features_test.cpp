@@ -587,7 +587,9 @@ TEST(PbrtMedia, NanovdbMediumReadsVdbAndNvdbFiles) {
     EXPECT_FLOAT_EQ(smoke.scale, 4.0f);
     EXPECT_EQ(smoke.sigma_s, Rgb(2.0f));
     EXPECT_FLOAT_EQ(smoke.g, 0.5f);
-    EXPECT_EQ(smoke.emission, Rgb(2, 0, 0));
+    // pbrt-v4's nanovdb media take their emission from a temperature grid only: "Le" warns and is
+    // not rendered (phos has no temperature grids).
+    EXPECT_EQ(smoke.emission, Rgb(0.0f));
     expect_vec(smoke.to_world.point(Vec3(0)), Vec3(1, 2, 3));
     EXPECT_EQ(sc.shapes[0].media.inside, 0);
 }
