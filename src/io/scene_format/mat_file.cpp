@@ -10,7 +10,6 @@
 #include "io/text/image_texture.h"
 
 namespace phos::io::scene_format {
-namespace fs = std::filesystem;
 
 namespace {
 
@@ -22,11 +21,10 @@ const char* channel_name(int c) { return c == 0 ? "red" : c == 1 ? "green" : "bl
 }  // namespace
 
 const MatFile& Reader::read_mat(const FileArg& f) {
-    std::error_code ec;
-    const std::string key = fs::weakly_canonical(f.path, ec).string();
+    const std::string key = f.canonical.string();
     if (const auto it = mats_.find(key); it != mats_.end()) return it->second;
 
-    open(f.path, f.name);
+    open(f);
     std::map<std::string, int> seen;
     scene::Material m;
     m.name = f.name;
@@ -108,7 +106,6 @@ const MatFile& Reader::read_mat(const FileArg& f) {
         log::warn(file().name + ": ior is set but transmission is 0: the ior has no effect");
 
     MatFile mat;
-    mat.name = f.name;
     mat.textured = texture_index >= 0;
     mat.emission = emission;
     const bool has_medium = !(sigma_a + sigma_s).is_black();
@@ -134,8 +131,7 @@ const MatFile& Reader::read_mat(const FileArg& f) {
 }
 
 int Reader::texture(const FileArg& f) {
-    std::error_code ec;
-    const std::string key = fs::weakly_canonical(f.path, ec).string();
+    const std::string key = f.canonical.string();
     if (const auto it = textures_.find(key); it != textures_.end()) return it->second;
     scene::Texture tex;
     try {

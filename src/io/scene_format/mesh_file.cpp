@@ -12,18 +12,17 @@
 #include "io/scene_format/reader.h"
 
 namespace phos::io::scene_format {
-namespace fs = std::filesystem;
 
 namespace {
 const std::vector<std::string> kMeshKeys = {"ply", "material", "translate", "scale", "rotate"};
 }  // namespace
 
 void Reader::read_mesh(const FileArg& f) {
-    const auto [first_use, fresh] = meshes_.emplace(fs::weakly_canonical(f.path).string(), where(f.token));
+    const auto [first_use, fresh] = meshes_.emplace(f.canonical.string(), where(f.token));
     if (!fresh)
         log::warn(where(f.token) + ": '" + f.token.text + "' is already placed (" + first_use->second +
                   "): its geometry is added twice at the same place");
-    open(f.path, f.name);
+    open(f);
     std::map<std::string, int> seen;
     std::optional<FileArg> ply;
     const MatFile* mat = nullptr;
@@ -80,13 +79,8 @@ void Reader::read_mesh(const FileArg& f) {
     } catch (const std::exception& e) {  // InputError, or a reader library's own exception
         fail(ply->token, "ply: cannot read '" + ply->token.text + "': " + e.what());
     }
+    // The mesh readers have checked the indices and positions, at the mesh file's own lines.
     scene::TriangleMesh& m = loaded.mesh;
-    for (uint32_t i : m.indices)
-        if (i >= m.positions.size())
-            fail(ply->token, "ply: '" + ply->token.text + "' has a vertex index out of range");
-    for (const Vec3& p : m.positions)
-        if (!is_finite(p))
-            fail(ply->token, "ply: '" + ply->token.text + "' has a non-finite vertex position");
     if (mat->textured && m.uvs.size() != m.positions.size())
         fail(ply->token, "ply: '" + ply->token.text +
                              "' has no texture coordinates (vertex properties u v or s t), "

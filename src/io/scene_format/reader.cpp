@@ -20,6 +20,13 @@ int code_points(const std::string& s) {
                              [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
 }
 
+// The canonical form of an existing path (the path itself if the file system cannot say).
+fs::path canonical_of(const fs::path& path) {
+    std::error_code ec;
+    fs::path canonical = fs::weakly_canonical(path, ec);
+    return ec ? path : canonical;
+}
+
 std::string show_chain(const std::vector<std::string>& names) {
     std::string s;
     for (const auto& n : names) s += (s.empty() ? "" : " -> ") + n;
@@ -28,14 +35,12 @@ std::string show_chain(const std::vector<std::string>& names) {
 
 }  // namespace
 
-void Reader::open(const fs::path& path, const std::string& name) {
-    std::error_code ec;
-    const fs::path canonical = fs::weakly_canonical(path, ec);
+void Reader::open(const FileArg& arg) {
     File f;
-    f.name = name;
-    f.dir = path.parent_path();
-    f.canonical = ec ? path : canonical;
-    const text::LexedFile lexed = text::lex(name, text::read_file_bytes(path.string()));
+    f.name = arg.name;
+    f.dir = arg.path.parent_path();
+    f.canonical = arg.canonical;
+    const text::LexedFile lexed = text::lex(arg.name, text::read_file_bytes(arg.path.string()));
     for (const Token& t : lexed.tokens) {
         if (f.lines.empty() || f.lines.back().keyword.line != t.line) {
             f.lines.push_back({t, {}, t.col + code_points(t.text)});
@@ -104,9 +109,9 @@ Reader::FileArg Reader::file_argument(const Line& l, size_t i, const char* what)
     if (fs::is_directory(f.path, ec))
         fail(f.token, l.keyword.text + ": " + what + " '" + f.token.text + "' is a directory");
     // A file already being read would be read forever.
-    const fs::path canonical = fs::weakly_canonical(f.path, ec);
+    f.canonical = canonical_of(f.path);
     for (const File& open_file : files_)
-        if (!ec && open_file.canonical == canonical) {
+        if (open_file.canonical == f.canonical) {
             std::vector<std::string> chain;
             for (const File& g : files_) chain.push_back(g.name);
             chain.push_back(f.name);
@@ -124,7 +129,7 @@ void Reader::reject_duplicate(const Line& l, std::map<std::string, int>& seen) c
 }
 
 void Reader::read_scene(const std::string& path) {
-    open(path, path);
+    open(FileArg{path, canonical_of(path), path, Token{}});
     for (const Line& l : file().lines) scene_command(l);
     finish();
     close();

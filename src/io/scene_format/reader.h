@@ -30,7 +30,6 @@ struct Line {
 
 // One `.mat` file as the scene uses it: a material, and the medium inside objects made of it.
 struct MatFile {
-    std::string name;       // as shown in messages
     int material = -1;      // index into scene.materials
     int medium = -1;        // index into scene.media, -1 when the material has no interior medium
     bool boundary = false;  // bounds its interior (transmission, an interior medium or invisible)
@@ -53,10 +52,17 @@ private:
         int end_line = 1, end_col = 1;
     };
 
+    // A file named by an argument, resolved against the directory of the file that names it.
+    struct FileArg {
+        std::filesystem::path path;
+        std::filesystem::path canonical;  // the key of the caches and of the cycle check
+        std::string name;                 // as shown in messages
+        Token token;
+    };
+
     // --- files and arguments (reader.cpp) ---
-    // Opens the file named by `token` (resolved against the current file's directory); checks that
-    // it exists and is not already being read (a cycle).
-    void open(const std::filesystem::path& path, const std::string& name);
+    // Reads `f` into lines and makes it the current file (file_argument has checked it).
+    void open(const FileArg& f);
     void close() { files_.pop_back(); }
     const File& file() const { return files_.back(); }
     [[noreturn]] void fail(const Token& at, const std::string& message) const;
@@ -64,12 +70,8 @@ private:
     std::string where(const Token& at) const;
     // Exactly `n` finite numbers, named by `names` in messages ("ex ey ez  lx ly lz  ux uy uz  d").
     std::vector<double> numbers(const Line& l, size_t n, const char* names) const;
-    // Argument `i` of `l` as a file name, resolved; fails when the file does not exist.
-    struct FileArg {
-        std::filesystem::path path;
-        std::string name;  // as shown in messages
-        Token token;
-    };
+    // Argument `i` of `l` as a file name, resolved; fails when the file does not exist, is a
+    // directory or is already being read (a cycle).
     FileArg file_argument(const Line& l, size_t i, const char* what) const;
     void require_args(const Line& l, size_t n, const char* what) const;
     void require_non_negative(const Line& l, const std::vector<double>& v, size_t first, size_t count) const;
