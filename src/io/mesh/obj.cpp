@@ -115,6 +115,9 @@ LoadedMesh read_obj(const std::string& path) {
         }
     }
     if (!any_material) out.triangle_materials.clear();
+    // The PLY and OFF readers reject non-finite numbers as they read them; tinyobjloader does not.
+    for (const Vec3& p : mesh.positions)
+        if (!is_finite(p)) throw ParseError(path, 0, 0, "a vertex position is not finite");
     return out;
 }
 

@@ -270,12 +270,8 @@ void Parser::cmd_mesh(const Token& cmd) {
     } catch (const std::exception& e) {  // InputError, or a reader library's own exception
         fail(tok, std::string("mesh: cannot read '") + tok.text + "': " + e.what());
     }
-    const auto& m = loaded.mesh;
-    for (uint32_t i : m.indices)
-        if (i >= m.positions.size()) fail(tok, "mesh: '" + tok.text + "' has a vertex index out of range");
-    for (const Vec3& v : m.positions)
-        if (!is_finite(v)) fail(tok, "mesh: '" + tok.text + "' has a non-finite vertex position");
-    if (m.triangle_count() == 0) {
+    // The mesh readers have checked the indices and positions, at the mesh file's own lines.
+    if (loaded.mesh.triangle_count() == 0) {
         log::warn(where(cmd) + ": mesh '" + tok.text + "' has no triangles; skipped");
         return;
     }

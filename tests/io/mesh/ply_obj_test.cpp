@@ -217,6 +217,13 @@ TEST(Obj, MalformedInputsThrowParseError) {
         EXPECT_EQ(e.line, 5) << e.what();
     }
     EXPECT_THROW(read_obj(write_file("empty.obj", "v 0 0 0\n")), ParseError);
+    // an overflowing coordinate (the .scn and .scene loaders rely on the reader for this)
+    try {
+        read_obj(write_file("inf.obj", "v 0 0 0\nv 1e999 0 0\nv 0 1 0\nf 1 2 3\n"));
+        FAIL();
+    } catch (const ParseError& e) {
+        EXPECT_NE(std::string(e.what()).find("not finite"), std::string::npos) << e.what();
+    }
     EXPECT_THROW(read_obj((temp_dir() / "nope.obj").string()), ParseError);
 }
 
