@@ -17,7 +17,11 @@ Medium::Medium(const scene::Medium& m)
         majorant_grid_ = std::make_unique<MajorantGrid>(*grid_);
         if (!m.emission_scale.empty() && !Le_.is_black()) {
             // The emission factors live on the density's cells: the same grid class reads them.
-            scene::Medium scale = m;
+            scene::Medium scale;
+            scale.name = m.name + " (Lescale)";
+            scale.kind = m.kind;
+            scale.nx = m.nx, scale.ny = m.ny, scale.nz = m.nz;
+            scale.p0 = m.p0, scale.p1 = m.p1;
             scale.density = m.emission_scale;
             le_scale_ = make_density_grid(scale);
         }
