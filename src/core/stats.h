@@ -29,9 +29,14 @@ public:
     // Free-form "name: value" lines (photon counts, bytes per photon...).
     void add_value(const std::string& name, const std::string& value);
     std::string report() const;
+    // Samples an integrator dropped for being NaN or infinite outside the film (which counts its
+    // own): reported by -v with the film's.
+    void add_dropped_samples(uint64_t n) { dropped_.fetch_add(n, std::memory_order_relaxed); }
+    uint64_t dropped_samples() const { return dropped_.load(std::memory_order_relaxed); }
 
 private:
     std::atomic<uint64_t> camera_{0}, shadow_{0}, bounce_{0}, photon_{0};
+    std::atomic<uint64_t> dropped_{0};
     mutable std::mutex mutex_;
     std::vector<std::pair<std::string, double>> times_;
     std::vector<std::pair<std::string, std::string>> values_;

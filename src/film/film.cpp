@@ -71,6 +71,20 @@ void Layer::merge(const Layer& other, int x0, int y0) {
     rejected_.fetch_add(other.rejected(), std::memory_order_relaxed);
 }
 
+std::vector<double> Layer::sums() const {
+    std::vector<double> out;
+    out.reserve(pixels_.size() * 4);
+    for (const Pixel& p : pixels_) out.insert(out.end(), {p.r, p.g, p.b, p.w});
+    return out;
+}
+
+void Layer::set_sums(const std::vector<double>& sums, uint64_t rejected) {
+    if (sums.size() != pixels_.size() * 4) throw std::invalid_argument("Layer::set_sums: size mismatch");
+    for (size_t i = 0; i < pixels_.size(); ++i)
+        pixels_[i] = {sums[4 * i], sums[4 * i + 1], sums[4 * i + 2], sums[4 * i + 3]};
+    rejected_.store(rejected, std::memory_order_relaxed);
+}
+
 void Layer::clear() {
     for (Pixel& p : pixels_) p = Pixel{};
     rejected_.store(0, std::memory_order_relaxed);

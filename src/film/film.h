@@ -44,6 +44,11 @@ public:
     // Samples rejected by add() for being NaN or infinite (including those merged in).
     uint64_t rejected() const { return rejected_.load(std::memory_order_relaxed); }
 
+    // The raw sums, 4 doubles per pixel (r, g, b, weight) row by row, and their restoration (a
+    // checkpoint; std::invalid_argument when the size does not match), with a rejected count.
+    std::vector<double> sums() const;
+    void set_sums(const std::vector<double>& sums, uint64_t rejected = 0);
+
 private:
     struct Pixel {
         double r = 0, g = 0, b = 0, w = 0;

@@ -24,14 +24,15 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const Integ
     try {
         options::validate(photon_map_options(), &config.photon_map);
         options::validate(progressive_options(), &config.progressive);
+        options::validate(budget_options(), &config.budget);
     } catch (const options::ValueError& e) {
         throw InputError(e.what());
     }
-    if (name == "whitted") return std::make_unique<WhittedIntegrator>();
-    if (name == "path") return std::make_unique<PathIntegrator>();
-    if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map);
-    if (name == "ppm") return std::make_unique<PpmIntegrator>(config.progressive);
-    if (name == "sppm") return std::make_unique<SppmIntegrator>(config.progressive);
+    if (name == "whitted") return std::make_unique<WhittedIntegrator>(config.budget);
+    if (name == "path") return std::make_unique<PathIntegrator>(config.budget);
+    if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map, config.budget);
+    if (name == "ppm") return std::make_unique<PpmIntegrator>(config.progressive, config.budget);
+    if (name == "sppm") return std::make_unique<SppmIntegrator>(config.progressive, config.budget);
     throw InputError("unknown integrator '" + name + "'");
 }
 

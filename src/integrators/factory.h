@@ -9,6 +9,7 @@
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
@@ -16,6 +17,7 @@ namespace phos::integrators {
 struct IntegratorConfig {
     PhotonMapOptions photon_map;
     ProgressiveOptions progressive;
+    RenderBudget budget;  // every integrator's time budget, previews and checkpoints
 };
 
 std::vector<std::string> integrator_names();

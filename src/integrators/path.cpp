@@ -74,15 +74,16 @@ Stage next_stage(Stage s, bool delta_bounce) {
 
 void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
     if (prepared.options.layers) {
-        render_layers(prepared, film, progress, "render", integrator_layers("path"),
+        render_layers(prepared, film, budget_, "path", progress, integrator_layers("path"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });
         return;
     }
-    render_pixels(prepared, film, progress, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
-        return radiance(prepared, ray, sampler, rays);
-    });
+    render_pixels(prepared, film, budget_, "path", progress,
+                  [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+                      return radiance(prepared, ray, sampler, rays);
+                  });
 }
 
 Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,

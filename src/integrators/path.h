@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "integrators/integrator.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
@@ -11,6 +12,7 @@ struct RadianceParts;  // pixel_loop.h
 
 class PathIntegrator : public Integrator {
 public:
+    explicit PathIntegrator(RenderBudget budget = {}) : budget_(std::move(budget)) {}
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
     // Radiance arriving at the camera along `ray` (exposed for tests and other integrators). With
     // `parts`, also its split into components (pixel_loop.h) by the path's bounces: emission seen
@@ -20,6 +22,9 @@ public:
     // the rest indirect. --layers records them.
     static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
                         RadianceParts* parts = nullptr);
+
+private:
+    RenderBudget budget_;
 };
 
 }  // namespace phos::integrators

@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "integrators/factory.h"
 #include "integrators/photon_map_radiance.h"
@@ -47,7 +48,8 @@ bool has_delta_materials(const scene::Scene& scene) {
 }  // namespace
 
 // The options arrive validated against their table (integrators/factory.cpp).
-PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options) : options_(options) {}
+PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)
+    : options_(options), budget_(std::move(budget)) {}
 
 PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     const PhotonMapOptions o = resolve(options_, P);
@@ -161,14 +163,14 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
     const PhotonMapOptions o = resolve(options_, P);
     const PhotonMapRadiance R(P, o, maps);
     if (P.options.layers) {
-        render_layers(P, film, progress, "photonmap", integrator_layers("photonmap"),
+        render_layers(P, film, budget_, "photonmap", progress, integrator_layers("photonmap"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           parts = R.camera_ray(ray, sampler, rays);
                           return parts.total();
                       });
         return;
     }
-    render_samples(P, "photonmap", progress,
+    render_samples(P, film, budget_, "photonmap", progress,
                    [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
                        film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total());
                    });
@@ -176,6 +178,10 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
 
 void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     const PhotonMaps maps = build_maps(P);
+    if (interrupt::requested()) {  // the maps are incomplete: no samples from them
+        budget_.done->interrupted = true;
+        return;
+    }
     const auto t0 = std::chrono::steady_clock::now();
     render_with(P, maps, film, progress);
     P.stats.add_time("photon map render pass", seconds_since(t0));

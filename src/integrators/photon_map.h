@@ -10,6 +10,7 @@
 
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
+#include "integrators/render_budget.h"
 #include "photon/beam_bvh.h"
 #include "photon/irradiance_cache.h"
 #include "photon/kdtree.h"
@@ -36,13 +37,14 @@ struct PhotonMaps {
 
 class PhotonMapIntegrator : public Integrator {
 public:
-    explicit PhotonMapIntegrator(const PhotonMapOptions& options);
+    explicit PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget = {});
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
     // Pass 1 alone (photon tracing, k-d trees, irradiance cache), reporting to prepared.stats.
-    // Exposed for tests and benchmarks.
+    // Exposed for tests and benchmarks. An interrupt during tracing leaves the maps incomplete:
+    // render() then takes no samples.
     PhotonMaps build_maps(const Prepared& prepared) const;
-    // Pass 2 with given maps.
+    // Pass 2 with given maps, in sample passes within the budget (pixel_loop.h).
     void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film,
                      Progress& progress) const;
 
@@ -50,6 +52,7 @@ public:
 
 private:
     PhotonMapOptions options_;
+    RenderBudget budget_;
 };
 
 }  // namespace phos::integrators

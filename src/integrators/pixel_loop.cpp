@@ -1,4 +1,5 @@
-// Tile-parallel pixel loop (see pixel_loop.h for the determinism argument).
+// Tile-parallel pixel loop in sample passes (see pixel_loop.h for the determinism argument and
+// sample_passes.h for budgets, interrupts and checkpoints).
 #include "integrators/pixel_loop.h"
 
 #include <tbb/parallel_for.h>
@@ -6,55 +7,66 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "film/tiles.h"
+#include "integrators/sample_passes.h"
 
 namespace phos::integrators {
 
-void for_each_sample(const Prepared& prepared, const SampleFn& sample,
-                     const std::function<void(const RayCounts& rays)>& tile_done) {
+void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
+                         const SampleFn& sample, RayCounts& rays) {
     const RenderOptions& opt = prepared.options;
-    const auto tiles = film::make_tiles(opt.width, opt.height);
-    const int n = std::max(1, opt.spp) * std::max(1, opt.dof_samples);
-    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-        const film::Tile& tile = tiles[t];
-        RayCounts rays;
-        for (int y = tile.y0; y < tile.y1; ++y)
-            for (int x = tile.x0; x < tile.x1; ++x) {
-                const uint64_t pixel = uint64_t(y) * uint64_t(opt.width) + uint64_t(x);
-                for (int s = 0; s < n; ++s) {
-                    Sampler sampler(opt.seed, pixel, uint64_t(s));
-                    const Vec2 jitter = stratified_sample(s, n, sampler.next2());
-                    const Vec2 lens = sampler.next2();
-                    const accel::Ray ray =
-                        prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
-                    ++rays.camera;
-                    sample(x, y, ray, sampler, rays);
-                }
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+            const uint64_t pixel = uint64_t(y) * uint64_t(opt.width) + uint64_t(x);
+            const uint64_t scramble = Sampler(opt.seed, pixel, 0x7069786a6974ULL).next_bits();
+            for (uint32_t s = s0; s < s1; ++s) {
+                Sampler sampler(opt.seed, pixel, uint64_t(s));
+                const Vec2 jitter = pixel_sample_position(s, scramble);
+                const Vec2 lens = sampler.next2();
+                const accel::Ray ray =
+                    prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                ++rays.camera;
+                sample(x, y, ray, sampler, rays);
             }
+        }
+}
+
+void for_each_sample(const Prepared& prepared, int samples, const SampleFn& sample,
+                     const std::function<void(const RayCounts& rays)>& tile_done) {
+    const auto tiles = film::make_tiles(prepared.options.width, prepared.options.height);
+    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+        RayCounts rays;
+        render_tile_samples(prepared, tiles[t], 0, uint32_t(std::max(1, samples)), sample, rays);
         if (tile_done) tile_done(rays);
     });
 }
 
-void render_samples(const Prepared& prepared, const std::string& label, Progress& progress,
-                    const SampleFn& sample) {
-    progress.start(label, film::make_tiles(prepared.options.width, prepared.options.height).size());
-    for_each_sample(prepared, sample, [&](const RayCounts& rays) {
-        prepared.stats.add_rays(rays);
-        progress.advance();
-    });
-    progress.finish();
+void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                    const std::string& integrator, Progress& progress, const SampleFn& sample) {
+    SamplePasses passes(prepared, film, budget, integrator, progress);
+    while (passes.next()) {
+        tbb::parallel_for(size_t(0), passes.tiles().size(), [&](size_t t) {
+            const auto [first, last] = passes.range(t);
+            if (first == last || passes.stopped()) return;  // done, or abandoned on an interrupt
+            RayCounts rays;
+            render_tile_samples(prepared, passes.tiles()[t], first, last, sample, rays);
+            passes.tile_done(t, rays);
+        });
+        passes.after_pass();
+    }
+    passes.finish();
 }
 
-void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
-                   const RadianceFn& radiance) {
-    render_samples(prepared, "render", progress,
+void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
+    render_samples(prepared, film, budget, integrator, progress,
                    [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
                        film.add_sample(x, y, radiance(ray, sampler, rays));
                    });
 }
 
-void render_layers(const Prepared& prepared, film::Film& film, Progress& progress, const std::string& label,
-                   const std::vector<std::string>& layers, const PartsFn& parts) {
+void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
+                   const PartsFn& parts) {
     // Layers are created before the parallel loop (creation is not thread-safe).
     constexpr Rgb RadianceParts::*kParts[] = {&RadianceParts::direct, &RadianceParts::caustic,
                                               &RadianceParts::indirect, &RadianceParts::specular};
@@ -65,7 +77,7 @@ void render_layers(const Prepared& prepared, film::Film& film, Progress& progres
         if (it == std::end(kNames)) throw std::invalid_argument("render_layers: unknown layer " + name);
         out.emplace_back(&film.layer(name), kParts[it - std::begin(kNames)]);
     }
-    render_samples(prepared, label, progress,
+    render_samples(prepared, film, budget, integrator, progress,
                    [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
                        RadianceParts p;
                        film.add_sample(x, y, parts(ray, sampler, rays, p));

@@ -1,6 +1,9 @@
 // The deterministic parallel pixel loop shared by sample-based integrators: fixed tiles rendered
 // by oneTBB in any order, every pixel owned by one task, every random number keyed by
-// (seed, pixel, sample), so the image is bit-identical for any thread count.
+// (seed, pixel, sample), so the image is bit-identical for any thread count. Samples are taken in
+// passes over the image (sample_passes.h): a time budget, an interrupt, previews and checkpoints
+// act between passes or tiles, and since each pixel receives its samples in index order whatever
+// the passes, a render stopped and resumed is bit-identical to one run straight through.
 #pragma once
 
 #include <cmath>
@@ -13,27 +16,36 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "film/film.h"
+#include "film/tiles.h"
 #include "integrators/prepared.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
 // Radiance along one camera ray. `rays` counts the rays it traces (kept per task).
 using RadianceFn = std::function<Rgb(const accel::Ray& ray, Sampler& sampler, RayCounts& rays)>;
 
-// Renders options.spp x options.dof_samples stratified samples per pixel through `radiance`.
-void render_pixels(const Prepared& prepared, film::Film& film, Progress& progress,
-                   const RadianceFn& radiance);
+// Renders options.spp x options.dof_samples samples per pixel through `radiance`, within
+// `budget` (time, interrupts, previews, checkpoints, resume); `integrator` names the render in
+// checkpoints and progress.
+void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const RadianceFn& radiance);
 
 // One camera sample of pixel (x, y): the function traces `ray` and records the result itself
 // (main image and any layers). Only the task owning the pixel calls it.
 using SampleFn = std::function<void(int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays)>;
-// The same loop for integrators that record more than one value per sample (layers).
-void render_samples(const Prepared& prepared, const std::string& label, Progress& progress,
-                    const SampleFn& sample);
-// The loop itself, without progress or statistics: every camera sample of every pixel, tile by tile,
-// then tile_done (if set) with the tile's ray counts. For passes beside the render (AOVs).
-void for_each_sample(const Prepared& prepared, const SampleFn& sample,
+// The same loop for integrators that record more than one value per sample into `film` (layers;
+// every layer must exist before the call, and a resumed checkpoint must hold the same layers).
+void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                    const std::string& integrator, Progress& progress, const SampleFn& sample);
+// One pass of `samples` camera samples per pixel (the first ones, as the render takes them), tile
+// by tile in parallel, then tile_done (if set) with the tile's ray counts; no budget, progress or
+// statistics. For passes beside the render (AOVs).
+void for_each_sample(const Prepared& prepared, int samples, const SampleFn& sample,
                      const std::function<void(const RayCounts& rays)>& tile_done = {});
+// Samples [s0, s1) of every pixel of `tile`, in pixel order, each sample's camera ray built here.
+void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
+                         const SampleFn& sample, RayCounts& rays);
 
 // Radiance along a camera ray split by component, for --layers (film layers "direct", "caustic",
 // "indirect", "specular" summing to the image). `specular` holds everything that reached the
@@ -52,11 +64,28 @@ using PartsFn =
     std::function<Rgb(const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts)>;
 // render_pixels that also records the components named in `layers` (a subset of "direct",
 // "caustic", "indirect", "specular") as film layers.
-void render_layers(const Prepared& prepared, film::Film& film, Progress& progress, const std::string& label,
-                   const std::vector<std::string>& layers, const PartsFn& parts);
+void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
+                   const PartsFn& parts);
 
-// Film position of sample `s` of `n` in the pixel: jittered on a sqrt(n) x sqrt(n) grid for the
-// first floor(sqrt(n))^2 samples, uniform for the rest.
+// Position of camera sample `s` inside its pixel, in [0, 1)^2: point s of the (0,2)-sequence in
+// base 2 (van der Corput's radical inverse and Sobol's second dimension), XOR-scrambled by the
+// pixel's own random `scramble` bits (random digit scrambling keeps the (0,2) property and makes
+// each point uniform in the pixel). Every first 2^k samples are stratified in each elementary
+// interval of area 2^-k, and every prefix is evenly spread, so an image stopped after any number
+// of samples (a time budget, an interrupt) is as well stratified as one planned for that count.
+// Kocis & Whiten 1997; Kollig & Keller 2002 ("Efficient multidimensional sampling").
+inline Vec2 pixel_sample_position(uint32_t s, uint64_t scramble) {
+    uint32_t x = 0, y = 0;
+    for (uint32_t i = s, v = 0x80000000u; i != 0; i >>= 1, v ^= v >> 1)
+        if (i & 1u) y ^= v;
+    for (uint32_t i = s, v = 0x80000000u; i != 0; i >>= 1, v >>= 1)
+        if (i & 1u) x ^= v;
+    return {bits_to_unit_float(x ^ uint32_t(scramble)), bits_to_unit_float(y ^ uint32_t(scramble >> 32))};
+}
+
+// Film position of sample `s` of `n` in a square: jittered on a sqrt(n) x sqrt(n) grid for the
+// first floor(sqrt(n))^2 samples, uniform for the rest (final-gather directions, PPM hit points).
 inline Vec2 stratified_sample(int s, int n, Vec2 u) {
     const int m = int(std::sqrt(double(n)));
     if (s < m * m) return {(float(s % m) + u.x) / float(m), (float(s / m) + u.y) / float(m)};

@@ -19,7 +19,8 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const RenderOptions& ro = P.options;
     const int eye = std::max(1, opt_.eye_samples);
     const size_t slots = size_t(ro.width) * size_t(ro.height) * size_t(eye);
-    ProgressiveState state = start_state(P, opt_, "ppm", uint32_t(eye));
+    ProgressiveState state = start_state(P.options, budget_, "ppm", uint32_t(eye), "iterations",
+                                         uint64_t(std::max(1, P.options.spp)));
 
     // The eye pass: deterministic in the seed, so a resumed render recomputes the same hit points.
     const int direct_samples = direct_samples_for(opt_, true);
@@ -38,6 +39,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
                 PixelStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
+                if (!L.is_finite()) P.stats.add_dropped_samples(1);  // counted for -v, never added
                 if (vps[i].present() && st.r2 == 0) st.r2 = initial.r2(vps[i]);
             }
         P.stats.add_rays(rays);
@@ -53,7 +55,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         resolve(state.slots, eye, 1.0 / eye, 1.0, state.photons_emitted, film, ro.layers, volume_slot);
     };
 
-    ProgressiveBudget budget(ro, opt_, state, film, progress);
+    ProgressiveBudget budget(ro, budget_, state, film, progress);
     while (budget.next()) {
         // Photon pass: photons within each hit point's current radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);

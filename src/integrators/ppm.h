@@ -6,16 +6,19 @@
 
 #include "integrators/integrator.h"
 #include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
 class PpmIntegrator : public Integrator {
 public:
-    explicit PpmIntegrator(ProgressiveOptions options) : opt_(std::move(options)) {}
+    PpmIntegrator(ProgressiveOptions options, RenderBudget budget = {})
+        : opt_(std::move(options)), budget_(std::move(budget)) {}
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;
+    RenderBudget budget_;
 };
 
 }  // namespace phos::integrators

@@ -3,11 +3,13 @@
 
 #include <algorithm>
 
+#include "core/interrupt.h"
+
 namespace phos::integrators {
 
 using clock = std::chrono::steady_clock;
 
-ProgressiveBudget::ProgressiveBudget(const RenderOptions& ro, const ProgressiveOptions& opt,
+ProgressiveBudget::ProgressiveBudget(const RenderOptions& ro, const RenderBudget& opt,
                                      ProgressiveState& state, film::Film& film, Progress& progress)
     : opt_(opt),
       state_(state),
@@ -17,7 +19,9 @@ ProgressiveBudget::ProgressiveBudget(const RenderOptions& ro, const ProgressiveO
       t0_(opt.clock_start.value_or(clock::now())),
       last_preview_(clock::now()),
       last_checkpoint_(state.iterations) {
-    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+    opt_.done->units = state_.iterations;
+    opt_.done->target = target_;
+    opt_.done->started = state_.iterations > 0;
     const uint64_t left = target_ > state_.iterations ? target_ - state_.iterations : 0;
     progress_started_ = left > 0;  // a resumed render that is already complete shows no progress
     if (!progress_started_) return;
@@ -29,7 +33,8 @@ ProgressiveBudget::ProgressiveBudget(const RenderOptions& ro, const ProgressiveO
 
 void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_film) {
     ++state_.iterations;
-    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+    opt_.done->units = state_.iterations;
+    opt_.done->started = true;
     progress_.advance();
     if (opt_.on_checkpoint && opt_.checkpoint_every > 0 &&
         state_.iterations % uint64_t(opt_.checkpoint_every) == 0) {
@@ -46,10 +51,15 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
     }
 }
 
+bool ProgressiveBudget::next() const {
+    if (interrupt::requested()) opt_.done->interrupted = true;
+    return !time_up_ && !opt_.done->interrupted && state_.iterations < target_;
+}
+
 void ProgressiveBudget::finish() {
     if (progress_started_) progress_.finish();
     if (opt_.on_checkpoint && last_checkpoint_ != state_.iterations) opt_.on_checkpoint(state_);
-    if (opt_.iterations_done) *opt_.iterations_done = state_.iterations;
+    opt_.done->units = state_.iterations;
 }
 
 }  // namespace phos::integrators

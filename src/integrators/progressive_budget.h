@@ -1,6 +1,6 @@
 // The budget of a progressive render (PPM / SPPM), so that each integrator's loop stays visible:
 //
-//     ProgressiveBudget budget(P.options, opt, state, film, progress);
+//     ProgressiveBudget budget(P.options, budget_options, state, film, progress);
 //     while (budget.next()) {
 //         ... eye pass, photon pass, update of state.slots ...
 //         budget.after_iteration(resolve_film);
@@ -9,8 +9,9 @@
 //     budget.finish();
 //
 // It owns the iteration count (state.iterations), the time budget (--time, counted from the
-// command's start), checkpoints every --checkpoint-every iterations and at the end, previews every
-// --write-every seconds, the progress display, and ProgressiveOptions::iterations_done.
+// command's start), interrupts (the loop ends after the current iteration), checkpoints every
+// --checkpoint-every iterations and at the end, previews every --write-every seconds, the progress
+// display, and RenderBudget::done.
 #pragma once
 
 #include <chrono>
@@ -21,24 +22,21 @@
 #include "film/film.h"
 #include "integrators/options.h"
 #include "integrators/progressive_checkpoint.h"
-#include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
-
-// Iteration counts from here up mean "no count given" (the app's sentinel for a --time budget
-// alone): progress then shows time, not a count.
-constexpr uint64_t kUnboundedIterations = uint64_t(1) << 30;
 
 class ProgressiveBudget {
 public:
     // Starts the progress display; the target is ro.spp iterations (at least 1) and opt.time
     // seconds (0 = none).
-    ProgressiveBudget(const RenderOptions& ro, const ProgressiveOptions& opt, ProgressiveState& state,
+    ProgressiveBudget(const RenderOptions& ro, const RenderBudget& opt, ProgressiveState& state,
                       film::Film& film, Progress& progress);
 
-    // Whether to run another iteration: fewer than the target are done and the time budget (when
-    // there is one) was not crossed by the last iteration. Iteration numbers are state.iterations.
-    bool next() const { return !time_up_ && state_.iterations < target_; }
+    // Whether to run another iteration: fewer than the target are done, the time budget (when
+    // there is one) was not crossed by the last iteration and no interrupt came. Iteration numbers
+    // are state.iterations.
+    bool next() const;
 
     // Counts the iteration just run, saves a checkpoint every checkpoint_every iterations, checks
     // the clock, and writes a preview when one is due and the render goes on: `resolve_film()`
@@ -46,13 +44,13 @@ public:
     void after_iteration(const std::function<void()>& resolve_film);
 
     // Ends the render (call after resolving the final image): the progress line, a checkpoint of
-    // the final state unless the last iteration's was saved, iterations_done.
+    // the final state unless the last iteration's was saved, RenderBudget::done.
     void finish();
 
     uint64_t target() const { return target_; }
 
 private:
-    const ProgressiveOptions& opt_;
+    const RenderBudget& opt_;
     ProgressiveState& state_;
     film::Film& film_;
     Progress& progress_;

@@ -1,11 +1,13 @@
 // Binary checkpoint format (see progressive_checkpoint.h). Layout, little-endian as the machine
-// stores it (version 3):
+// stores it (version 4):
 //   "PHOSCKPT" | u32 version | u32 integrator-name length | name bytes | u32 width, height,
 //   slots_per_pixel | u64 seed, scene_hash, options_hash, iterations, photons_emitted,
-//   target_iterations | u32 option count, then per option a string flag and a string value |
-//   u32 argument count, then per argument a string | u64 slot count | slot count x PixelStats
-//   (8 doubles) | u64 checksum of all preceding bytes. A string is u32 length + bytes.
-// Version 2 had no option list; older files are refused by version.
+//   target_iterations, rejected_samples | u32 option count, then per option a string flag and a
+//   string value | u32 argument count, then per argument a string | u64 slot count | slot count x
+//   PixelStats (8 doubles) | u32 tile count | tile count x u32 samples | u32 layer count, then per
+//   layer a string name and width x height x 4 doubles | u64 checksum of all preceding bytes. A
+//   string is u32 length + bytes. Version 3 had no film (ppm / sppm only); older files are refused
+//   by version.
 #include "integrators/progressive_checkpoint.h"
 
 #include <cstring>
@@ -44,7 +46,8 @@ public:
     }
     void get_bytes(void* dst, size_t n) {
         need(n);
-        std::memcpy(dst, bytes_.data() + pos_, n);
+        // An empty vector's data() may be null, and memcpy from or to null is undefined even for 0 bytes.
+        if (n > 0) std::memcpy(dst, bytes_.data() + pos_, n);
         pos_ += n;
     }
     std::string get_string() {
@@ -97,8 +100,8 @@ std::string encode_checkpoint(const ProgressiveState& s) {
     put(out, s.width);
     put(out, s.height);
     put(out, s.slots_per_pixel);
-    for (uint64_t v :
-         {s.seed, s.scene_hash, s.options_hash, s.iterations, s.photons_emitted, s.target_iterations})
+    for (uint64_t v : {s.seed, s.scene_hash, s.options_hash, s.iterations, s.photons_emitted,
+                       s.target_iterations, s.rejected_samples})
         put(out, v);
     put(out, uint32_t(s.options.size()));
     for (const auto& [flag, value] : s.options) {
@@ -109,6 +112,14 @@ std::string encode_checkpoint(const ProgressiveState& s) {
     for (const std::string& a : s.command_line) put_string(out, a);
     put(out, uint64_t(s.slots.size()));
     out.append(reinterpret_cast<const char*>(s.slots.data()), s.slots.size() * sizeof(sppm::PixelStats));
+    put(out, uint32_t(s.tile_samples.size()));
+    out.append(reinterpret_cast<const char*>(s.tile_samples.data()),
+               s.tile_samples.size() * sizeof(uint32_t));
+    put(out, uint32_t(s.film.size()));
+    for (const auto& [name, sums] : s.film) {
+        put_string(out, name);
+        out.append(reinterpret_cast<const char*>(sums.data()), sums.size() * sizeof(double));
+    }
     put(out, hash_bytes(out.data(), out.size()));
     return out;
 }
@@ -144,6 +155,7 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
     s.iterations = r.get<uint64_t>();
     s.photons_emitted = r.get<uint64_t>();
     s.target_iterations = r.get<uint64_t>();
+    s.rejected_samples = r.get<uint64_t>();
     const auto optc = r.get<uint32_t>();
     if (optc > 4096) r.fail("bad option count");
     for (uint32_t i = 0; i < optc; ++i) {
@@ -154,12 +166,31 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
     if (argc > 4096) r.fail("bad argument count");
     for (uint32_t i = 0; i < argc; ++i) s.command_line.push_back(r.get_string());
     const auto count = r.get<uint64_t>();
-    if (count != uint64_t(s.width) * s.height * s.slots_per_pixel)
-        r.fail("slot count does not match the image size");
-    if (r.remaining() != count * sizeof(sppm::PixelStats) + sizeof(uint64_t))
-        r.fail("file size does not match its header");
+    // width x height fits 64 bits; times the slots per pixel, or times 4 film values, it may not: a
+    // product that wraps around would let a forged header claim a huge image backed by no data.
+    const uint64_t pixels = uint64_t(s.width) * s.height;
+    uint64_t slot_count = 0, values = 0;
+    if (__builtin_mul_overflow(pixels, uint64_t(s.slots_per_pixel), &slot_count) ||
+        __builtin_mul_overflow(pixels, uint64_t(4), &values))
+        r.fail("image size is too large");
+    if (count != slot_count) r.fail("slot count does not match the image size");
+    if (count > r.remaining() / sizeof(sppm::PixelStats)) r.fail("file size does not match its header");
     s.slots.resize(count);
     r.get_bytes(s.slots.data(), count * sizeof(sppm::PixelStats));
+    const auto tiles = r.get<uint32_t>();
+    if (tiles > r.remaining() / sizeof(uint32_t)) r.fail("file size does not match its header");
+    s.tile_samples.resize(tiles);
+    r.get_bytes(s.tile_samples.data(), tiles * sizeof(uint32_t));
+    const auto layers = r.get<uint32_t>();
+    if (layers > 64) r.fail("bad layer count");
+    for (uint32_t i = 0; i < layers; ++i) {
+        std::string name = r.get_string();
+        if (values > r.remaining() / sizeof(double)) r.fail("file size does not match its header");
+        std::vector<double> sums(values);
+        r.get_bytes(sums.data(), values * sizeof(double));
+        s.film.emplace_back(std::move(name), std::move(sums));
+    }
+    if (r.remaining() != sizeof(uint64_t)) r.fail("file size does not match its header");
     return s;
 }
 

@@ -1,8 +1,9 @@
-// The saved state of a progressive photon-mapping render (PPM / SPPM): per-hit-point statistics
-// (sppm_pixel_stats.h), iteration and photon counts, and what the render was made from (scene
-// hash, image-changing options by name and value), so `phos render --resume` can continue it bit
-// for bit or say exactly why it cannot. Binary format with a magic, a version and a checksum;
-// written atomically.
+// The saved state of a render, for every integrator: for the progressive photon mappers (PPM /
+// SPPM) per-hit-point statistics (sppm_pixel_stats.h) and iteration and photon counts; for the
+// sample-based ones (whitted, path, photonmap) the film's sums and the samples taken per tile; and
+// what the render was made from (scene hash, image-changing options by name and value), so
+// `phos render --resume` can continue it bit for bit or say exactly why it cannot. Binary format
+// with a magic, a version and a checksum; written atomically.
 #pragma once
 
 #include <cstdint>
@@ -19,12 +20,12 @@ namespace phos::integrators {
 using OptionValues = std::vector<std::pair<std::string, std::string>>;
 
 struct ProgressiveState {
-    static constexpr uint32_t kVersion = 3;
+    static constexpr uint32_t kVersion = 4;
 
     // What the render was made from: refused on resume when any differs.
-    std::string integrator;  // "ppm" or "sppm"
+    std::string integrator;  // "ppm", "sppm", "path", ...
     uint32_t width = 0, height = 0;
-    uint32_t slots_per_pixel = 1;
+    uint32_t slots_per_pixel = 1;  // progressive statistics per pixel (0: a sample-based render)
     uint64_t seed = 0;
     uint64_t scene_hash = 0;  // hash of the scene file's bytes
     OptionValues options;     // the image-changing options, by flag
@@ -33,15 +34,21 @@ struct ProgressiveState {
     uint64_t options_hash = 0;
 
     // Progress.
-    uint64_t iterations = 0;         // completed iterations
+    uint64_t iterations = 0;         // completed iterations (samples per pixel in every pixel)
     uint64_t photons_emitted = 0;    // total photons emitted over those iterations
     uint64_t target_iterations = 0;  // what the interrupted run was asked for (for a bare --resume)
+    uint64_t rejected_samples = 0;   // NaN / infinite samples dropped so far (for -v)
 
     // The `phos render` arguments that started the render (scene path made absolute, without
     // --resume), so a bare `phos render --resume FILE` can continue it.
     std::vector<std::string> command_line;
 
     std::vector<sppm::PixelStats> slots;  // width * height * slots_per_pixel, row-major
+
+    // Sample-based integrators: samples per pixel taken in each tile (film::make_tiles order), and
+    // the film's sums (film::Layer::sums: r, g, b, weight per pixel) by layer name, "" the image.
+    std::vector<uint32_t> tile_samples;
+    std::vector<std::pair<std::string, std::vector<double>>> film;
 };
 
 // Writes `state` to `path` atomically (temporary file + rename). Throws InputError on I/O failure.

@@ -12,7 +12,7 @@ const options::Table& progressive_options() {
     static const options::Table table = [] {
         options::TableBuilder<ProgressiveOptions> b(
             "Progressive photon mapping",
-            "ppm and sppm: radius reduction, photons, budgets, checkpoints (docs/progressive.md)");
+            "ppm and sppm: radius reduction, photons, iterations (docs/progressive.md)");
         auto prog = [](options::Option& o, const char* to = "ppm sppm") -> options::Option& {
             o.applies_to = to;
             return o;
@@ -47,23 +47,6 @@ const options::Table& progressive_options() {
         it.effect = Effect::Budget;
         it.pbrt = "iterations";
         it.default_text = "--spp";
-        auto& t = prog(b.number("time", &ProgressiveOptions::time, "SECONDS", at_least(0),
-                                "stop after the iteration that crosses SECONDS of wall time (0 = no limit)"));
-        t.effect = Effect::Budget;
-        prog(b.number("write-every", &ProgressiveOptions::write_every, "SECONDS", at_least(0),
-                      "write the current image every SECONDS (0 = only at the end)"))
-            .effect = Effect::None;
-        prog(b.text("checkpoint", &ProgressiveOptions::checkpoint_path, "FILE",
-                    "save the progressive state to FILE (atomically)"))
-            .effect = Effect::None;
-        prog(b.number("checkpoint-every", &ProgressiveOptions::checkpoint_every, "N", between(1, 1 << 30),
-                      "iterations between checkpoints"))
-            .effect = Effect::None;
-        auto& res =
-            prog(b.text("resume", &ProgressiveOptions::resume_path, "FILE",
-                        "continue the render saved in checkpoint FILE (alone: replays its arguments)"));
-        res.effect = Effect::None;
-        res.default_text = "none";
         return b.build();
     }();
     return table;

@@ -1,20 +1,13 @@
 // Options of the progressive photon-mapping integrators (--integrator ppm | sppm): the struct they
 // read and its option table (progressive_options.cpp: flags, defaults, ranges, help, pbrt sppm
-// parameters); documented in docs/progressive.md and docs/options.md. The hooks let the caller
-// (app/lib/render_command.cpp) write previews and checkpoints and resume without the integrator
-// knowing about files.
+// parameters); documented in docs/progressive.md and docs/options.md. Budgets and checkpoints,
+// shared by every integrator, are in render_budget.h.
 #pragma once
 
-#include <chrono>
 #include <cstdint>
-#include <functional>
-#include <memory>
-#include <optional>
 #include <string>
 
 #include "core/option_table.h"
-#include "film/film.h"
-#include "integrators/progressive_checkpoint.h"
 
 namespace phos::integrators {
 
@@ -29,28 +22,9 @@ struct ProgressiveOptions {
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
 
-    // Budgets: iterations come from RenderOptions::spp; `time` (seconds, 0 = none) stops at the end
-    // of the iteration that crosses it.
-    double time = 0;
-    // When the time budget started (default: when rendering starts); the app sets it to its own
-    // start so --time bounds the whole command.
-    std::optional<std::chrono::steady_clock::time_point> clock_start;
-    double write_every = 0;       // seconds between preview writes (0 = none)
-    int checkpoint_every = 8;     // iterations between checkpoint saves (when a hook is set)
-    int iterations = 0;           // --iterations (0 = not given; the app copies it to spp)
-    std::string checkpoint_path;  // --checkpoint FILE (the app installs on_checkpoint)
-    std::string resume_path;      // --resume FILE (the app loads it into `resume`)
-
-    // Hooks (set by the application, not the CLI parser).
-    std::function<void(const film::Film& film)> on_preview;            // every write_every seconds
-    std::function<void(const ProgressiveState& state)> on_checkpoint;  // every checkpoint_every
-    std::shared_ptr<const ProgressiveState> resume;                    // state to continue from
-    // Filled by the application: the render's identity stored in checkpoints (scene hash...).
-    // The app fills identity.options (the image-changing options by flag and value); the
-    // integrator sets identity.options_hash from it.
-    ProgressiveState identity;
-    // Out: the number of iterations actually completed (for -v and tests).
-    std::shared_ptr<uint64_t> iterations_done = std::make_shared<uint64_t>(0);
+    // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
+    // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.
+    int iterations = 0;
 };
 
 // Light samples per visible point: --direct-samples, else 4 per iteration for sppm (one leaves

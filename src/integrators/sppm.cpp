@@ -18,7 +18,8 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     // With media each pixel has two slots, one for surface and one for volume visible points, so
     // each keeps statistics of one kernel dimension; the pixel is their sum.
     const size_t per_pixel = P.active_media() ? 2 : 1;
-    ProgressiveState state = start_state(P, opt_, "sppm", uint32_t(per_pixel));
+    ProgressiveState state = start_state(P.options, budget_, "sppm", uint32_t(per_pixel), "iterations",
+                                         uint64_t(std::max(1, P.options.spp)));
     std::vector<uint8_t> volume_slot;
     if (per_pixel == 2) {
         volume_slot.assign(pixels * 2, 0);
@@ -47,7 +48,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                 state.photons_emitted, film, ro.layers, volume_slot);
     };
 
-    ProgressiveBudget budget(ro, opt_, state, film, progress);
+    ProgressiveBudget budget(ro, budget_, state, film, progress);
     while (budget.next()) {
         const uint64_t it = state.iterations;
         // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration); its
@@ -55,6 +56,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
             const film::Tile& tile = tiles[t];
             RayCounts rays;
+            uint64_t dropped = 0;
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
                     const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
@@ -76,11 +78,14 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
                     PixelStats& st = state.slots[base];
                     if (L.is_finite())
                         for (int c = 0; c < 3; ++c) st.direct[c] += double(L[c]);
+                    else
+                        ++dropped;  // counted for -v, never added
                     for (size_t s = base; s < base + per_pixel; ++s)
                         if (vps[s].present() && state.slots[s].r2 == 0)
                             state.slots[s].r2 = initial.r2(vps[s]);
                 }
             P.stats.add_rays(rays);
+            P.stats.add_dropped_samples(dropped);
         });
         const bool is_pilot = it == 0 && pilot.k > 0;
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)

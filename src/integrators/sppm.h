@@ -7,16 +7,19 @@
 
 #include "integrators/integrator.h"
 #include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
 class SppmIntegrator : public Integrator {
 public:
-    explicit SppmIntegrator(ProgressiveOptions options) : opt_(std::move(options)) {}
+    SppmIntegrator(ProgressiveOptions options, RenderBudget budget = {})
+        : opt_(std::move(options)), budget_(std::move(budget)) {}
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;
+    RenderBudget budget_;
 };
 
 // Bounds of the pilot pass's per-pixel radius in pixel footprints (see PilotRadius in

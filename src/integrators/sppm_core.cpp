@@ -20,53 +20,6 @@ namespace phos::integrators::sppm {
 
 using shading::Bsdf;
 
-namespace {
-// "2.40e6": a photon count for a message.
-std::string photons_text(uint64_t n) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.2e", double(n));
-    std::string s = buf;
-    const size_t e = s.find('e');
-    size_t digits = e + 1;
-    if (s[digits] == '+')
-        s.erase(digits, 1);
-    else if (s[digits] == '-')
-        ++digits;
-    while (s.size() > digits + 1 && s[digits] == '0') s.erase(digits, 1);
-    return s;
-}
-}  // namespace
-
-ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
-                             uint32_t slots_per_pixel) {
-    const RenderOptions& ro = P.options;
-    ProgressiveState state = opt.identity;
-    state.integrator = integrator;
-    state.width = uint32_t(ro.width);
-    state.height = uint32_t(ro.height);
-    state.slots_per_pixel = slots_per_pixel;
-    state.seed = ro.seed;
-    if (!state.options.empty()) state.options_hash = hash_options(state.options);
-    const uint64_t target = uint64_t(std::max(1, ro.spp));
-    if (opt.resume) {
-        check_resumable(*opt.resume, state, opt.resume_path);
-        state = *opt.resume;
-        const std::string done = std::to_string(state.iterations);
-        const bool counted = target < kUnboundedIterations && state.iterations <= target;
-        log::info("resuming " + state.integrator + " render from " + opt.resume_path + ": " + done +
-                  (counted ? " of " + std::to_string(target) : "") + " iterations done, " +
-                  photons_text(state.photons_emitted) + " photons");
-        if (state.iterations > target)
-            log::warn("checkpoint " + opt.resume_path + " already holds " + done +
-                      " iterations, more than the " + std::to_string(target) + " asked: the image is the " +
-                      done + "-iteration one (no further iterations run)");
-    } else {
-        state.slots.assign(size_t(ro.width) * size_t(ro.height) * slots_per_pixel, {});
-    }
-    state.target_iterations = target;
-    return state;
-}
-
 struct PhotonAccumulator::Locals {
     tbb::enumerable_thread_specific<std::vector<LocalSlot>> per_thread;
 };

@@ -19,6 +19,7 @@
 #include "integrators/prepared.h"
 #include "integrators/progressive_checkpoint.h"
 #include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 #include "integrators/sppm_pixel_stats.h"
 #include "photon/hitpoint_grid.h"
 #include "shading/bsdf.h"
@@ -63,13 +64,6 @@ struct InitialRadius {
     }
     static constexpr float kVolumeRadiusScale = 4.0f;
 };
-
-// The state a progressive render starts from: a fresh one (`slots_per_pixel` slots per pixel) for
-// `integrator`, or the checkpoint being resumed after checking it is the same render (and saying
-// what is resumed; a warning when it already holds more iterations than asked). Records the
-// requested iteration count and the options hash. The options arrive validated (factory.cpp).
-ProgressiveState start_state(const Prepared& P, const ProgressiveOptions& opt, const char* integrator,
-                             uint32_t slots_per_pixel);
 
 // What the photon pass reads of a visible point, compact (44 bytes) so the per-photon loop touches
 // one cache line per matched point instead of a whole VisiblePoint with its Bsdf.

@@ -17,15 +17,16 @@ void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progr
             "whitted renders the scene as if its participating media were vacuum; path, photonmap, "
             "ppm and sppm render them");
     if (prepared.options.layers) {
-        render_layers(prepared, film, progress, "render", integrator_layers("whitted"),
+        render_layers(prepared, film, budget_, "whitted", progress, integrator_layers("whitted"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });
         return;
     }
-    render_pixels(prepared, film, progress, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
-        return radiance(prepared, ray, sampler, rays);
-    });
+    render_pixels(prepared, film, budget_, "whitted", progress,
+                  [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+                      return radiance(prepared, ray, sampler, rays);
+                  });
 }
 
 Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,

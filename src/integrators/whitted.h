@@ -4,6 +4,7 @@
 
 #include "core/rng.h"
 #include "integrators/integrator.h"
+#include "integrators/render_budget.h"
 
 namespace phos::integrators {
 
@@ -11,12 +12,16 @@ struct RadianceParts;  // pixel_loop.h
 
 class WhittedIntegrator : public Integrator {
 public:
+    explicit WhittedIntegrator(RenderBudget budget = {}) : budget_(std::move(budget)) {}
     void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
     // Radiance arriving at the camera along `ray`. With `parts`, also its split into components
     // (pixel_loop.h): what the first surface seen sends by its own emission and light sampling is
     // direct, everything found through the recursion (mirrors and glass) specular.
     static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
                         RadianceParts* parts = nullptr);
+
+private:
+    RenderBudget budget_;
 };
 
 }  // namespace phos::integrators

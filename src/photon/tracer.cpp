@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/interrupt.h"
 #include "photon/projection_map.h"
 
 namespace phos::photon {
@@ -129,11 +130,14 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     uint64_t next = 0;  // first photon index of the next round
     uint64_t round_batches = 4;
     std::vector<Slice> slices;
-    while (any && next < cap && ps.lights.size() > 0) {
+    // An interrupt ends tracing at the next round (its batches are skipped): the caller renders
+    // nothing from incomplete maps.
+    while (any && next < cap && ps.lights.size() > 0 && !interrupt::requested()) {
         const uint64_t n_round = std::min(round_batches * B, cap - next);
         const uint64_t nb = (n_round + B - 1) / B;
         slices.assign(nb, Slice{});
         tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
+            if (interrupt::requested()) return;
             const uint64_t first = next + b * B;
             trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
                         slices[b]);

@@ -170,10 +170,14 @@ TEST(Options, OptionsForAnotherIntegratorWarnOrAreRefused) {
     EXPECT_NE(r.output.find("warning: --alpha has no effect on the path integrator (ppm/sppm only)"),
               std::string::npos)
         << r.output;
-    r = run_phos("render " + scene + " --spp 1 --checkpoint x.ckpt -o " + dir.file("b.pfm"));
+    // Budgets that do not apply would silently not bound the work: refused.
+    r = run_phos("render " + scene + " --iterations 4 -o " + dir.file("b.pfm"));
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.output.find("--checkpoint: only the ppm and sppm integrators"), std::string::npos)
+    EXPECT_NE(r.output.find("--iterations is for the ppm/sppm integrators (this render uses path; --spp and "
+                            "--time bound any render)"),
+              std::string::npos)
         << r.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("b.pfm")));
 }
 
 TEST(Options, CommandsHelpAndVersion) {

@@ -157,7 +157,9 @@ TEST(Layers, ComponentsMeanTheSameInEveryIntegrator) {
     const scene::Scene s = box(true);
     const Result path = render("path", s, true, 256);
     const Result whitted = render("whitted", s, true, 64);
-    const Result pm = render("photonmap", s, true, 16);
+    // 64 samples: the photon map's image is 2.6 % dark here (its converged mean, kernel bias at
+    // 20,000 photons); at 16 samples the pixel and gather noise adds about +-1 %.
+    const Result pm = render("photonmap", s, true, 64);
     const double d = mean(path.layers.at("direct"));
     std::printf("direct: path %.4f whitted %.4f photonmap %.4f\n", d, mean(whitted.layers.at("direct")),
                 mean(pm.layers.at("direct")));

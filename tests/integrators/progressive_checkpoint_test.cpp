@@ -98,8 +98,8 @@ TEST(Checkpoint, ForeignFileAndOtherVersion) {
     std::string b = encode_checkpoint(sample_state());
     b[8] = char(99);  // version field
     EXPECT_NE(error_of(b).find("version 99"), std::string::npos);
-    b[8] = char(2);  // the previous format (no option list) is refused by version, not misread
-    EXPECT_NE(error_of(b).find("format version 2 is not supported (this phos reads version 3)"),
+    b[8] = char(3);  // the previous format (no film) is refused by version, not misread
+    EXPECT_NE(error_of(b).find("format version 3 is not supported (this phos reads version 4)"),
               std::string::npos)
         << error_of(b);
     EXPECT_THROW(load_checkpoint("/nonexistent/dir/x.ckpt"), InputError);

@@ -301,7 +301,7 @@ int run_cli(int argc, char** argv) {
             std::vector<std::string> render_args(render_at + 1, args.end());
             if (rc.scene_path.empty()) {
                 // A bare `phos render --resume FILE [overrides]`: replay the checkpointed arguments.
-                const std::string resume = rc.progressive.resume_path;
+                const std::string resume = rc.budget.resume_path;
                 if (resume.empty())
                     throw InputError(
                         "render: give a scene file (or --resume CHECKPOINT to continue a render)");
@@ -316,6 +316,7 @@ int run_cli(int argc, char** argv) {
                 rc.render = {};
                 rc.photon_map = {};
                 rc.progressive = {};
+                rc.budget = {};
                 rc.given.clear();
                 positional_output.clear();
                 if (const int code = parse(replay); code >= 0) return code;
@@ -333,7 +334,7 @@ int run_cli(int argc, char** argv) {
             rc.command_line = checkpoint_arguments(render_args, rc.scene_path);
             log::set_quiet(rc.run.quiet);
             for (const std::string& w : seed.warnings) log::warn(w);
-            run_render(rc);
+            if (const int code = run_render(rc); code != 0) return code;
         }
         if (diff->parsed()) run_diff(dc);
         if (info->parsed()) run_info(info_paths, info_windows);

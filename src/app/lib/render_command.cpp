@@ -3,18 +3,24 @@
 // integrator, write the image (and layers, AOVs) atomically, print statistics with -v.
 #include "app/lib/render_command.h"
 
+#include <fcntl.h>
 #include <tbb/global_control.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <sstream>
 
+#include "app/lib/memory_check.h"
 #include "core/error.h"
+#include "core/interrupt.h"
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/stats.h"
@@ -30,6 +36,50 @@
 namespace phos::app {
 namespace {
 
+// Checks that a file can be created beside `path` (by creating and removing an empty one), so a
+// read-only directory fails before any work rather than after it.
+void check_writable(const std::string& path, const std::string& what) {
+    const std::filesystem::path dir = std::filesystem::absolute(path).parent_path();
+    const std::string probe = (dir / (".phos-write-test-" + std::to_string(::getpid()))).string();
+    const int fd = ::open(probe.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+    if (fd < 0)
+        throw InputError(what + " '" + path + "': cannot create files in '" + dir.string() +
+                         "': " + std::strerror(errno));
+    ::close(fd);
+    ::unlink(probe.c_str());
+}
+
+// Writes the image and its layers (each atomically). If that fails (disk full, file size limit),
+// the previous files are intact and the image is saved to the temporary directory instead, so the
+// work is not lost; the error says both.
+void write_images(const std::string& output, const film::Film& film, const std::vector<std::string>& layers,
+                  float exposure) {
+    std::string failure;
+    try {
+        io::write_image(output, film.image(), {exposure});
+        for (const std::string& name : layers)
+            io::write_image(layer_path(output, name), film.find_layer(name)->image(), {exposure});
+        return;
+    } catch (const InputError& e) {
+        failure = e.what();
+    }
+    std::string rescued;
+    try {
+        std::error_code ec;
+        const std::filesystem::path tmp = std::filesystem::temp_directory_path(ec);
+        const std::string stem = std::filesystem::path(output).stem().string();
+        rescued = ((ec ? std::filesystem::path("/tmp") : tmp) /
+                   ("phos-rescued-" + std::to_string(::getpid()) + "-" + stem + ".exr"))
+                      .string();
+        io::write_image(rescued, film.image(), {exposure});
+    } catch (const InputError&) {
+        rescued.clear();
+    }
+    throw InputError(failure + " (a previous file there is intact); " +
+                     (rescued.empty() ? "the image could not be saved elsewhere either"
+                                      : "the rendered image was saved to " + rescued + " instead"));
+}
+
 // Checks the output path before any work, so a bad path fails fast and nothing is written.
 void check_output(const std::string& out) {
     if (out.empty()) throw InputError("no output file: give -o FILE (.exr, .pfm, .png or .bmp)");
@@ -39,6 +89,7 @@ void check_output(const std::string& out) {
     if (!std::filesystem::is_directory(dir))
         throw InputError("output '" + out + "': directory '" + dir.string() + "' does not exist");
     if (std::filesystem::is_directory(out)) throw InputError("output '" + out + "' is a directory");
+    check_writable(out, "output");
 }
 
 // Where the effective settings came from, for the start-up line.
@@ -92,8 +143,8 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     } else if (progressive && cmd.was_given("iterations")) {
         r.spp = cmd.progressive.iterations;
         src.spp = "--iterations";
-    } else if (progressive && cmd.was_given("time")) {
-        src.spp = "--time";  // the time budget alone decides (setup_progressive)
+    } else if (cmd.was_given("time")) {
+        src.spp = "--time";  // the time budget alone decides (setup_budget)
     } else if (st.spp && (!st.integrator || *st.integrator == cmd.run.integrator)) {
         r.spp = *st.spp;
         src.spp = "scene file";
@@ -166,8 +217,8 @@ void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, 
 }
 
 // Every table's values checked (values from tests or scene files included), and options given on
-// the command line that the chosen integrator does not use: budgets and checkpoints are refused
-// (work would silently not be bounded or saved), the rest warn once.
+// the command line that the chosen integrator does not use: budgets are refused (work would
+// silently not be bounded: --iterations on path), the rest warn once.
 void check_options(RenderCommand& cmd) {
     for (const BoundTable& b : cmd.tables()) {
         try {
@@ -183,16 +234,15 @@ void check_options(RenderCommand& cmd) {
             std::string who = o.applies_to;
             std::replace(who.begin(), who.end(), ' ', '/');
             if (o.effect != options::Effect::Image)
-                refused += (refused.empty() ? "" : ", ") + o.flag_name();
+                refused +=
+                    (refused.empty() ? "" : "; ") + o.flag_name() + " is for the " + who + " integrators";
             else
                 log::warn(o.flag_name() + " has no effect on the " + cmd.run.integrator + " integrator (" +
                           who + " only)");
         }
     if (!refused.empty())
-        throw InputError(refused +
-                         ": only the ppm and sppm integrators have iteration budgets, previews and "
-                         "checkpoints (this render uses " +
-                         cmd.run.integrator + ")");
+        throw InputError(refused + " (this render uses " + cmd.run.integrator +
+                         "; --spp and --time bound any render)");
 }
 
 // The image-changing options of this render as (flag, value) pairs: what a checkpoint records to
@@ -207,13 +257,14 @@ std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cm
     return out;
 }
 
-// Budgets, previews, checkpoints and resuming of the progressive integrators (ppm, sppm): fills
-// the hooks and the render identity that checkpoints carry, and turns --iterations / --time /
-// --resume into the iteration count.
-void setup_progressive(RenderCommand& cmd, const std::string& output) {
-    integrators::ProgressiveOptions& p = cmd.progressive;
+// Budgets, previews, checkpoints and resuming, for every integrator: fills the hooks and the
+// render identity that checkpoints carry, and turns --iterations / --time / --resume into the
+// sample or iteration count.
+void setup_budget(RenderCommand& cmd, const std::string& output, bool progressive) {
+    integrators::RenderBudget& p = cmd.budget;
     integrators::RenderOptions& opt = cmd.render;
-    if (p.iterations > 0 && (cmd.was_given("spp") || cmd.was_given("aa")) && opt.spp != p.iterations)
+    const int iterations = cmd.progressive.iterations;
+    if (iterations > 0 && (cmd.was_given("spp") || cmd.was_given("aa")) && opt.spp != iterations)
         throw InputError("--spp and --iterations disagree");
     const bool count_given = cmd.was_given("iterations") || cmd.was_given("spp") || cmd.was_given("aa");
     if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
@@ -231,19 +282,39 @@ void setup_progressive(RenderCommand& cmd, const std::string& output) {
     if (!p.resume_path.empty()) {
         auto saved =
             std::make_shared<integrators::ProgressiveState>(integrators::load_checkpoint(p.resume_path));
-        if (!count_given && p.time <= 0) opt.spp = int(std::min<uint64_t>(saved->target_iterations, 1 << 30));
+        if (!count_given && p.time <= 0) {  // continue to the saved render's own count
+            uint64_t target = saved->target_iterations;
+            if (!progressive) target /= uint64_t(std::max(1, opt.dof_samples));  // saved in camera samples
+            opt.spp = int(std::clamp<uint64_t>(target, 1, 1 << 30));
+        }
         p.resume = saved;
     }
     if (!p.checkpoint_path.empty()) {
         const std::string path = p.checkpoint_path;
+        if (std::filesystem::is_directory(path)) throw InputError("checkpoint '" + path + "' is a directory");
+        if (!std::filesystem::is_directory(std::filesystem::absolute(path).parent_path()))
+            throw InputError("checkpoint '" + path + "': its directory does not exist");
+        check_writable(path, "checkpoint");
+        // A checkpoint that cannot be written (disk full, read-only) leaves the previous one intact
+        // and the render goes on: its image may still be written at the end.
         p.on_checkpoint = [path](const integrators::ProgressiveState& s) {
-            integrators::save_checkpoint(path, s);
+            try {
+                integrators::save_checkpoint(path, s);
+            } catch (const InputError& e) {
+                log::warn(std::string(e.what()) +
+                          "; the checkpoint was not saved (the previous one is intact)");
+            }
         };
     }
     if (p.write_every > 0) {
         const float exposure = cmd.run.exposure;
         p.on_preview = [output, exposure](const film::Film& f) {
-            io::write_image(output, f.image(), {exposure});
+            try {
+                io::write_image(output, f.image(), {exposure});
+            } catch (const InputError& e) {
+                log::warn(std::string(e.what()) +
+                          "; the preview was not written (the previous file is intact)");
+            }
         };
     }
 }
@@ -260,6 +331,28 @@ std::vector<std::string> written_layers(const film::Film& film, const integrator
     return out;
 }
 
+// What a render completed, for -v and the interrupt warning: "12 of 64 iterations", "37.5 of 64
+// samples per pixel (59 %)".
+std::string work_done(const integrators::RenderBudget::Done& done, bool progressive, size_t pixels) {
+    const bool counted = done.target < integrators::kUnboundedIterations;
+    if (progressive)
+        return std::to_string(done.units) + (counted ? " of " + std::to_string(done.target) : "") +
+               " iterations";
+    const double mean = pixels > 0 ? double(done.samples) / double(pixels) : 0.0;
+    char buf[96];
+    if (counted && mean < double(done.target))
+        std::snprintf(buf, sizeof buf, "%.4g of %llu samples per pixel, %.0f %%", mean,
+                      (unsigned long long)done.target, 100.0 * mean / double(done.target));
+    else
+        std::snprintf(buf, sizeof buf, "%.4g samples per pixel", mean);
+    return buf;
+}
+
+bool output_exists(const std::string& path) {
+    std::error_code ec;
+    return std::filesystem::exists(path, ec);
+}
+
 }  // namespace
 
 std::string layer_path(const std::string& output, const std::string& layer) {
@@ -267,10 +360,11 @@ std::string layer_path(const std::string& output, const std::string& layer) {
     return (p.parent_path() / (p.stem().string() + "." + layer + p.extension().string())).string();
 }
 
-void run_render(const RenderCommand& command) {
+int run_render(const RenderCommand& command) {
     const auto clock_start = std::chrono::steady_clock::now();
     RenderCommand cmd = command;
     log::set_quiet(cmd.run.quiet);
+    interrupt::install_handlers();
     std::optional<tbb::global_control> threads;
     if (cmd.run.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
@@ -303,12 +397,13 @@ void run_render(const RenderCommand& command) {
     const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";
     if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
         throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
-    if (progressive) setup_progressive(cmd, output);
-    cmd.progressive.clock_start = clock_start;
+    setup_budget(cmd, output, progressive);
+    cmd.budget.clock_start = clock_start;
 
-    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive};
+    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, cmd.budget};
     auto integrator = integrators::make_integrator(integrator_name, config);
     const integrators::RenderOptions& opt = cmd.render;
+    check_memory(cmd, scene, stats);  // refuses before any work when the memory would not do
 
     integrators::PrepareOptions prep;
     prep.bsdf.schlick = cmd.scene.schlick;
@@ -333,10 +428,10 @@ void run_render(const RenderCommand& command) {
 
     {
         std::string budget = std::to_string(opt.spp) + (progressive ? " iterations" : " spp");
-        if (progressive && cmd.progressive.time > 0)
-            budget = opt.spp >= (1 << 30)
-                         ? "iterations until " + options::format_number(cmd.progressive.time) + " s"
-                         : budget + " or " + options::format_number(cmd.progressive.time) + " s";
+        if (cmd.budget.time > 0)
+            budget = opt.spp >= (1 << 30) ? std::string(progressive ? "iterations" : "samples") + " until " +
+                                                options::format_number(cmd.budget.time) + " s"
+                                          : budget + " or " + options::format_number(cmd.budget.time) + " s";
         if (opt.dof_samples > 1) budget += " x " + std::to_string(opt.dof_samples) + " lens samples";
         log::info("phos: " + std::filesystem::path(cmd.scene_path).filename().string() + ": " +
                   integrator_name + " (" + sources.integrator + "), " + std::to_string(opt.width) + "x" +
@@ -351,27 +446,44 @@ void run_render(const RenderCommand& command) {
         ScopedTimer t(stats, "render");
         integrator->render(*prepared, film, progress);
     }
-    if (!opt.aovs.empty()) {
+    const integrators::RenderBudget::Done& done = *cmd.budget.done;
+    const bool interrupted = done.interrupted || interrupt::requested();
+    const int status = interrupted ? interrupt::exit_status(interrupt::signal_number()) : 0;
+    if (interrupted && !done.started) {
+        log::warn("interrupted before any " + std::string(progressive ? "iteration" : "sample") +
+                  " was complete: no image written" +
+                  (output_exists(output) ? " ('" + output + "' is unchanged)" : ""));
+        return status;
+    }
+    if (!opt.aovs.empty() && !interrupted) {
         ScopedTimer t(stats, "aov");
         integrators::render_aovs(*prepared, film);
+    } else if (!opt.aovs.empty()) {
+        log::warn("interrupted: the auxiliary images (--aov) are not written");
     }
     const std::vector<std::string> layers = written_layers(film, opt);
     {
         ScopedTimer t(stats, "write");
-        io::write_image(output, film.image(), {cmd.run.exposure});
-        for (const std::string& name : layers)
-            io::write_image(layer_path(output, name), film.find_layer(name)->image(), {cmd.run.exposure});
+        write_images(output, film, layers, cmd.run.exposure);
     }
+    const std::string so_far = work_done(done, progressive, size_t(opt.width) * size_t(opt.height));
     if (cmd.run.verbose) {
-        std::string done = std::to_string(opt.spp * opt.dof_samples) + " spp";
-        if (progressive) done = std::to_string(*cmd.progressive.iterations_done) + " iterations";
-        stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " + done +
-                                     ", integrator " + integrator_name);
+        stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " +
+                                     so_far + ", integrator " + integrator_name);
+        const uint64_t dropped = film.rejected_samples() + stats.dropped_samples();
+        stats.add_value("samples dropped (NaN or infinite)", std::to_string(dropped));
+        add_peak_memory(stats);
         std::fputs(stats.report().c_str(), stderr);
     }
     std::string also;
     for (const std::string& name : layers) also += (also.empty() ? "" : ", ") + name;
     log::info("phos: wrote " + output + (also.empty() ? "" : " (and layers " + also + ")"));
+    if (interrupted)
+        log::warn("interrupted: the image holds the work done so far (" + so_far + ")" +
+                  (cmd.budget.checkpoint_path.empty()
+                       ? ""
+                       : "; continue it with phos render --resume " + cmd.budget.checkpoint_path));
+    return status;
 }
 
 }  // namespace phos::app

@@ -8,6 +8,7 @@
 
 namespace phos::app {
 
+using options::at_least;
 using options::between;
 using options::Effect;
 
@@ -54,6 +55,12 @@ const options::Table& run_options() {
         q.effect = Effect::None;  // what it sets is recorded option by option
         b.flag("strict", &RunOptions::strict, "pbrt: unused scene parameters are errors").effect =
             Effect::None;
+        auto& mem =
+            b.number("max-memory", &RunOptions::max_memory, "GB", at_least(0),
+                     "refuse a render whose estimated peak memory exceeds this many GB (1e9 bytes; 0 = "
+                     "the memory available: free memory, cgroup and RLIMIT_AS limits)");
+        mem.effect = Effect::None;
+        mem.default_text = "0 (the memory available)";
         return b.build();
     }();
     return table;
@@ -101,7 +108,8 @@ std::vector<BoundTable> RenderCommand::tables() {
             {&integrators::sampling_options(), &render},
             {&scene_options(), &scene},
             {&integrators::photon_map_options(), &photon_map},
-            {&integrators::progressive_options(), &progressive}};
+            {&integrators::progressive_options(), &progressive},
+            {&integrators::budget_options(), &budget}};
 }
 
 std::vector<const options::Table*> all_tables() {

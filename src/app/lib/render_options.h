@@ -12,6 +12,7 @@
 #include "integrators/options.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
+#include "integrators/render_budget.h"
 
 namespace phos::app {
 
@@ -27,6 +28,7 @@ struct RunOptions {
     bool progress = false;  // forced on or off (given on the command line), else automatic
     float exposure = 0;
     bool strict = false;
+    float max_memory = 0;            // GB the render may take (0 = the memory available)
     std::string quality = "normal";  // budget preset (quality_preset)
 };
 
@@ -56,6 +58,7 @@ struct RenderCommand {
     integrators::RenderOptions render;
     integrators::PhotonMapOptions photon_map;
     integrators::ProgressiveOptions progressive;
+    integrators::RenderBudget budget;
     // Names (without dashes) of the options given on the command line.
     std::set<std::string> given;
     // The arguments of this render (for checkpoints: a bare --resume replays them).

@@ -1,0 +1,68 @@
+// Signal handling for interrupts (see interrupt.h). The handler only touches lock-free atomics and
+// calls write(2) and _exit(2), which are async-signal-safe.
+#include "core/interrupt.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <csignal>
+#include <cstring>
+
+namespace phos::interrupt {
+namespace {
+
+std::atomic<bool> g_requested{false};
+std::atomic<int> g_signal{0};
+std::atomic<int> g_count{0};
+static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
+
+void say(const char* text) {
+    const ssize_t n = ::write(STDERR_FILENO, text, std::strlen(text));
+    (void)n;
+}
+
+extern "C" void on_signal(int signo) {
+    if (g_count.fetch_add(1) > 0) {
+        say("\nphos: interrupted again: exiting now (the image so far is not written)\n");
+        ::_exit(exit_status(signo));
+    }
+    g_signal.store(signo);
+    g_requested.store(true);
+    say(signo == SIGTERM ? "\nphos: terminated: finishing the current work and writing the image so far\n"
+                         : "\nphos: interrupted: finishing the current work and writing the image so far "
+                           "(Ctrl-C again to quit at once)\n");
+}
+
+}  // namespace
+
+void install_handlers() {
+    struct sigaction sa;
+    std::memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, nullptr);
+    sigaction(SIGTERM, &sa, nullptr);
+    std::signal(SIGXFSZ, SIG_IGN);
+}
+
+bool requested() { return g_requested.load(std::memory_order_relaxed); }
+
+int signal_number() { return g_signal.load(); }
+
+void request(int signo) {
+    g_count.fetch_add(1);
+    g_signal.store(signo);
+    g_requested.store(true);
+}
+
+void reset() {
+    g_requested.store(false);
+    g_signal.store(0);
+    g_count.store(0);
+}
+
+int exit_status(int signo) { return 128 + (signo > 0 ? signo : SIGINT); }
+
+}  // namespace phos::interrupt

@@ -1,0 +1,26 @@
+// Interrupts (SIGINT, SIGTERM, the preview window's quit): a process-wide request to stop that
+// the render loops poll between units of work (a tile's samples, a photon batch, an iteration).
+// The first signal asks the render to stop and write what it has; a second one ends the process
+// at once. SIGXFSZ is ignored so that a file-size limit makes a write fail with an error phos
+// reports (the previous file intact) instead of killing the process.
+#pragma once
+
+namespace phos::interrupt {
+
+// Installs the handlers for SIGINT and SIGTERM (and ignores SIGXFSZ). Idempotent.
+void install_handlers();
+// Whether a stop was requested (cheap: one relaxed atomic load; safe from any thread).
+bool requested();
+// The signal that asked to stop (SIGINT, SIGTERM), or 0 when none did or the request came from
+// request() without a signal.
+int signal_number();
+// Asks the render to stop, as the first signal would (`signo` 0: not a signal, e.g. the preview
+// window's quit key).
+void request(int signo = 0);
+// Clears the request (tests, and a process that renders again after an interrupt).
+void reset();
+// The conventional exit status of a process stopped by `signo`: 128 + signo (130 for SIGINT,
+// 143 for SIGTERM); 130 when the stop did not come from a signal.
+int exit_status(int signo);
+
+}  // namespace phos::interrupt

@@ -1,0 +1,289 @@
+// The render's memory model (see memory_estimate.h). Sizes of phos's own records come from
+// sizeof; the rest (the process base, Embree's BVH, what the allocator keeps of freed photon
+// batches, the hit-point grid) was measured as VmRSS sampled through renders of this code on
+// x86-64 Linux with glibc (docs/usage.md, "Memory").
+#include "integrators/memory_estimate.h"
+
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <set>
+
+#include "core/memory.h"
+#include "integrators/factory.h"
+#include "integrators/sppm_core.h"
+#include "photon/beam_bvh.h"
+#include "photon/photon.h"
+#include "photon/projection_map.h"
+#include "photon/tracer.h"
+#include "photon/volume_cache.h"
+
+namespace phos::integrators {
+namespace {
+
+using photon::Photon;
+
+// The process before any scene: binary, libraries, TBB workers, the Embree device (VmHWM of a
+// 16x16 path render of a 12-triangle box: 40 MB, for 1 to 8 threads).
+constexpr double kBase = 40e6;
+
+// Embree 3 (accel/embree_scene.cpp: RTC_BUILD_QUALITY_HIGH, robust scenes), per triangle beyond
+// its copy of the vertices (12 B, and 12 B of transformed normals when the mesh has them) and
+// indices (12 B): 92 B at the peak while the BVH builds, 56 B kept (1 M and 2 M triangle meshes).
+constexpr double kBvhBuildPerTriangle = 92;
+constexpr double kBvhPerTriangle = 56;
+constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's Embree geometry
+
+// Photon tracing (photon/tracer.cpp) keeps, per stored photon, the photon and its raw power until
+// the powers are normalised; a round's batches hold each photon again with its power and emission
+// index. A round emits up to 2^20 photons, sized by the map that still needs the most emissions,
+// and every map of the stream stores into it (the surplus is cut afterwards): with volume maps, a
+// round of 2^20 emissions fills the surface maps too. The allocator keeps the largest round's
+// freed batch memory for the rest of the run (measured: 1 M to 6 M photons on cornell-diffuse,
+// fog-caustic's volume maps).
+constexpr double kTracedPerPhoton = sizeof(Photon) + sizeof(Rgb);
+constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(Rgb) + sizeof(uint32_t);
+// Stored photons per emitted one, for a round's size and when only --photons bounds a map (1.6
+// measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
+constexpr double kStoredPerEmitted = 1.6;
+constexpr double kRoundPhotons = kStoredPerEmitted * double(1 << 20);
+// The k-d tree build (photon/kdtree.cpp): a 16-byte key and an axis byte per photon, and the tree's
+// own copy, while the traced array still exists.
+constexpr double kKdBuildPerPhoton = 16 + 1 + sizeof(Photon);
+// Beam estimate of the volume maps: a 40-byte sphere per photon and the BVH's nodes (about one
+// 32-byte node per 4 photons with 16-sphere leaves).
+constexpr double kBeamPerPhoton = sizeof(photon::PhotonSphere) + sizeof(photon::BeamBvh::Node) / 4.0;
+
+// Film: 4 doubles per pixel and layer (film/film.h); creating a layer copies it once. Writing
+// adds the float image and the encoder's buffers (measured: 12.5 B per pixel for EXR, 15 for PNG).
+constexpr double kFilmPerPixel = 32;
+constexpr double kWritePerPixel = 16;
+
+// Progressive photon mapping per hit-point slot (sppm_core.h): the per-thread fixed-point sums
+// (PhotonAccumulator::LocalSlot) or the shared atomic ones, 32 bytes each; the hit-point grid's
+// entries (20 B, a point in ~4 cells), buckets (2 to 4 per point) and the positions and radii it
+// is built from (measured 555 B per pixel in all for sppm at 500² to 2000² with 2 threads).
+constexpr double kAccumulatorSlot = 32;
+constexpr double kGridPerPoint = 4 * 20 + 12 + sizeof(Vec3) + sizeof(float);
+
+uint64_t bytes(double b) { return b > 0 ? uint64_t(b) : 0; }
+
+// One phase of the render and what it holds.
+struct Phase {
+    std::string name;
+    std::vector<MemoryItem> items;
+    void add(const std::string& item, double b) {
+        if (b <= 0) return;
+        for (MemoryItem& i : items)
+            if (i.name == item) {
+                i.bytes += bytes(b);
+                return;
+            }
+        items.push_back({item, bytes(b)});
+    }
+    uint64_t total() const {
+        uint64_t t = 0;
+        for (const MemoryItem& i : items) t += i.bytes;
+        return t;
+    }
+};
+
+// The loaded scene's arrays and what Embree builds from them.
+struct SceneMemory {
+    double scene = 0;             // meshes, textures, density grids as loaded
+    double geometry = 0;          // Embree's vertex, index and normal copies; shading's grid copies
+    double triangles = 0;         // for the BVH
+    double other_geometries = 0;  // analytic shapes, instances
+};
+
+void add_shape(const scene::Shape& s, SceneMemory& m) {
+    using Kind = scene::Shape::Kind;
+    if (s.kind == Kind::Mesh) {
+        const scene::TriangleMesh& mesh = s.mesh;
+        m.scene += double(mesh.positions.capacity() * sizeof(Vec3) + mesh.normals.capacity() * sizeof(Vec3) +
+                          mesh.uvs.capacity() * sizeof(Vec2) + mesh.indices.capacity() * sizeof(uint32_t));
+        m.geometry += double(mesh.positions.size() * sizeof(Vec3) + mesh.indices.size() * sizeof(uint32_t) +
+                             mesh.normals.size() * sizeof(Vec3));
+        m.triangles += double(mesh.triangle_count());
+    } else if (s.kind == Kind::Box) {
+        m.geometry += 8 * sizeof(Vec3) + 36 * sizeof(uint32_t);
+        m.triangles += 12;
+    } else {
+        m.other_geometries += 1;
+    }
+}
+
+SceneMemory scene_memory(const scene::Scene& scene) {
+    SceneMemory m;
+    for (const scene::Shape& s : scene.shapes) add_shape(s, m);
+    for (const scene::Object& o : scene.objects)
+        for (const scene::Shape& s : o.shapes) add_shape(s, m);
+    m.other_geometries += double(scene.instances.size());
+    std::set<const void*> seen;  // images and grids may be shared
+    for (const scene::Texture& t : scene.textures)
+        if (t.image && seen.insert(t.image.get()).second)
+            m.scene += double(t.image->texels.capacity() * sizeof(Rgb));
+    for (const scene::Medium& md : scene.media) {
+        const double grid = double((md.density.capacity() + md.emission_scale.capacity()) * sizeof(float));
+        m.scene += grid;
+        m.geometry += grid;  // shading/density_grid.cpp keeps its own copy of a uniform grid
+        if (md.sparse.buffer && seen.insert(md.sparse.buffer.get()).second)
+            m.scene += double(md.sparse.bytes);
+    }
+    return m;
+}
+
+// Whether rays can travel in a medium (shading::MediaSet::active).
+bool media_active(const scene::Scene& scene) {
+    const auto valid = [&](int i) { return i >= 0 && size_t(i) < scene.media.size(); };
+    bool active = valid(scene.camera_medium);
+    for (const scene::Light& l : scene.lights) active |= valid(l.medium);
+    for (const scene::Shape& s : scene.shapes) active |= valid(s.media.inside) || valid(s.media.outside);
+    for (const scene::Object& o : scene.objects)
+        for (const scene::Shape& s : o.shapes) active |= valid(s.media.inside) || valid(s.media.outside);
+    return active;
+}
+
+// Photons a map will store: its budget, else what --photons emissions leave in it.
+double stored_photons(const PhotonMapSettings& s, uint64_t emit) {
+    return s.photons > 0 ? double(s.photons) : kStoredPerEmitted * double(emit);
+}
+
+// The photon mapper's phases (integrators/photon_map.cpp, build_maps): tracing, the k-d tree
+// builds (one map at a time, while the traced arrays of the others exist), then the maps with
+// their caches and beam BVHs through the render pass.
+void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, const Phase& common,
+                       std::vector<Phase>& phases) {
+    bool delta = false;
+    for (const scene::Material& m : scene.materials) delta |= photon::has_delta_lobe(m);
+    const bool media = media_active(scene) && !o.photon_viz;
+    const bool global = o.photon_viz || (o.indirect_light && !o.fast_global);
+    const double n[photon::kMapCount] = {
+        global ? stored_photons(o.global, o.photons) : 0,
+        !o.photon_viz && o.caustics && delta ? stored_photons(o.caustic, o.photons) : 0,
+        !o.photon_viz && o.indirect_light && o.fast_global ? stored_photons(o.indirect, o.photons) : 0,
+        media && o.indirect_light ? stored_photons(o.volume, o.photons) : 0,
+        media && o.caustics && delta ? stored_photons(o.volume_caustic, o.photons) : 0};
+    double total = 0, largest = 0;
+    for (double x : n) total += x, largest = std::max(largest, x);
+    const double volume = n[photon::kVolumeMap] + n[photon::kVolumeCausticMap];
+    // The largest round: the main stream (global, indirect, volume maps; volume photons are rare,
+    // so their rounds are full ones) or the caustic stream (caustic maps, through projection maps).
+    const double surface = n[photon::kGlobalMap] + n[photon::kIndirectMap];
+    const double main_round =
+        n[photon::kVolumeMap] > 0 && surface > 0 ? kRoundPhotons : surface + n[photon::kVolumeMap];
+    const double caustic_round = n[photon::kCausticMap] + n[photon::kVolumeCausticMap];
+    const double retained = kBatchPerPhoton * std::min(std::max(main_round, caustic_round), kRoundPhotons);
+    const double stride = std::max<uint32_t>(o.cache_stride, 1);
+
+    Phase trace = common;
+    trace.name = "photon tracing";
+    trace.add("photon maps", kTracedPerPhoton * total + retained);
+    phases.push_back(trace);
+
+    Phase build = common;
+    build.name = "photon map build";
+    build.add("photon maps", sizeof(Photon) * total + kKdBuildPerPhoton * largest + retained);
+    phases.push_back(build);
+
+    Phase render = common;
+    render.name = "render";
+    render.add("photon maps", sizeof(Photon) * total + retained);
+    if (o.volume_estimate == VolumeEstimate::Beam) render.add("beam BVH", kBeamPerPhoton * volume);
+    // Cache points as photons (at their build peak: the k-d tree build's keys and copy), volume
+    // cache points with their moments.
+    if (o.irradiance_cache && global && !o.photon_viz)
+        render.add("irradiance cache", (sizeof(Photon) + kKdBuildPerPhoton) * n[photon::kGlobalMap] / stride);
+    if (o.irradiance_cache && media && o.indirect_light)
+        render.add("irradiance cache", (sizeof(Photon) + kKdBuildPerPhoton + sizeof(photon::VolumeMoments)) *
+                                           n[photon::kVolumeMap] / stride);
+    phases.push_back(render);
+}
+
+// PPM and SPPM (sppm_core.h): per hit-point slot the visible point, its statistics, the gather
+// record, the fixed-point sums and the grid.
+void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in, const Phase& common,
+                       std::vector<Phase>& phases) {
+    const RenderOptions& ro = in.render;
+    const double pixels = double(ro.width) * double(ro.height);
+    const bool media = media_active(scene);
+    const double slots =
+        in.integrator == "ppm" ? pixels * std::max(1, in.progressive.eye_samples) : pixels * (media ? 2 : 1);
+    // PhotonAccumulator: per-thread copies when they take at most 1 GiB for every thread of the
+    // arena, else shared atomics; the copies are made by the threads that run photon passes.
+    const int arena = tbb::this_task_arena::max_concurrency();
+    const int workers = in.threads > 0 ? std::min(in.threads, arena) : arena;
+    const bool per_thread = slots * kAccumulatorSlot * arena <= double(1u << 30);
+    Phase p = common;
+    p.name = "render";
+    p.add("visible points", slots * (sizeof(sppm::VisiblePoint) + sizeof(sppm::GatherPoint) + 1));
+    p.add("pixel statistics", slots * sizeof(sppm::PixelStats));
+    p.add("photon sums", slots * kAccumulatorSlot * (1 + (per_thread ? workers : 0)));
+    // One visible point per pixel and eye sample (with media, in one of the pixel's two slots).
+    p.add("hit-point grid",
+          pixels * std::max(1, in.integrator == "ppm" ? in.progressive.eye_samples : 1) * kGridPerPoint);
+    if (in.checkpoint) p.add("checkpoint", slots * sizeof(sppm::PixelStats));
+    phases.push_back(p);
+}
+
+}  // namespace
+
+std::string MemoryEstimate::breakdown(size_t max_items) const {
+    std::string s;
+    for (size_t i = 0; i < items.size() && i < max_items; ++i)
+        s += (i ? ", " : "") + items[i].name + " " + memory::format_bytes(items[i].bytes);
+    return s;
+}
+
+MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateInputs& in) {
+    const RenderOptions& ro = in.render;
+    const double pixels = double(ro.width) * double(ro.height);
+    const SceneMemory sm = scene_memory(scene);
+    std::vector<Phase> phases;
+
+    Phase base;
+    base.add("base", kBase);
+    base.add("scene", sm.scene);
+    base.add("accelerator", sm.geometry + kPerGeometry * sm.other_geometries);
+
+    Phase prepare = base;
+    prepare.name = "BVH build";
+    prepare.add("accelerator", kBvhBuildPerTriangle * sm.triangles);
+    phases.push_back(prepare);
+
+    // From the render on: the BVH, and the film with its layers and AOVs.
+    Phase common = base;
+    common.add("accelerator", kBvhPerTriangle * sm.triangles);
+    const size_t layers = ro.layers ? integrator_layers(in.integrator).size() : 0;
+    const size_t extra = layers + ro.aovs.size();
+    const double film = kFilmPerPixel * pixels * double(1 + extra + (extra > 0 ? 1 : 0));
+    common.add("film", film);
+    const bool progressive = in.integrator == "ppm" || in.integrator == "sppm";
+    if (in.integrator == "photonmap") {
+        photon_map_phases(scene, in.photon_map, common, phases);
+    } else if (progressive) {
+        progressive_phase(scene, in, common, phases);
+    } else {
+        Phase render = common;
+        render.name = "render";
+        if (in.checkpoint) render.add("checkpoint", 2 * film);  // the film's sums, then encoded
+        phases.push_back(render);
+    }
+    Phase write = common;
+    write.name = "writing the image";
+    write.add("film", kWritePerPixel * pixels);
+    phases.push_back(write);
+
+    const Phase* peak = &phases.front();
+    for (const Phase& p : phases)
+        if (p.total() > peak->total()) peak = &p;
+    MemoryEstimate e;
+    e.total = peak->total();
+    e.phase = peak->name;
+    e.items = peak->items;
+    std::stable_sort(e.items.begin(), e.items.end(),
+                     [](const MemoryItem& a, const MemoryItem& b) { return a.bytes > b.bytes; });
+    return e;
+}
+
+}  // namespace phos::integrators
