@@ -28,6 +28,11 @@ struct PhotonMaps {
     photon::VolumeCache volume_cache;
     // The volume maps' photons with their kernel radii for --volume-estimate beam (else empty).
     photon::BeamBvh volume_beams, volume_caustic_beams;
+
+    // All of the above as bytes (a checkpoint's payload) and back, exactly: a resumed render reads
+    // its maps instead of tracing them again. `what` names the source in errors.
+    std::string save() const;
+    static PhotonMaps load(const std::string& bytes, const std::string& what);
     const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }
     const photon::PhotonKdTree& caustic() const { return map[photon::kCausticMap]; }
     const photon::PhotonKdTree& indirect() const { return map[photon::kIndirectMap]; }
@@ -45,8 +50,9 @@ public:
     // render() then takes no samples.
     PhotonMaps build_maps(const Prepared& prepared) const;
     // Pass 2 with given maps, in sample passes within the budget (pixel_loop.h).
-    void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film,
-                     Progress& progress) const;
+    // With `store_maps`, each checkpoint also holds the maps (PhotonMaps::save).
+    void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film, Progress& progress,
+                     bool store_maps = false) const;
 
     const PhotonMapOptions& options() const { return options_; }
 

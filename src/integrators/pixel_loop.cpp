@@ -41,8 +41,9 @@ void for_each_sample(const Prepared& prepared, int samples, const SampleFn& samp
 }
 
 void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                    const std::string& integrator, Progress& progress, const SampleFn& sample) {
-    SamplePasses passes(prepared, film, budget, integrator, progress);
+                    const std::string& integrator, Progress& progress, const SampleFn& sample,
+                    const std::function<void(std::string& payload)>& payload) {
+    SamplePasses passes(prepared, film, budget, integrator, progress, payload);
     while (passes.next()) {
         tbb::parallel_for(size_t(0), passes.tiles().size(), [&](size_t t) {
             const auto [first, last] = passes.range(t);
@@ -66,7 +67,7 @@ void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudge
 
 void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
                    const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
-                   const PartsFn& parts) {
+                   const PartsFn& parts, const std::function<void(std::string& payload)>& payload) {
     // Layers are created before the parallel loop (creation is not thread-safe).
     constexpr Rgb RadianceParts::*kParts[] = {&RadianceParts::direct, &RadianceParts::caustic,
                                               &RadianceParts::indirect, &RadianceParts::specular};
@@ -77,12 +78,14 @@ void render_layers(const Prepared& prepared, film::Film& film, const RenderBudge
         if (it == std::end(kNames)) throw std::invalid_argument("render_layers: unknown layer " + name);
         out.emplace_back(&film.layer(name), kParts[it - std::begin(kNames)]);
     }
-    render_samples(prepared, film, budget, integrator, progress,
-                   [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
-                       RadianceParts p;
-                       film.add_sample(x, y, parts(ray, sampler, rays, p));
-                       for (const auto& [layer, part] : out) layer->add(x, y, p.*part);
-                   });
+    render_samples(
+        prepared, film, budget, integrator, progress,
+        [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+            RadianceParts p;
+            film.add_sample(x, y, parts(ray, sampler, rays, p));
+            for (const auto& [layer, part] : out) layer->add(x, y, p.*part);
+        },
+        payload);
 }
 
 }  // namespace phos::integrators

@@ -36,8 +36,10 @@ void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudge
 using SampleFn = std::function<void(int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays)>;
 // The same loop for integrators that record more than one value per sample into `film` (layers;
 // every layer must exist before the call, and a resumed checkpoint must hold the same layers).
+// `payload` (optional) adds the integrator's own data to each checkpoint (SamplePasses).
 void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                    const std::string& integrator, Progress& progress, const SampleFn& sample);
+                    const std::string& integrator, Progress& progress, const SampleFn& sample,
+                    const std::function<void(std::string& payload)>& payload = {});
 // One pass of `samples` camera samples per pixel (the first ones, as the render takes them), tile
 // by tile in parallel, then tile_done (if set) with the tile's ray counts; no budget, progress or
 // statistics. For passes beside the render (AOVs).
@@ -66,7 +68,7 @@ using PartsFn =
 // "caustic", "indirect", "specular") as film layers.
 void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
                    const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
-                   const PartsFn& parts);
+                   const PartsFn& parts, const std::function<void(std::string& payload)>& payload = {});
 
 // Position of camera sample `s` inside its pixel, in [0, 1)^2: point s of the (0,2)-sequence in
 // base 2 (van der Corput's radical inverse and Sobol's second dimension), XOR-scrambled by the

@@ -5,7 +5,8 @@
 //   target_iterations, rejected_samples | u32 option count, then per option a string flag and a
 //   string value | u32 argument count, then per argument a string | u64 slot count | slot count x
 //   PixelStats (8 doubles) | u32 tile count | tile count x u32 samples | u32 layer count, then per
-//   layer a string name and width x height x 4 doubles | u64 checksum of all preceding bytes. A
+//   layer a string name and width x height x 4 doubles | u64 payload length | payload bytes (the
+//   integrator's own data: the photon mapper's maps) | u64 checksum of all preceding bytes. A
 //   string is u32 length + bytes. Version 3 had no film (ppm / sppm only); older files are refused
 //   by version.
 #include "integrators/progressive_checkpoint.h"
@@ -120,6 +121,8 @@ std::string encode_checkpoint(const ProgressiveState& s) {
         put_string(out, name);
         out.append(reinterpret_cast<const char*>(sums.data()), sums.size() * sizeof(double));
     }
+    put(out, uint64_t(s.payload.size()));
+    out.append(s.payload);
     put(out, hash_bytes(out.data(), out.size()));
     return out;
 }
@@ -190,6 +193,10 @@ ProgressiveState decode_checkpoint(const std::string& bytes, const std::string& 
         r.get_bytes(sums.data(), values * sizeof(double));
         s.film.emplace_back(std::move(name), std::move(sums));
     }
+    const auto payload = r.get<uint64_t>();
+    if (payload > r.remaining()) r.fail("file size does not match its header");
+    s.payload.resize(size_t(payload));
+    r.get_bytes(s.payload.data(), size_t(payload));
     if (r.remaining() != sizeof(uint64_t)) r.fail("file size does not match its header");
     return s;
 }

@@ -49,6 +49,9 @@ struct ProgressiveState {
     // the film's sums (film::Layer::sums: r, g, b, weight per pixel) by layer name, "" the image.
     std::vector<uint32_t> tile_samples;
     std::vector<std::pair<std::string, std::vector<double>>> film;
+    // The integrator's own data, opaque here: the photon mapper stores its maps (photon_map.cpp),
+    // so a resume need not trace them again.
+    std::string payload;
 };
 
 // Writes `state` to `path` atomically (temporary file + rename). Throws InputError on I/O failure.

@@ -57,9 +57,8 @@ const options::Table& budget_options() {
     return table;
 }
 
-ProgressiveState start_state(const RenderOptions& ro, const RenderBudget& budget,
-                             const std::string& integrator, uint32_t slots_per_pixel, const std::string& unit,
-                             uint64_t target) {
+ProgressiveState render_identity(const RenderOptions& ro, const RenderBudget& budget,
+                                 const std::string& integrator, uint32_t slots_per_pixel) {
     ProgressiveState state = budget.identity;
     state.integrator = integrator;
     state.width = uint32_t(ro.width);
@@ -67,6 +66,13 @@ ProgressiveState start_state(const RenderOptions& ro, const RenderBudget& budget
     state.slots_per_pixel = slots_per_pixel;
     state.seed = ro.seed;
     if (!state.options.empty()) state.options_hash = hash_options(state.options);
+    return state;
+}
+
+ProgressiveState start_state(const RenderOptions& ro, const RenderBudget& budget,
+                             const std::string& integrator, uint32_t slots_per_pixel, const std::string& unit,
+                             uint64_t target) {
+    ProgressiveState state = render_identity(ro, budget, integrator, slots_per_pixel);
     if (budget.resume) {
         const std::string& path = budget.resume_path;
         check_resumable(*budget.resume, state, path);

@@ -57,6 +57,11 @@ struct RenderBudget {
 // The "Budgets and checkpoints" option table over RenderBudget.
 const options::Table& budget_options();
 
+// The identity of this render as a checkpoint records it (integrator, size, seed, options...), to
+// compare with a checkpoint before trusting anything in it (check_resumable).
+ProgressiveState render_identity(const RenderOptions& ro, const RenderBudget& budget,
+                                 const std::string& integrator, uint32_t slots_per_pixel);
+
 // The state a render starts from: a fresh one for `integrator` (`slots_per_pixel` progressive
 // statistics per pixel; 0 for the sample-based integrators, whose film the caller adds), or the
 // checkpoint being resumed after checking it is the same render (saying what is resumed; a warning

@@ -28,11 +28,13 @@ std::vector<std::string> film_layer_names(const film::Film& film) {
 }  // namespace
 
 SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudget& budget,
-                           const std::string& integrator, Progress& progress)
+                           const std::string& integrator, Progress& progress,
+                           std::function<void(std::string& payload)> payload)
     : P_(P),
       film_(film),
       budget_(budget),
       progress_(progress),
+      payload_(std::move(payload)),
       tiles_(film::make_tiles(P.options.width, P.options.height)),
       t0_(budget.clock_start.value_or(clock::now())),
       last_preview_(clock::now()) {
@@ -59,6 +61,7 @@ SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudg
             layer.set_sums(sums, name.empty() ? state_.rejected_samples : 0);
         }
         state_.film.clear();
+        state_.payload.clear();
     } else {
         state_.tile_samples.assign(tiles_.size(), 0);
     }
@@ -144,9 +147,11 @@ void SamplePasses::save_checkpoint() {
     state_.film.emplace_back("", film_.main().sums());
     for (const std::string& name : film_.layer_names())
         state_.film.emplace_back(name, film_.layer(name).sums());
+    if (payload_) payload_(state_.payload);
     budget_.on_checkpoint(state_);
     state_.film.clear();
     state_.film.shrink_to_fit();
+    std::string().swap(state_.payload);
     last_checkpoint_ = state_.iterations;
     checkpoint_samples_ = taken();
 }

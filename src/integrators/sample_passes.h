@@ -19,6 +19,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -38,8 +39,10 @@ public:
     // Starts the render (fresh, or from budget.resume after checking it is the same render and
     // film) and its progress display: the target is options.spp x options.dof_samples samples per
     // pixel and budget.time seconds.
+    // `payload` (optional) fills the integrator's own data into each checkpoint (the photon maps).
     SamplePasses(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                 const std::string& integrator, Progress& progress);
+                 const std::string& integrator, Progress& progress,
+                 std::function<void(std::string& payload)> payload = {});
 
     const std::vector<film::Tile>& tiles() const { return tiles_; }
     // Whether to run another pass: some tile is short of the target, the time budget was not
@@ -66,6 +69,7 @@ private:
     film::Film& film_;
     const RenderBudget& budget_;
     Progress& progress_;
+    std::function<void(std::string&)> payload_;
     std::vector<film::Tile> tiles_;
     ProgressiveState state_;           // identity, tile_samples (the film's sums are taken when saving)
     uint64_t target_ = 0;              // samples per pixel asked

@@ -63,6 +63,21 @@ struct Builder {
 
 }  // namespace
 
+void BeamBvh::save(ByteWriter& out) const {
+    out.put_vector(nodes_);
+    out.put_vector(spheres_);
+}
+
+void BeamBvh::load(ByteReader& in) {
+    nodes_ = in.get_vector<Node>();
+    spheres_ = in.get_vector<PhotonSphere>();
+    for (const Node& n : nodes_) {
+        const bool ok = n.count == 0 ? n.offset < nodes_.size()
+                                     : n.offset <= spheres_.size() && n.count <= spheres_.size() - n.offset;
+        if (!ok) in.fail("inconsistent beam tree");
+    }
+}
+
 void BeamBvh::build(std::vector<PhotonSphere> spheres, uint32_t leaf_size) {
     nodes_.clear();
     spheres_ = std::move(spheres);

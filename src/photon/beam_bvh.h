@@ -18,6 +18,7 @@
 #include <span>
 #include <vector>
 
+#include "core/byte_buffer.h"
 #include "core/vec.h"
 
 namespace phos::photon {
@@ -64,6 +65,10 @@ public:
     // Replaces the contents with `spheres` in tree order. Runs in the calling thread's oneTBB arena.
     // Throws InputError for non-finite centres or radii and for more than 2^31 spheres.
     void build(std::vector<PhotonSphere> spheres, uint32_t leaf_size = kDefaultLeafSize);
+
+    // Saves and restores the tree exactly (checkpoints); load checks every node's range.
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
 
     size_t size() const { return spheres_.size(); }
     bool empty() const { return spheres_.empty(); }

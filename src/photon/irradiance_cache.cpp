@@ -7,6 +7,10 @@
 
 namespace phos::photon {
 
+void IrradianceCache::save(ByteWriter& out) const { points_.save(out); }
+
+void IrradianceCache::load(ByteReader& in) { points_.load(in); }
+
 void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, uint32_t stride) {
     stride = std::max<uint32_t>(stride, 1);
     const size_t n = (map.size() + stride - 1) / stride;

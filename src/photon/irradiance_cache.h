@@ -22,6 +22,10 @@ public:
     // (cosine >= normal_cos); false if there is none.
     bool lookup(const SurfaceQuery& q, float max_radius, float normal_cos, Rgb& irradiance) const;
 
+    // Saves and restores the cache exactly (checkpoints; see PhotonKdTree::save).
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
+
     size_t size() const { return points_.size(); }
     bool empty() const { return points_.empty(); }
 

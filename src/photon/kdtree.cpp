@@ -127,6 +127,21 @@ void build_range(Key* keys, uint8_t* axes, uint32_t b, uint32_t e, uint32_t leaf
 
 }  // namespace
 
+void PhotonKdTree::save(ByteWriter& out) const {
+    out.put(leaf_size_);
+    out.put_vector(photons_);
+    out.put_vector(input_index_);
+}
+
+void PhotonKdTree::load(ByteReader& in) {
+    leaf_size_ = in.get<uint32_t>();
+    photons_ = in.get_vector<Photon>();
+    input_index_ = in.get_vector<uint32_t>();
+    if (leaf_size_ == 0 || photons_.size() > size_t(0xfffffffeu) ||
+        (!input_index_.empty() && input_index_.size() != photons_.size()))
+        in.fail("inconsistent photon map");
+}
+
 void PhotonKdTree::build(std::span<const Photon> photons, const KdTreeOptions& options) {
     if (photons.size() >= std::numeric_limits<uint32_t>::max() - 1)
         throw InputError("photon map: too many photons for 32-bit indices");

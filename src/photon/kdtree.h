@@ -25,6 +25,7 @@
 #include <span>
 #include <vector>
 
+#include "core/byte_buffer.h"
 #include "core/vec.h"
 #include "photon/photon.h"
 
@@ -58,6 +59,11 @@ public:
     // array). Runs in the calling thread's oneTBB arena (so a tbb::task_arena limits the
     // threads). Throws InputError for non-finite positions or more than 2^32 - 2 photons.
     void build(std::span<const Photon> photons, const KdTreeOptions& options = {});
+
+    // Saves the tree (photons in tree order, input indices, leaf size) and restores it exactly:
+    // a checkpoint holds the maps so a resumed render need not trace them again.
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
 
     size_t size() const { return photons_.size(); }
     bool empty() const { return photons_.empty(); }

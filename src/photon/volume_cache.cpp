@@ -27,6 +27,17 @@ VolumeMoments volume_moments(const PhotonKdTree& map, const VolumeEstimateOption
     return m;
 }
 
+void VolumeCache::save(ByteWriter& out) const {
+    points_.save(out);
+    out.put_vector(moments_);
+}
+
+void VolumeCache::load(ByteReader& in) {
+    points_.load(in);
+    moments_ = in.get_vector<VolumeMoments>();
+    if (moments_.size() != points_.size()) in.fail("inconsistent volume cache");
+}
+
 void VolumeCache::build(const PhotonKdTree& volume, const VolumeEstimateOptions& volume_options,
                         const PhotonKdTree& volume_caustic, const VolumeEstimateOptions& caustic_options,
                         uint32_t stride) {

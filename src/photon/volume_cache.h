@@ -49,6 +49,10 @@ public:
     // The estimate of the nearest cache point within max_radius of x; false if there is none.
     bool lookup(Vec3 x, float max_radius, Vec3 wo, float g, Rgb& estimate) const;
 
+    // Saves and restores the cache exactly (checkpoints; see PhotonKdTree::save).
+    void save(ByteWriter& out) const;
+    void load(ByteReader& in);
+
     size_t size() const { return points_.size(); }
     bool empty() const { return points_.empty(); }
 

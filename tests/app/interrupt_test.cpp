@@ -129,6 +129,36 @@ INSTANTIATE_TEST_SUITE_P(
                       Case{"photonmap", "--spp 24 --global 20000 --caustic 20000 --gather-rays 16"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.integrator); });
 
+// A finished render extended through its checkpoint equals the longer render made at once; for
+// the photon mapper the checkpoint holds the maps, which are read instead of traced again. Below 9
+// samples per pixel its caustic kernel depends on the count, so that extension is refused.
+TEST(Resume, ExtendingARenderEqualsRenderingItWhole) {
+    TempDir dir;
+    for (const char* integrator : {"path", "photonmap"}) {
+        const std::string ckpt = dir.file(std::string(integrator) + ".ckpt");
+        const std::string args = "render " + kCornell + " --integrator " + integrator +
+                                 " --width 32 --height 32 --global 20000 --caustic 20000 --gather-rays 8 -q";
+        ASSERT_EQ(run_phos(args + " --spp 12 --checkpoint " + ckpt + " -o " + dir.file("a.pfm")).exit_code,
+                  0);
+        const auto more = run_phos(args + " --spp 20 --resume " + ckpt + " -v -o " + dir.file("b.pfm"));
+        ASSERT_EQ(more.exit_code, 0) << more.output;
+        ASSERT_EQ(run_phos(args + " --spp 20 -o " + dir.file("c.pfm")).exit_code, 0);
+        EXPECT_TRUE(read_bytes(dir.file("b.pfm")) == read_bytes(dir.file("c.pfm"))) << integrator;
+        if (std::string(integrator) == "photonmap") {
+            EXPECT_NE(more.output.find("photon maps read from the checkpoint"), std::string::npos)
+                << more.output;
+            EXPECT_EQ(more.output.find("time photon trace"), std::string::npos) << more.output;
+            ASSERT_EQ(run_phos(args + " --spp 4 --checkpoint " + ckpt + " -o " + dir.file("d.pfm")).exit_code,
+                      0);
+            const auto low = run_phos(args + " --spp 8 --resume " + ckpt + " -o " + dir.file("e.pfm"));
+            EXPECT_EQ(low.exit_code, 2) << low.output;
+            EXPECT_NE(low.output.find("depends on it below 9 samples) differs: checkpoint 4, now 8"),
+                      std::string::npos)
+                << low.output;
+        }
+    }
+}
+
 // SIGINT mid-render: exit 130, the image so far (each pixel normalised by its own samples, so its
 // mean matches a finished render's), the checkpoint (tiles part-way through a pass included); the
 // resumed render equals an uninterrupted one of the same total.

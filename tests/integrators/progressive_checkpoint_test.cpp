@@ -39,6 +39,15 @@ ProgressiveState sample_state() {
             s.slots[i].direct[c] = -1.0 / 7.0 * double(c + 1);
         }
     }
+    // The sample-based integrators' parts (a real checkpoint has either these or slots).
+    s.rejected_samples = 3;
+    s.tile_samples = {7, 8, 7};
+    for (const char* layer : {"", "caustic"}) {
+        std::vector<double> sums(5 * 3 * 4);
+        for (size_t i = 0; i < sums.size(); ++i) sums[i] = std::sin(double(i) + double(layer[0]));
+        s.film.emplace_back(layer, sums);
+    }
+    s.payload = std::string("maps\0with\xff bytes", 16);
     return s;
 }
 
@@ -73,6 +82,10 @@ TEST(Checkpoint, RoundTripIsExact) {
     EXPECT_EQ(t.target_iterations, s.target_iterations);
     ASSERT_EQ(t.slots.size(), s.slots.size());
     EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(sppm::PixelStats)), 0);
+    EXPECT_EQ(t.rejected_samples, s.rejected_samples);
+    EXPECT_EQ(t.tile_samples, s.tile_samples);
+    EXPECT_EQ(t.film, s.film);
+    EXPECT_EQ(t.payload, s.payload);
 }
 
 TEST(Checkpoint, TruncatedFilesAreRefused) {
