@@ -22,9 +22,10 @@ struct CommandResult {
     std::string output;  // stdout and stderr together
 };
 
-// Runs `phos ARGS` through the shell, capturing its output.
-inline CommandResult run_phos(const std::string& args) {
-    const std::string cmd = std::string(PHOS_BINARY) + " " + args + " 2>&1";
+// Runs `phos ARGS` through the shell, capturing its output; `env` ("NAME=value ...") is set for
+// it alone.
+inline CommandResult run_phos_env(const std::string& env, const std::string& args) {
+    const std::string cmd = "env " + env + " " + std::string(PHOS_BINARY) + " " + args + " 2>&1";
     CommandResult r;
     FILE* pipe = popen(cmd.c_str(), "r");
     if (!pipe) return r;
@@ -35,6 +36,9 @@ inline CommandResult run_phos(const std::string& args) {
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     return r;
 }
+
+// Runs `phos ARGS` through the shell, capturing its output.
+inline CommandResult run_phos(const std::string& args) { return run_phos_env("", args); }
 
 // A fresh directory (mkdtemp) under the system temp dir, removed with its contents at the end
 // of the test. Shared by every test folder.

@@ -41,6 +41,10 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
         opt_.on_checkpoint(state_);
         last_checkpoint_ = state_.iterations;
     }
+    if (opt_.on_frame) {
+        resolve_film();
+        opt_.on_frame(film_);
+    }
     const auto now = clock::now();
     time_up_ = opt_.time > 0 && std::chrono::duration<double>(now - t0_).count() >= opt_.time;
     if (next() && opt_.on_preview && opt_.write_every > 0 &&

@@ -15,6 +15,7 @@
 
 #include "core/option_table.h"
 #include "film/film.h"
+#include "film/tiles.h"
 #include "integrators/options.h"
 #include "integrators/progressive_checkpoint.h"
 
@@ -38,6 +39,11 @@ struct RenderBudget {
     std::function<void(const film::Film& film)> on_preview;            // every write_every seconds
     std::function<void(const ProgressiveState& state)> on_checkpoint;  // every checkpoint_every
     std::shared_ptr<const ProgressiveState> resume;                    // state to continue from
+    // Watchers of the image as it converges (--preview, --tev). `on_tile` runs on a rendering
+    // thread when a tile has taken its samples of a pass (nothing writes the tile meanwhile: copy
+    // its pixels and return); `on_frame` after each pass or iteration with the whole film.
+    std::function<void(const film::Film& film, const film::Tile& tile)> on_tile;
+    std::function<void(const film::Film& film)> on_frame;
     // The render's identity stored in checkpoints: the app fills the scene hash, the image-changing
     // options by flag and value and the command line; the integrator sets the rest.
     ProgressiveState identity;

@@ -111,6 +111,7 @@ void SamplePasses::tile_done(size_t t, const RayCounts& rays) {
     const auto [first, last] = range(t);
     state_.tile_samples[t] = last;
     P_.stats.add_rays(rays);
+    if (budget_.on_tile) budget_.on_tile(film_, tiles_[t]);
     if (!timed_) progress_.advance(uint64_t(tiles_[t].pixel_count()) * (last - first));
 }
 
@@ -121,6 +122,7 @@ void SamplePasses::after_pass() {
     budget_.done->started = true;
     budget_.done->units = state_.iterations;
     if (timed_) progress_.advance(state_.iterations - before);
+    if (budget_.on_frame) budget_.on_frame(film_);
     if (budget_.on_checkpoint && budget_.checkpoint_every > 0 &&
         state_.iterations >= last_checkpoint_ + uint64_t(budget_.checkpoint_every) && !stopped())
         save_checkpoint();

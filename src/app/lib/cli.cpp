@@ -16,6 +16,7 @@
 #include "accel/version.h"
 #include "app/lib/diff_command.h"
 #include "app/lib/image_commands.h"
+#include "app/lib/photons_command.h"  // phos photons
 #include "app/lib/render_command.h"
 #include "app/lib/seed_flags.h"
 #include "core/error.h"
@@ -27,7 +28,7 @@ namespace phos::app {
 namespace {
 
 constexpr const char* kVersion = "0.2.0";
-const std::vector<std::string> kCommands{"render", "diff", "info", "montage", "options", "help"};
+const std::vector<std::string> kCommands{"render", "diff", "info", "montage", "options", "photons", "help"};
 
 std::string version_text() {
     std::string s = std::string("phos ") + kVersion + "\n";
@@ -211,6 +212,11 @@ int run_cli(int argc, char** argv) {
     mont->add_option("images", montage_in, "images to place, in order")->required();
     mont->add_option("--cell", montage_cell, "cell size in pixels (default 128)");
 
+    // ---- phos photons (photons_command.h): the photon maps as a point cloud ----
+    PhotonsCommand photons_cmd;
+    CLI::App* photons = add_photons_command(app, photons_cmd, register_table);
+    // ---- end phos photons ----
+
     CLI::App* opts = app.add_subcommand("options", "print every render option (markdown: docs/options.md)");
     bool markdown = false;
     opts->add_flag("--markdown", markdown, "markdown table (the default; kept for scripts)");
@@ -240,6 +246,10 @@ int run_cli(int argc, char** argv) {
     }
 
     move_trailing_output(args);
+    // `--tev` alone (at the end, or before another option or a scene file): tev's default address.
+    for (size_t i = 0; i < args.size(); ++i)
+        if (args[i] == "--tev" && (i + 1 == args.size() || args[i + 1].find(':') == std::string::npos))
+            args.insert(args.begin() + long(i) + 1, kTevDefault);
 
     // Returns -1 when parsing succeeded, else the exit code.
     auto parse = [&](std::vector<std::string> a) {
@@ -292,6 +302,7 @@ int run_cli(int argc, char** argv) {
             }
             return 0;
         }
+        if (photons->parsed()) return run_photons(photons_cmd);  // phos photons
         if (opts->parsed()) {
             std::fputs(options_markdown().c_str(), stdout);
             return 0;

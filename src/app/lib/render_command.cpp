@@ -24,6 +24,9 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "display/live_image.h"
+#include "display/preview_window.h"
+#include "display/tev_stream.h"
 #include "film/film.h"
 #include "integrators/aov.h"
 #include "integrators/factory.h"
@@ -399,6 +402,17 @@ int run_render(const RenderCommand& command) {
         throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
     setup_budget(cmd, output, progressive);
     cmd.budget.clock_start = clock_start;
+    // Watching the render (--preview, --tev): the render copies finished tiles and frames into the
+    // live image, which the window's and the stream's threads read.
+    std::unique_ptr<display::LiveImage> live;
+    std::optional<io::TevAddress> tev_address;
+    if (!cmd.run.tev.empty()) tev_address = io::parse_tev_address(cmd.run.tev);  // a bad one: exit 2 now
+    if (cmd.run.preview || tev_address) {
+        live = std::make_unique<display::LiveImage>(cmd.render.width, cmd.render.height);
+        display::LiveImage* l = live.get();
+        cmd.budget.on_tile = [l](const film::Film& f, const film::Tile& t) { l->update_tile(f, t); };
+        cmd.budget.on_frame = [l](const film::Film& f) { l->update_frame(f); };
+    }
 
     integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, cmd.budget};
     auto integrator = integrators::make_integrator(integrator_name, config);
@@ -439,6 +453,36 @@ int run_render(const RenderCommand& command) {
                   "), seed " + std::to_string(opt.seed));
     }
 
+    display::PreviewWindow window;
+    if (cmd.run.preview) {
+        display::PreviewOptions po;
+        po.title = "phos: " + std::filesystem::path(cmd.scene_path).filename().string();
+        po.exposure = cmd.run.exposure;
+        po.hold = cmd.run.preview_hold;
+        const std::filesystem::path out_path(output);
+        po.snapshot_stem = (out_path.parent_path() / out_path.stem()).string();
+        po.screenshot_path = cmd.run.preview_screenshot;
+        std::string why;
+        if (!window.start(*live, po, why)) log::warn("--preview: " + why + "; rendering without the window");
+    }
+    display::TevStream tev;
+    if (tev_address)
+        tev.start(*live, *tev_address,
+                  "phos: " + std::filesystem::path(cmd.scene_path).filename().string() + " (" +
+                      std::to_string(::getpid()) + ")");
+    // The stream sends the final image and the window closes (or, with --preview-hold, waits to be
+    // closed) however the render ends.
+    struct CloseLive {
+        display::LiveImage* live;
+        display::TevStream& tev;
+        display::PreviewWindow& window;
+        ~CloseLive() {
+            if (live) live->finish();
+            tev.finish();
+            window.finish();
+        }
+    } close_live{live.get(), tev, window};
+
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
     Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet));
@@ -461,6 +505,7 @@ int run_render(const RenderCommand& command) {
     } else if (!opt.aovs.empty()) {
         log::warn("interrupted: the auxiliary images (--aov) are not written");
     }
+    if (live) live->update_frame(film);  // the final image, with the AOVs
     const std::vector<std::string> layers = written_layers(film, opt);
     {
         ScopedTimer t(stats, "write");

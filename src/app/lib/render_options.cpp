@@ -61,6 +61,20 @@ const options::Table& run_options() {
                      "the memory available: free memory, cgroup and RLIMIT_AS limits)");
         mem.effect = Effect::None;
         mem.default_text = "0 (the memory available)";
+        b.flag("preview", &RunOptions::preview,
+               "show the image in a window as it converges (keys: + - exposure, l layer, s save, q stop)")
+            .effect = Effect::None;
+        b.flag("preview-hold", &RunOptions::preview_hold,
+               "keep the --preview window open after the render until it is closed")
+            .effect = Effect::None;
+        auto& shot = b.text("preview-screenshot", &RunOptions::preview_screenshot, "FILE",
+                            "write the --preview window's pixels to FILE when it closes (docs, tests)");
+        shot.effect = Effect::None;
+        shot.default_text = "none";
+        auto& tev = b.text("tev", &RunOptions::tev, "HOST:PORT",
+                           "stream the image to a running tev viewer (alone: " + std::string(kTevDefault) + ")");
+        tev.effect = Effect::None;
+        tev.default_text = "none";
         return b.build();
     }();
     return table;

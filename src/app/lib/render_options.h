@@ -16,6 +16,9 @@
 
 namespace phos::app {
 
+// Where `--tev` streams when given without HOST:PORT (tev's own default).
+inline constexpr const char* kTevDefault = "127.0.0.1:14158";
+
 // Options of the run itself (none changes the image's radiance).
 struct RunOptions {
     std::string output;  // empty: the scene file's Film filename
@@ -30,6 +33,10 @@ struct RunOptions {
     bool strict = false;
     float max_memory = 0;            // GB the render may take (0 = the memory available)
     std::string quality = "normal";  // budget preset (quality_preset)
+    bool preview = false;            // --preview: a window showing the image as it converges
+    bool preview_hold = false;       // keep the window after the render until closed
+    std::string preview_screenshot;  // the window's pixels written here when it closes
+    std::string tev;                 // --tev HOST:PORT: stream to a tev viewer (empty: no)
 };
 
 // How the scene is read and shaded (they change the image).

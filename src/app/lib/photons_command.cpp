@@ -1,0 +1,259 @@
+// `phos photons`: the command line (the render option tables that bear on the photon maps, plus
+// the output options), then load and prepare the scene as `phos render` does, trace the maps with
+// the photon mapper's own pass 1 and write the chosen maps as a point cloud, atomically.
+#include "app/lib/photons_command.h"
+
+#include <tbb/global_control.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+
+#include "app/lib/memory_check.h"
+#include "app/lib/photon_cloud.h"
+#include "core/error.h"
+#include "core/interrupt.h"
+#include "core/log.h"
+#include "core/stats.h"
+#include "integrators/photon_map.h"
+#include "integrators/prepared.h"
+#include "io/image/atomic_write.h"
+#include "io/load_scene.h"
+#include "scene/emission_lights.h"
+
+namespace phos::app {
+namespace {
+
+// `table` with only the options named in `keep` (same entries, so the same names, checks, help).
+options::Table only(const options::Table& table, const std::vector<std::string>& keep) {
+    options::Table t = table;
+    std::erase_if(t.options, [&](const options::Option& o) {
+        return std::find(keep.begin(), keep.end(), o.name) == keep.end();
+    });
+    return t;
+}
+
+const options::Table& photons_run_options() {
+    static const options::Table t =
+        only(run_options(), {"threads", "verbose", "quiet", "strict", "max-memory", "quality"});
+    return t;
+}
+
+const options::Table& photons_sampling_options() {
+    static const options::Table t = only(integrators::sampling_options(), {"seed"});
+    return t;
+}
+
+// The scene file's integrator parameters (pbrt `Integrator ... "integer seed" 5`) onto the option
+// tables by name, as phos render applies them: the command line wins; a bad value is an error at
+// the parameter; one that no option takes is an error with --strict (render warns about it).
+std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
+    std::set<std::string> applied;
+    const scene::RenderSettings& st = scene.settings;
+    for (const scene::IntegratorParameter& p : st.integrator_parameters) {
+        const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
+        const options::Option* opt = nullptr;
+        void* object = nullptr;
+        for (const BoundTable& b : cmd.tables())
+            if (const options::Option* o = b.table->find_pbrt(p.name)) opt = o, object = b.object;
+        if (!opt) {
+            if (cmd.run.strict && st.unavailable_integrator.empty())
+                throw ParseError(p.file, p.line, p.column, what + " is not used by phos");
+            continue;
+        }
+        if (cmd.was_given(opt->name)) continue;
+        if (!opt->pbrt_unset.empty() && p.values == std::vector<std::string>{opt->pbrt_unset}) continue;
+        if (int(p.values.size()) != opt->arity)
+            throw ParseError(
+                p.file, p.line, p.column,
+                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
+        try {
+            opt->set(object, p.values);
+            applied.insert(opt->name);
+        } catch (const options::ValueError& e) {
+            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
+        }
+    }
+    return applied;
+}
+
+// The --quality preset's photon budgets, except those given on the command line or by the scene.
+void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene) {
+    for (const auto& [name, value] : quality_preset(cmd.run.quality)) {
+        if (cmd.was_given(name) || from_scene.count(name)) continue;
+        if (const options::Option* o = integrators::photon_map_options().find(name))
+            o->set(&cmd.photon_map, {value});
+    }
+}
+
+// Checks everything that can be checked before any work: output path, format, map names.
+std::vector<int> check_request(const PhotonsCommand& cmd) {
+    const std::string& out = cmd.output;
+    if (out.empty())
+        throw InputError("photons: no output file: give -o FILE (.ply, or .txt with --format text)");
+    if (cmd.ascii && cmd.format != "ply") throw InputError("--ascii is for --format ply");
+    const std::filesystem::path dir = std::filesystem::absolute(out).parent_path();
+    if (!std::filesystem::is_directory(dir))
+        throw InputError("output '" + out + "': directory '" + dir.string() + "' does not exist");
+    if (std::filesystem::is_directory(out)) throw InputError("output '" + out + "' is a directory");
+    return cmd.maps.empty() ? std::vector<int>{} : parse_photon_maps(cmd.maps);
+}
+
+// Why map `m` may hold no photons, for the error when --maps asks for it.
+std::string empty_map_hint(int m, size_t lights) {
+    if (lights == 0) return "the scene has no lights";
+    switch (m) {
+        case photon::kGlobalMap:
+            return "--fast-global traces the indirect map instead";
+        case photon::kCausticMap:
+            return "only scenes with mirrors or glass have caustic photons; --no-caustic leaves it out";
+        case photon::kIndirectMap:
+            return "it is traced with --fast-global";
+        default:
+            return "only scenes with participating media have volume photons";
+    }
+}
+
+}  // namespace
+
+CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable register_table) {
+    CLI::App* sub = app.add_subcommand(
+        "photons",
+        "trace the photon maps as 'phos render --integrator photonmap' would with the same options and "
+        "write them as a point cloud (PLY for MeshLab / CloudCompare, or --format text)");
+    sub->add_option("scene", cmd.scene_path, "scene file (.scn, .pbrt, .scene)")->required();
+    sub->add_option("-o,--output", cmd.output, "point cloud to write (.ply; .txt with --format text)")
+        ->type_name("FILE")
+        ->group("Output");
+    sub->add_option("--format", cmd.format,
+                    "ply: x y z, red green blue, power_r power_g power_b (W), dx dy dz, nx ny nz, map per "
+                    "photon; text: the dissertation viewer's format (the count, then per photon position, "
+                    "power, direction) (default: ply)")
+        ->check(CLI::IsMember({"ply", "text"}))
+        ->type_name("ply|text")
+        ->group("Output");
+    sub->add_flag("--ascii", cmd.ascii, "ASCII PLY instead of binary little-endian")->group("Output");
+    sub->add_option("--maps", cmd.maps,
+                    "maps to write, comma-separated: global, caustic, indirect, volume, volume-caustic "
+                    "(default: every map the photon mapper traces for this scene and these options)")
+        ->type_name("LIST")
+        ->group("Output");
+    RenderCommand& s = cmd.settings;
+    for (const BoundTable& b : std::vector<BoundTable>{{&photons_run_options(), &s.run},
+                                                       {&photons_sampling_options(), &s.render},
+                                                       {&scene_options(), &s.scene},
+                                                       {&integrators::photon_map_options(), &s.photon_map}})
+        register_table(*sub, b, s.given);
+    return sub;
+}
+
+int run_photons(const PhotonsCommand& command) {
+    RenderCommand cmd = command.settings;
+    log::set_quiet(cmd.run.quiet);
+    std::vector<int> kinds = check_request(command);
+    interrupt::install_handlers();
+    std::optional<tbb::global_control> threads;
+    if (cmd.run.threads > 0)
+        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
+
+    // As run_render (render_command.cpp): load, resolve options, prepare.
+    Stats stats;
+    scene::Scene scene;
+    {
+        ScopedTimer t(stats, "load");
+        scene = io::load_scene(command.scene_path, {.raw_materials = cmd.scene.raw_materials,
+                                                    .legacy_attenuation = cmd.scene.legacy_attenuation,
+                                                    .strict = cmd.run.strict,
+                                                    .no_default_lights = cmd.scene.no_default_lights});
+        if (cmd.scene.emission_lights && scene::emissive_shapes_to_lights(scene) == 0)
+            log::warn("--emission-lights: the scene has no emissive surfaces");
+    }
+    cmd.run.integrator = "photonmap";
+    apply_quality(cmd, apply_scene_parameters(cmd, scene));
+    for (const BoundTable& b : cmd.tables()) {
+        try {
+            options::validate(*b.table, b.object);
+        } catch (const options::ValueError& e) {
+            throw InputError(e.what());
+        }
+    }
+    // The irradiance cache and the beam BVH are built from the maps after tracing; they change no
+    // photon record, so they are skipped here.
+    integrators::PhotonMapOptions pm = cmd.photon_map;
+    pm.irradiance_cache = false;
+    pm.volume_estimate = integrators::VolumeEstimate::March;
+    {
+        RenderCommand estimate = cmd;
+        estimate.photon_map = pm;
+        check_memory(estimate, scene, stats);
+    }
+
+    const integrators::RenderOptions& opt = cmd.render;
+    integrators::PrepareOptions prep;
+    prep.bsdf.schlick = cmd.scene.schlick;
+    prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
+    prep.lens_radius = opt.lens_radius;
+    prep.focal_distance = opt.focal_distance;
+    std::optional<integrators::Prepared> prepared;
+    {
+        ScopedTimer t(stats, "prepare");
+        prepared.emplace(scene, opt, prep, stats);
+    }
+    if (prepared->lights.size() == 0)
+        log::warn(command.scene_path + ": the scene has no lights; the photon maps are empty");
+    log::info("phos: " + std::filesystem::path(command.scene_path).filename().string() +
+              ": tracing the photonmap integrator's photon maps, seed " + std::to_string(opt.seed));
+
+    integrators::PhotonMaps maps;
+    {
+        ScopedTimer t(stats, "photon maps");
+        maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared);
+    }
+    if (interrupt::requested()) {
+        log::warn("interrupted while tracing photons: nothing written" +
+                  std::string(std::filesystem::exists(command.output)
+                                  ? " ('" + command.output + "' is unchanged)"
+                                  : ""));
+        return interrupt::exit_status(interrupt::signal_number());
+    }
+    if (kinds.empty()) {
+        for (int m = 0; m < photon::kMapCount; ++m)
+            if (maps.emitted[m] > 0 || !maps.map[m].empty()) kinds.push_back(m);
+    } else {
+        for (const int m : kinds)
+            if (maps.map[m].empty())
+                throw InputError(std::string("--maps: the ") + photon_map_label(m) +
+                                 " map holds no photons for this scene and these options (" +
+                                 empty_map_hint(m, prepared->lights.size()) + ")");
+    }
+
+    const io::PointCloud cloud = photon_cloud(maps, kinds);
+    {
+        ScopedTimer t(stats, "write");
+        io::atomic_write(command.output, [&](const std::string& temp) {
+            std::ofstream f(temp, std::ios::binary);
+            if (!f) throw InputError("cannot open the temporary file");
+            if (command.format == "text")
+                io::write_point_text(f, cloud, photon_text_columns());
+            else
+                io::write_ply_points(f, cloud, !command.ascii);
+            f.close();
+            if (!f) throw InputError("write failed");
+        });
+    }
+    if (cmd.run.verbose) {
+        add_peak_memory(stats);
+        std::fputs(stats.report().c_str(), stderr);
+    }
+    std::string counts;
+    for (const int m : kinds)
+        counts += (counts.empty() ? "" : ", ") + std::string(photon_map_label(m)) + " " +
+                  std::to_string(maps.map[m].size());
+    log::info("phos: wrote " + command.output + " (" + std::to_string(cloud.size()) + " photons" +
+              (counts.empty() ? "" : ": " + counts) + ")");
+    return 0;
+}
+
+}  // namespace phos::app

@@ -1,0 +1,39 @@
+// `phos photons SCENE -o photons.ply`: traces the photon maps exactly as `phos render
+// --integrator photonmap` would with the same options (same seed, same records) and writes them as
+// a point cloud: PLY (binary, or --ascii) or the dissertation viewer's text format.
+#pragma once
+
+#include <set>
+#include <string>
+
+#include "app/lib/render_options.h"
+
+namespace CLI {
+class App;
+}
+
+namespace phos::app {
+
+struct PhotonsCommand {
+    std::string scene_path;
+    std::string output;
+    std::string format = "ply";  // ply | text
+    bool ascii = false;          // ASCII PLY instead of binary little-endian
+    std::string maps;            // comma-separated map names; empty: every traced map
+    // The options phos render takes for the photon maps, under the same names: the photon-map and
+    // scene tables, --seed, and --threads, -v, -q, --strict, --quality of the run table.
+    RenderCommand settings;
+};
+
+// How cli.cpp registers an option table on a (sub)command: the same callbacks, validation and
+// --help text as for `phos render`.
+using RegisterTable = void (*)(CLI::App&, const BoundTable&, std::set<std::string>&);
+
+// Adds the `photons` subcommand to `app`, filling `cmd` when parsed.
+CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable register_table);
+
+// Runs it; throws ParseError / InputError for bad input (nothing is written). Returns the exit
+// status: 0, or 128 + the signal when an interrupt stopped the tracing (nothing written).
+int run_photons(const PhotonsCommand& cmd);
+
+}  // namespace phos::app

@@ -1,0 +1,293 @@
+// The preview window's thread (see preview_window.h): GLFW window, one RGB8 texture drawn as a
+// letterboxed quad with the legacy fixed pipeline (works on any GL, Mesa's software one included),
+// tone-mapped on the CPU exactly as PNG output is (io/image/tonemap.h), so what the window shows is
+// what `-o out.png` writes.
+#include "display/preview_window.h"
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <csignal>
+#include <cstdio>
+#include <mutex>
+#include <vector>
+
+#include "core/interrupt.h"
+#include "core/log.h"
+#include "io/image/image_io.h"
+#include "io/image/tonemap.h"
+
+#ifdef PHOS_HAS_GLFW
+#include <GLFW/glfw3.h>
+#endif
+
+namespace phos::display {
+
+struct PreviewWindow::State {
+    const LiveImage* image = nullptr;
+    PreviewOptions options;
+    std::atomic<bool> render_done{false};
+    std::mutex mutex;
+    std::condition_variable cv;
+    int started = 0;  // 0 pending, 1 open, -1 failed
+    std::string why;
+    std::vector<int> keys;  // pressed since the last frame (the window thread only)
+};
+
+PreviewWindow::PreviewWindow() : state_(std::make_unique<State>()) {}
+
+PreviewWindow::~PreviewWindow() {
+    if (thread_.joinable()) {
+        state_->options.hold = false;
+        finish();
+    }
+}
+
+#ifdef PHOS_HAS_GLFW
+
+PreviewKey preview_key(int key) {
+    switch (key) {
+        case GLFW_KEY_EQUAL:
+        case GLFW_KEY_KP_ADD:
+        case GLFW_KEY_RIGHT_BRACKET:
+            return PreviewKey::ExposureUp;
+        case GLFW_KEY_MINUS:
+        case GLFW_KEY_KP_SUBTRACT:
+        case GLFW_KEY_LEFT_BRACKET:
+            return PreviewKey::ExposureDown;
+        case GLFW_KEY_L:
+        case GLFW_KEY_TAB:
+            return PreviewKey::NextLayer;
+        case GLFW_KEY_S:
+            return PreviewKey::Save;
+        case GLFW_KEY_Q:
+        case GLFW_KEY_ESCAPE:
+            return PreviewKey::Quit;
+        default:
+            return PreviewKey::None;
+    }
+}
+
+bool preview_available() { return true; }
+
+namespace {
+
+std::mutex g_error_mutex;
+std::string g_error;
+
+void on_glfw_error(int, const char* description) {
+    std::lock_guard lock(g_error_mutex);
+    g_error = description ? description : "unknown GLFW error";
+}
+
+std::string last_glfw_error() {
+    std::lock_guard lock(g_error_mutex);
+    return g_error.empty() ? "no display" : g_error;
+}
+
+// The window's size for a width x height image: shrunk to fit 1280 x 960, small images magnified
+// by an integer factor (up to 4) so they stay visible.
+void window_size(int w, int h, int& ww, int& wh) {
+    double scale = std::min({1.0, 1280.0 / w, 960.0 / h});
+    if (scale >= 1.0) scale = std::clamp(std::floor(std::min(512.0 / w, 512.0 / h)), 1.0, 4.0);
+    ww = std::max(1, int(std::lround(w * scale)));
+    wh = std::max(1, int(std::lround(h * scale)));
+}
+
+// Draws the texture letterboxed into the framebuffer.
+void draw(GLFWwindow* window, GLuint texture, int w, int h) {
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    glViewport(0, 0, fw, fh);
+    glClearColor(0.12f, 0.12f, 0.12f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    const double s = std::min(double(fw) / w, double(fh) / h);
+    const float sx = float(w * s / fw), sy = float(h * s / fh);
+    glEnable(GL_TEXTURE_2D);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glBegin(GL_QUADS);  // texture rows are top row first: t = 0 at the top
+    glTexCoord2f(0, 1);
+    glVertex2f(-sx, -sy);
+    glTexCoord2f(1, 1);
+    glVertex2f(sx, -sy);
+    glTexCoord2f(1, 0);
+    glVertex2f(sx, sy);
+    glTexCoord2f(0, 0);
+    glVertex2f(-sx, sy);
+    glEnd();
+    glDisable(GL_TEXTURE_2D);
+}
+
+// The framebuffer's pixels (bottom row first in GL) as a linear image, top row first.
+Image read_framebuffer(GLFWwindow* window) {
+    int fw = 0, fh = 0;
+    glfwGetFramebufferSize(window, &fw, &fh);
+    std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    Image img(fw, fh);
+    for (int y = 0; y < fh; ++y)
+        for (int x = 0; x < fw; ++x) {
+            const uint8_t* p = &rgb[(size_t(fh - 1 - y) * size_t(fw) + size_t(x)) * 3];
+            img.at(x, y) =
+                Rgb(io::srgb8_to_linear(p[0]), io::srgb8_to_linear(p[1]), io::srgb8_to_linear(p[2]));
+        }
+    return img;
+}
+
+void run_window(PreviewWindow::State& s);
+
+}  // namespace
+
+bool PreviewWindow::start(const LiveImage& image, const PreviewOptions& options, std::string& why) {
+    state_->image = &image;
+    state_->options = options;
+    thread_ = std::thread([this] { run_window(*state_); });
+    std::unique_lock lock(state_->mutex);
+    state_->cv.wait(lock, [&] { return state_->started != 0; });
+    if (state_->started > 0) return true;
+    why = state_->why;
+    lock.unlock();
+    thread_.join();
+    return false;
+}
+
+void PreviewWindow::finish() {
+    if (!thread_.joinable()) return;
+    state_->render_done = true;
+    glfwPostEmptyEvent();
+    thread_.join();
+}
+
+namespace {
+
+void run_window(PreviewWindow::State& s) {
+    const auto report = [&](int started, const std::string& why) {
+        std::lock_guard lock(s.mutex);
+        s.started = started;
+        s.why = why;
+        s.cv.notify_all();
+    };
+    glfwSetErrorCallback(on_glfw_error);
+    if (!glfwInit()) return report(-1, last_glfw_error());
+    const LiveImage& image = *s.image;
+    const int w = image.width(), h = image.height();
+    int ww = 0, wh = 0;
+    window_size(w, h, ww, wh);
+    glfwWindowHint(GLFW_RESIZABLE, GLFW_TRUE);
+    GLFWwindow* window = glfwCreateWindow(ww, wh, s.options.title.c_str(), nullptr, nullptr);
+    if (!window) {
+        const std::string why = last_glfw_error();
+        glfwTerminate();
+        return report(-1, why);
+    }
+    glfwMakeContextCurrent(window);
+    glfwSwapInterval(0);
+    glfwSetWindowUserPointer(window, &s);
+    glfwSetKeyCallback(window, [](GLFWwindow* win, int key, int, int action, int) {
+        if (action == GLFW_PRESS || action == GLFW_REPEAT)
+            static_cast<PreviewWindow::State*>(glfwGetWindowUserPointer(win))->keys.push_back(key);
+    });
+    report(1, "");
+
+    GLuint texture = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, nullptr);
+
+    uint64_t shown = ~uint64_t(0);
+    size_t layer = 0;
+    float exposure = s.options.exposure;
+    bool view_changed = true;
+    int snapshots = 0;
+    Image current(w, h);
+    while (!glfwWindowShouldClose(window)) {
+        const uint64_t version = image.version();
+        if (s.render_done && !s.options.hold && version == shown) break;  // the final image is shown
+        glfwWaitEventsTimeout(0.05);
+        const std::vector<std::string> names = image.layer_names();
+        for (int key : s.keys) {
+            switch (preview_key(key)) {
+                case PreviewKey::ExposureUp:
+                    exposure += 0.5f, view_changed = true;
+                    break;
+                case PreviewKey::ExposureDown:
+                    exposure -= 0.5f, view_changed = true;
+                    break;
+                case PreviewKey::NextLayer:
+                    layer = (layer + 1) % names.size(), view_changed = true;
+                    break;
+                case PreviewKey::Save:
+                    if (!s.options.snapshot_stem.empty()) {
+                        const std::string path =
+                            s.options.snapshot_stem + ".snapshot-" + std::to_string(++snapshots) + ".exr";
+                        try {
+                            io::write_image(path, current);
+                            log::info("phos: preview: saved " + names[layer % names.size()] + " to " + path);
+                        } catch (const std::exception& e) {
+                            log::warn(std::string("preview: ") + e.what());
+                        }
+                    }
+                    break;
+                case PreviewKey::Quit:
+                    if (!s.render_done)
+                        interrupt::request(SIGINT);  // as Ctrl-C
+                    else
+                        glfwSetWindowShouldClose(window, GLFW_TRUE);
+                    break;
+                case PreviewKey::None:
+                    break;
+            }
+        }
+        s.keys.clear();
+        const uint64_t now = image.version();
+        if (now == shown && !view_changed) continue;
+        layer %= names.size();
+        const std::vector<Rgb> values = image.read(layer);
+        for (size_t i = 0; i < values.size() && i < current.pixels.size(); ++i) current.pixels[i] = values[i];
+        const std::vector<uint8_t> rgb = io::to_srgb8(current, exposure);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+        char title[256];
+        std::snprintf(title, sizeof title, "%s  [%s, exposure %+.1f%s]", s.options.title.c_str(),
+                      names[layer].c_str(), exposure, s.render_done ? ", done" : "");
+        glfwSetWindowTitle(window, title);
+        draw(window, texture, w, h);
+        glfwSwapBuffers(window);
+        shown = now;
+        view_changed = false;
+    }
+    if (!s.options.screenshot_path.empty()) {
+        draw(window, texture, w, h);
+        try {
+            io::write_image(s.options.screenshot_path, read_framebuffer(window));
+        } catch (const std::exception& e) {
+            log::warn(std::string("preview screenshot: ") + e.what());
+        }
+    }
+    glDeleteTextures(1, &texture);
+    glfwDestroyWindow(window);
+    glfwTerminate();
+}
+
+}  // namespace
+
+#else  // built without GLFW
+
+PreviewKey preview_key(int) { return PreviewKey::None; }
+bool preview_available() { return false; }
+
+bool PreviewWindow::start(const LiveImage&, const PreviewOptions&, std::string& why) {
+    why = "this phos was built without the preview window (install libglfw3-dev and rebuild)";
+    return false;
+}
+
+void PreviewWindow::finish() {}
+
+#endif
+
+}  // namespace phos::display

@@ -1,0 +1,74 @@
+// The tev streaming thread (see tev_stream.h).
+#include "display/tev_stream.h"
+
+#include <chrono>
+#include <vector>
+
+#include "core/log.h"
+
+namespace phos::display {
+namespace {
+
+// tev's channel names for the layers: "R", "G", "B" for the image, "layer.R"... for the others.
+std::vector<std::string> channels_of(const std::vector<std::string>& layers) {
+    std::vector<std::string> out;
+    for (const std::string& layer : layers)
+        for (const char* c : {"R", "G", "B"})
+            out.push_back(layer == "image" ? std::string(c) : layer + "." + c);
+    return out;
+}
+
+}  // namespace
+
+void TevStream::start(const LiveImage& image, const io::TevAddress& address, const std::string& name) {
+    thread_ = std::thread([this, &image, address, name] {
+        using clock = std::chrono::steady_clock;
+        io::TevClient tev;
+        if (!tev.connect(address)) {
+            log::warn("--tev: " + tev.error() + "; not streaming (is tev running?)");
+            return;
+        }
+        const int w = image.width(), h = image.height();
+        std::vector<std::string> created;
+        uint64_t sent = 0;
+        for (;;) {
+            image.wait(sent, 0.25);
+            const bool last = image.finished();
+            const uint64_t version = image.version();
+            if (version != sent) {
+                const std::vector<std::string> layers = image.layer_names();
+                const std::vector<std::string> channels = channels_of(layers);
+                bool ok = true;
+                if (layers != created) {
+                    ok = tev.create_image(name, w, h, channels, created.empty());
+                    created = layers;
+                }
+                std::vector<float> data(size_t(w) * size_t(h) * channels.size());
+                for (size_t l = 0; l < layers.size() && ok; ++l) {
+                    const std::vector<Rgb> values = image.read(l);
+                    for (size_t i = 0; i < values.size(); ++i)
+                        for (int c = 0; c < 3; ++c)
+                            data[i * channels.size() + l * 3 + size_t(c)] = values[i][c];
+                }
+                ok = ok && tev.update_image(name, channels, 0, 0, w, h, data.data());
+                bytes_ = tev.bytes_sent();
+                if (!ok) {
+                    log::warn("--tev: " + tev.error() + "; stopped streaming (the render goes on)");
+                    return;
+                }
+                sent = version;
+            }
+            if (last && image.version() == sent) break;
+            // At most four updates a second: a large image is megabytes per update.
+            const auto pause = clock::now() + std::chrono::milliseconds(250);
+            while (!image.finished() && clock::now() < pause) image.wait(image.version(), 0.05);
+        }
+        tev.close();
+    });
+}
+
+void TevStream::finish() {
+    if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace phos::display
