@@ -5,10 +5,12 @@
 #include "display/preview_window.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <condition_variable>
 #include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <vector>
 
@@ -170,6 +172,9 @@ void run_window(PreviewWindow::State& s) {
         s.cv.notify_all();
     };
     glfwSetErrorCallback(on_glfw_error);
+    // Mesa's software OpenGL (llvmpipe: no GPU, Xvfb) rasterises on as many threads as there are
+    // cores; one is plenty for a textured quad and leaves the cores to the render.
+    ::setenv("LP_NUM_THREADS", "1", 0);
     if (!glfwInit()) return report(-1, last_glfw_error());
     const LiveImage& image = *s.image;
     const int w = image.width(), h = image.height();
@@ -199,6 +204,8 @@ void run_window(PreviewWindow::State& s) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexImage2D(GL_TEXTURE_2D, 0, GL_RGB8, w, h, 0, GL_RGB, GL_UNSIGNED_BYTE, nullptr);
 
+    using clock = std::chrono::steady_clock;
+    auto next_draw = clock::now();
     uint64_t shown = ~uint64_t(0);
     size_t layer = 0;
     float exposure = s.options.exposure;
@@ -246,6 +253,10 @@ void run_window(PreviewWindow::State& s) {
         s.keys.clear();
         const uint64_t now = image.version();
         if (now == shown && !view_changed) continue;
+        // While the render runs, at most four redraws a second (each is a copy, a tone map and an
+        // upload; with a software OpenGL the drawing itself takes CPU from the render).
+        if (!view_changed && !s.render_done && clock::now() < next_draw) continue;
+        next_draw = clock::now() + std::chrono::milliseconds(250);
         layer %= names.size();
         const std::vector<Rgb> values = image.read(layer);
         for (size_t i = 0; i < values.size() && i < current.pixels.size(); ++i) current.pixels[i] = values[i];

@@ -7,16 +7,19 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 
 #include "app/lib/memory_check.h"
 #include "app/lib/photon_cloud.h"
+#include "app/lib/photon_view.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
 #include "core/stats.h"
+#include "display/photon_viewer.h"
 #include "integrators/photon_map.h"
 #include "integrators/prepared.h"
 #include "io/image/atomic_write.h"
@@ -91,9 +94,12 @@ void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene) 
 // Checks everything that can be checked before any work: output path, format, map names.
 std::vector<int> check_request(const PhotonsCommand& cmd) {
     const std::string& out = cmd.output;
-    if (out.empty())
-        throw InputError("photons: no output file: give -o FILE (.ply, or .txt with --format text)");
+    if (!cmd.screenshot.empty() && !cmd.view) throw InputError("--screenshot is for --view");
+    if (out.empty() && !cmd.view)
+        throw InputError(
+            "photons: no output file: give -o FILE (.ply, or .txt with --format text), or --view");
     if (cmd.ascii && cmd.format != "ply") throw InputError("--ascii is for --format ply");
+    if (out.empty()) return cmd.maps.empty() ? std::vector<int>{} : parse_photon_maps(cmd.maps);
     const std::filesystem::path dir = std::filesystem::absolute(out).parent_path();
     if (!std::filesystem::is_directory(dir))
         throw InputError("output '" + out + "': directory '" + dir.string() + "' does not exist");
@@ -121,8 +127,8 @@ std::string empty_map_hint(int m, size_t lights) {
 CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable register_table) {
     CLI::App* sub = app.add_subcommand(
         "photons",
-        "trace the photon maps as 'phos render --integrator photonmap' would with the same options and "
-        "write them as a point cloud (PLY for MeshLab / CloudCompare, or --format text)");
+        "the photon maps of 'phos render --integrator photonmap' (same options) as a point cloud: PLY "
+        "for MeshLab / CloudCompare, or the viewer's text format");
     sub->add_option("scene", cmd.scene_path, "scene file (.scn, .pbrt, .scene)")->required();
     sub->add_option("-o,--output", cmd.output, "point cloud to write (.ply; .txt with --format text)")
         ->type_name("FILE")
@@ -132,9 +138,16 @@ CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable 
                     "photon; text: the dissertation viewer's format (the count, then per photon position, "
                     "power, direction) (default: ply)")
         ->check(CLI::IsMember({"ply", "text"}))
-        ->type_name("ply|text")
+        ->type_name("FORMAT")
         ->group("Output");
     sub->add_flag("--ascii", cmd.ascii, "ASCII PLY instead of binary little-endian")->group("Output");
+    sub->add_flag("--view", cmd.view,
+                  "show the maps in the 3-D viewer: drag orbits (right: pans), wheel zooms, click prints a "
+                  "photon; keys 1-5 toggle maps, c colouring, + - point size, r reset, q quit")
+        ->group("Output");
+    sub->add_option("--screenshot", cmd.screenshot, "with --view: draw one frame, write it to FILE, close")
+        ->type_name("FILE")
+        ->group("Output");
     sub->add_option("--maps", cmd.maps,
                     "maps to write, comma-separated: global, caustic, indirect, volume, volume-caustic "
                     "(default: every map the photon mapper traces for this scene and these options)")
@@ -185,8 +198,9 @@ int run_photons(const PhotonsCommand& command) {
     pm.irradiance_cache = false;
     pm.volume_estimate = integrators::VolumeEstimate::March;
     {
-        RenderCommand estimate = cmd;
+        RenderCommand estimate = cmd;  // the render's estimate, without its image
         estimate.photon_map = pm;
+        estimate.render.width = estimate.render.height = 1;
         check_memory(estimate, scene, stats);
     }
 
@@ -206,11 +220,7 @@ int run_photons(const PhotonsCommand& command) {
     log::info("phos: " + std::filesystem::path(command.scene_path).filename().string() +
               ": tracing the photonmap integrator's photon maps, seed " + std::to_string(opt.seed));
 
-    integrators::PhotonMaps maps;
-    {
-        ScopedTimer t(stats, "photon maps");
-        maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared);
-    }
+    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared);
     if (interrupt::requested()) {
         log::warn("interrupted while tracing photons: nothing written" +
                   std::string(std::filesystem::exists(command.output)
@@ -230,6 +240,17 @@ int run_photons(const PhotonsCommand& command) {
     }
 
     const io::PointCloud cloud = photon_cloud(maps, kinds);
+    if (command.view) {
+        std::vector<std::string> names;
+        for (int m = 0; m < photon::kMapCount; ++m) names.push_back(photon_map_label(m));
+        display::ViewerOptions vo;
+        vo.title = "phos photons: " + std::filesystem::path(command.scene_path).filename().string();
+        vo.screenshot_path = command.screenshot;
+        std::string why;
+        if (!display::run_photon_viewer(viewer_scene(cloud, scene, names), vo, why))
+            log::warn("--view: " + why + (command.output.empty() ? "" : "; writing the file only"));
+    }
+    if (command.output.empty()) return 0;
     {
         ScopedTimer t(stats, "write");
         io::atomic_write(command.output, [&](const std::string& temp) {

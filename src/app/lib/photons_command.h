@@ -1,6 +1,7 @@
 // `phos photons SCENE -o photons.ply`: traces the photon maps exactly as `phos render
 // --integrator photonmap` would with the same options (same seed, same records) and writes them as
-// a point cloud: PLY (binary, or --ascii) or the dissertation viewer's text format.
+// a point cloud: PLY (binary, or --ascii) or the dissertation viewer's text format; with --view
+// (output optional then) it also shows them in the 3-D photon viewer.
 #pragma once
 
 #include <set>
@@ -20,6 +21,8 @@ struct PhotonsCommand {
     std::string format = "ply";  // ply | text
     bool ascii = false;          // ASCII PLY instead of binary little-endian
     std::string maps;            // comma-separated map names; empty: every traced map
+    bool view = false;           // --view: the 3-D photon viewer (display/photon_viewer.h)
+    std::string screenshot;      // --screenshot FILE: the viewer draws one frame, writes it, closes
     // The options phos render takes for the photon maps, under the same names: the photon-map and
     // scene tables, --seed, and --threads, -v, -q, --strict, --quality of the run table.
     RenderCommand settings;
