@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/log.h"
+#include "display/framebuffer.h"
 #include "io/image/image_io.h"
 #include "io/image/tonemap.h"
 
@@ -151,21 +152,10 @@ void draw(GLFWwindow* window, const Viewer& v, const std::vector<float>& xyz, co
     glDisableClientState(GL_VERTEX_ARRAY);
 }
 
-Image read_framebuffer(GLFWwindow* window) {
+Image window_pixels(GLFWwindow* window) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window, &fw, &fh);
-    std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-    Image img(fw, fh);
-    for (int y = 0; y < fh; ++y)
-        for (int x = 0; x < fw; ++x) {
-            const uint8_t* p = &rgb[(size_t(fh - 1 - y) * size_t(fw) + size_t(x)) * 3];
-            img.at(x, y) =
-                Rgb(io::srgb8_to_linear(p[0]), io::srgb8_to_linear(p[1]), io::srgb8_to_linear(p[2]));
-        }
-    return img;
+    return read_framebuffer(fw, fh);
 }
 
 }  // namespace
@@ -280,7 +270,7 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
             draw(window, v, xyz, rgb, lines);
             if (!options.screenshot_path.empty()) {
                 try {
-                    io::write_image(options.screenshot_path, read_framebuffer(window));
+                    io::write_image(options.screenshot_path, window_pixels(window));
                 } catch (const std::exception& e) {
                     log::warn(std::string("photon viewer screenshot: ") + e.what());
                 }

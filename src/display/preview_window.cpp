@@ -16,6 +16,7 @@
 
 #include "core/interrupt.h"
 #include "core/log.h"
+#include "display/framebuffer.h"
 #include "io/image/image_io.h"
 #include "io/image/tonemap.h"
 
@@ -120,22 +121,10 @@ void draw(GLFWwindow* window, GLuint texture, int w, int h) {
     glDisable(GL_TEXTURE_2D);
 }
 
-// The framebuffer's pixels (bottom row first in GL) as a linear image, top row first.
-Image read_framebuffer(GLFWwindow* window) {
+Image window_pixels(GLFWwindow* window) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window, &fw, &fh);
-    std::vector<uint8_t> rgb(size_t(fw) * size_t(fh) * 3);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadBuffer(GL_BACK);
-    glReadPixels(0, 0, fw, fh, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
-    Image img(fw, fh);
-    for (int y = 0; y < fh; ++y)
-        for (int x = 0; x < fw; ++x) {
-            const uint8_t* p = &rgb[(size_t(fh - 1 - y) * size_t(fw) + size_t(x)) * 3];
-            img.at(x, y) =
-                Rgb(io::srgb8_to_linear(p[0]), io::srgb8_to_linear(p[1]), io::srgb8_to_linear(p[2]));
-        }
-    return img;
+    return read_framebuffer(fw, fh);
 }
 
 void run_window(PreviewWindow::State& s);
@@ -275,7 +264,7 @@ void run_window(PreviewWindow::State& s) {
     if (!s.options.screenshot_path.empty()) {
         draw(window, texture, w, h);
         try {
-            io::write_image(s.options.screenshot_path, read_framebuffer(window));
+            io::write_image(s.options.screenshot_path, window_pixels(window));
         } catch (const std::exception& e) {
             log::warn(std::string("preview screenshot: ") + e.what());
         }

@@ -2,11 +2,41 @@
 #include "integrators/direct_light.h"
 
 #include "core/warp.h"
+#include "integrators/path_recorder.h"
 #include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
 namespace {
+
+// Records a light sample for --trace-pixel (path_recorder.h): `value` is what it adds unoccluded
+// (w / pdf included, the light's selection pmf not), `T` its visibility (-1: no shadow ray).
+void record_light(PathRecorder& r, size_t i, Vec3 from, const shading::LightLiSample& ls, float pmf, float w,
+                  Rgb value, int visible, Rgb T) {
+    TracedLight l;
+    l.light = int(i);
+    l.from = from;
+    l.direction = ls.wi;
+    l.distance = ls.distance;
+    l.pdf = ls.pdf * pmf;
+    l.mis_weight = w;
+    l.visible = visible;
+    l.transmittance = T;
+    if (visible == 1) l.contribution = value * T * (1.0f / pmf);
+    r.light(l);
+}
+
+// The same for a light sample in a medium whose contribution before 1 / pdf (transmittance and
+// MIS weight included) is `c`.
+void record_light_in_medium(PathRecorder& r, size_t i, Vec3 from, const shading::LightLiSample& ls, float pmf,
+                            Rgb c) {
+    const bool sent = ls.pdf > 0 && !ls.L.is_black();
+    record_light(r, i, from, ls, pmf, 1, sent ? c * (1.0f / ls.pdf) : Rgb(0.0f),
+                 !sent          ? -1
+                 : c.is_black() ? 0
+                                : 1,
+                 Rgb(1.0f));
+}
 
 // Unoccluded contribution f * L * |cos| / pdf of one sample of light `i` (pdf excludes light choice).
 Rgb light_contribution(const Prepared& P, size_t i, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf,
@@ -14,22 +44,30 @@ Rgb light_contribution(const Prepared& P, size_t i, const accel::SurfaceHit& hit
                        Sampler& sampler) {
     const shading::Light& light = P.lights[i];
     const shading::LightLiSample ls = light.sample_Li(hit.p, u);
-    if (!(ls.pdf > 0) || ls.L.is_black()) return Rgb(0.0f);
+    PathRecorder* r = recorder();
+    if (!(ls.pdf > 0) || ls.L.is_black()) {
+        if (r) record_light(*r, i, hit.p, ls, choose_pmf, 1, Rgb(0.0f), -1, Rgb(0.0f));
+        return Rgb(0.0f);
+    }
     const Rgb f = bsdf.eval(wo, ls.wi) * std::fabs(dot(ls.wi, hit.ns));
-    if (f.is_black()) return Rgb(0.0f);
+    if (f.is_black()) {
+        if (r) record_light(*r, i, hit.p, ls, choose_pmf, 1, Rgb(0.0f), -1, Rgb(0.0f));
+        return Rgb(0.0f);
+    }
     const accel::Ray shadow =
         ls.distance < kInf ? accel::spawn_ray_to(hit, ls.p_light) : accel::spawn_ray(hit, ls.wi);
     ++rays.shadow;
     Rgb T(1.0f);
-    if (const shading::MediaSet* media = P.active_media()) {
+    if (const shading::MediaSet* media = P.active_media())
         T = shading::shadow_transmittance(P.accel, media, shadow,
                                           shading::SurfaceWalk::medium_after(hit, ls.wi, medium), sampler);
-        if (T.is_black()) return Rgb(0.0f);
-    } else if (P.accel.occluded(shadow)) {
-        return Rgb(0.0f);
-    }
+    else if (P.accel.occluded(shadow))
+        T = Rgb(0.0f);
     float w = 1;
-    if (mis && !ls.delta) w = warp::power_heuristic(choose_pmf * ls.pdf, bsdf.pdf(wo, ls.wi));
+    if (mis && !ls.delta && (!T.is_black() || r))
+        w = warp::power_heuristic(choose_pmf * ls.pdf, bsdf.pdf(wo, ls.wi));
+    if (r) record_light(*r, i, hit.p, ls, choose_pmf, w, f * ls.L * (w / ls.pdf), T.is_black() ? 0 : 1, T);
+    if (T.is_black()) return Rgb(0.0f);
     return f * ls.L * T * (w / ls.pdf);
 }
 
@@ -83,9 +121,11 @@ Rgb sample_one_light_in_medium(const Prepared& P, Vec3 p, Vec3 wo, int medium, S
     if (!(pmf > 0)) return Rgb(0.0f);
     const shading::LightLiSample ls = P.lights[i].sample_Li(p, u);
     const Rgb c = light_in_medium(P, ls, p, wo, medium, sampler, rays);
-    if (c.is_black()) return c;
     float w = 1;
-    if (mis && !ls.delta) w = warp::power_heuristic(pmf * ls.pdf, P.media[medium].phase().eval(wo, ls.wi));
+    if (mis && !ls.delta && (!c.is_black() || recorder()))
+        w = warp::power_heuristic(pmf * ls.pdf, P.media[medium].phase().eval(wo, ls.wi));
+    if (auto* r = recorder()) record_light_in_medium(*r, i, p, ls, pmf, c * w);
+    if (c.is_black()) return c;
     return c * (w / (pmf * ls.pdf));
 }
 
@@ -146,8 +186,13 @@ Rgb single_scattering(const Prepared& P, int medium_index, Vec3 o, Vec3 d, float
     const shading::LightLiSample ls = P.lights[li].sample_Li(x, u);
     if (!(ls.pdf > 0)) return Rgb(0.0f);
     const Rgb Li = light_in_medium(P, ls, x, -d, medium_index, sampler, rays);
-    if (Li.is_black()) return Li;
+    if (Li.is_black()) {
+        if (auto* r = recorder()) record_light_in_medium(*r, li, x, ls, pmf, Li);
+        return Li;
+    }
     const Rgb T = shading::transmittance(medium, o, d, t, sampler);
+    // Recorded with the camera ray's transmittance and sigma_s / pdf_t: what the stretch adds.
+    if (auto* r = recorder()) record_light_in_medium(*r, li, x, ls, pmf, T * c.sigma_s * Li * (1.0f / pdf_t));
     return T * c.sigma_s * Li * (1.0f / (pdf_t * ls.pdf * pmf));
 }
 

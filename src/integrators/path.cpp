@@ -7,7 +7,9 @@
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/factory.h"
+#include "integrators/path_recorder.h"
 #include "integrators/pixel_loop.h"
+#include "integrators/pixel_trace.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
@@ -73,31 +75,35 @@ Stage next_stage(Stage s, bool delta_bounce) {
 }  // namespace
 
 void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
-    if (prepared.options.layers) {
+    const RadianceFn plain = [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+        return radiance(prepared, ray, sampler, rays);
+    };
+    if (prepared.options.layers)
         render_layers(prepared, film, budget_, "path", progress, integrator_layers("path"),
                       [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });
-        return;
-    }
-    render_pixels(prepared, film, budget_, "path", progress,
-                  [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
-                      return radiance(prepared, ray, sampler, rays);
-                  });
+    else
+        render_pixels(prepared, film, budget_, "path", progress, plain);
+    trace_pixel_samples(prepared, film, plain);  // --trace-pixel (pixel_trace.h)
 }
 
 Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,
                              RadianceParts* parts) {
     const scene::Scene& scene = P.scene;
     Rgb L(0.0f), beta(1.0f);
-    // Adds a contribution to the radiance and, with `parts`, to its component.
-    const auto add = [&](Rgb c, Rgb RadianceParts::*part) {
+    // Adds a contribution to the radiance and, with `parts`, to its component (and to the trace).
+    const auto add = [&](Rgb c, Rgb RadianceParts::*part, TraceTerm term) {
         L += c;
         if (parts) parts->*part += c;
+        if (auto* r = recorder()) r->add(term, c);
     };
-    bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
+    // Emission found by the path, light sampled at its vertex: the components of the path's stage.
     Stage stage = Stage::Camera;
-    BsdfSampledFrom from{};  // the last vertex, when !specular_bounce
+    const auto found = [&](Rgb c) { add(c, found_part(stage), TraceTerm::Emission); };
+    const auto sampled = [&](Rgb c) { add(c, sampled_part(stage), TraceTerm::Light); };
+    bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
+    BsdfSampledFrom from{};       // the last vertex, when !specular_bounce
     int depth = 0;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
@@ -106,7 +112,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         Rgb emitted(0.0f);
         const shading::SurfaceWalk::Event event =
             media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
-        if (!emitted.is_black()) add(emitted, found_part(stage));
+        if (!emitted.is_black()) found(emitted);
+        if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
             break;
         if (event == shading::SurfaceWalk::Event::Medium) {
@@ -114,10 +121,10 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
             // against each other like a surface vertex (the phase function is its own pdf).
             if (depth++ == P.options.max_depth) break;
             const Vec3 p = walk.medium_point(), wo = walk.medium_wo();
-            add(beta * sample_one_light_in_medium(P, p, wo, walk.medium(), sampler, rays, true),
-                sampled_part(stage));
+            sampled(beta * sample_one_light_in_medium(P, p, wo, walk.medium(), sampler, rays, true));
             Vec3 wi;
             const float pdf = P.media[walk.medium()].phase().sample(wo, sampler.next2(), wi);
+            if (auto* r = recorder()) r->scattered_in_medium(wi, pdf);
             specular_bounce = false;
             stage = next_stage(stage, false);
             from = {p, pdf};
@@ -128,8 +135,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
-            if (specular_bounce || P.options.background_light)
-                add(beta * scene.background, found_part(stage));
+            if (specular_bounce || P.options.background_light) found(beta * scene.background);
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
@@ -137,24 +143,23 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
                 if (!specular_bounce)
                     w = warp::power_heuristic(from.pdf,
                                               P.lights.pmf(i) * P.lights[i].pdf_Li(from.p, dir, {}, {}));
-                add(beta * Le * w, found_part(stage));
+                found(beta * Le * w);
             }
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
         const bool camera_chain = stage == Stage::Camera || stage == Stage::SpecularChain;
-        add(seen_emission(P, hit, wo, beta, camera_chain, specular_bounce ? nullptr : &from),
-            found_part(stage));
+        found(seen_emission(P, hit, wo, beta, camera_chain, specular_bounce ? nullptr : &from));
 
         if (depth++ == P.options.max_depth) break;
         const shading::Bsdf bsdf = P.bsdf(hit);
 
         if (bsdf.has_non_specular())
-            add(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()),
-                sampled_part(stage));
+            sampled(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()));
 
         const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2());
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
+        if (auto* r = recorder()) r->scattered(*bs);
         beta *= bs->weight;
         specular_bounce = bs->is_specular();
         stage = next_stage(stage, specular_bounce);

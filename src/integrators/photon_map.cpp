@@ -9,8 +9,10 @@
 #include "core/interrupt.h"
 #include "core/log.h"
 #include "integrators/factory.h"
+#include "integrators/path_recorder.h"
 #include "integrators/photon_map_radiance.h"
 #include "integrators/pixel_loop.h"
+#include "integrators/pixel_trace.h"
 #include "photon/beam_estimate.h"
 #include "photon/projection_map.h"
 
@@ -243,6 +245,14 @@ void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& 
     const auto t0 = std::chrono::steady_clock::now();
     render_with(P, maps, film, progress, budget_.on_checkpoint != nullptr);
     P.stats.add_time("photon map render pass", seconds_since(t0));
+    // --trace-pixel: that pixel's samples again, from the same maps (pixel_trace.h).
+    if (requested_trace()) {
+        const PhotonMapOptions o = resolve(options_, P);
+        const PhotonMapRadiance R(P, o, maps);
+        trace_pixel_samples(P, film, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+            return R.camera_ray(ray, sampler, rays).total();
+        });
+    }
 }
 
 }  // namespace phos::integrators

@@ -23,6 +23,7 @@
 
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
+#include "integrators/path_recorder.h"
 #include "integrators/pixel_loop.h"
 #include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
@@ -57,10 +58,25 @@ PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& 
     footprint_slope_ = pixels * f.slope;
 }
 
+Rgb PhotonMapRadiance::estimate(int m, const photon::SurfaceQuery& q, Vec3 wo,
+                                const shading::Bsdf& bsdf) const {
+    PathRecorder* r = recorder();
+    if (!r) return photon::radiance_estimate(maps_.map[m], est_[m], q, wo, bsdf);
+    TracedLookup l{photon::map_name(m), q.p};
+    l.estimate = photon::radiance_estimate(maps_.map[m], est_[m], q, wo, bsdf, &l.found, &l.radius);
+    r->lookup(l);
+    return l.estimate;
+}
+
 RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
     RadianceParts out;
     Rgb beta(1.0f);
     bool via_delta = false;
+    // Adds c to component `part` (and to the trace as `term`).
+    const auto add = [](Rgb& part, Rgb c, TraceTerm term) {
+        part += c;
+        if (auto* r = recorder()) r->add(term, c);
+    };
     // Its distance() scales the pixel footprint.
     shading::SurfaceWalk walk(P_.accel, P_.active_media(), P_.camera_medium());
     for (int depth = 0;;) {
@@ -69,40 +85,47 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
         const shading::SurfaceWalk::Event event =
             walk.next_segments(ray, hit, [&](const shading::Medium& m, Vec3 o, Vec3 d, float t_end) {
                 const MediumStretch s = march(m, walk.medium(), o, d, t_end, sampler, rays);
-                (via_delta ? out.specular : out.direct) += beta * s.single;
-                (via_delta ? out.specular : out.caustic) += beta * s.caustic;
-                (via_delta ? out.specular : out.indirect) += beta * s.multiple;
+                if (auto* r = recorder()) {  // the volume maps' estimates over the stretch from o
+                    r->lookup({"volume caustic (stretch)", o, 0, 0, s.caustic});
+                    r->lookup({"volume (stretch)", o, 0, 0, s.multiple});
+                }
+                add(via_delta ? out.specular : out.direct, beta * s.single, TraceTerm::Light);
+                add(via_delta ? out.specular : out.caustic, beta * s.caustic, TraceTerm::Caustic);
+                add(via_delta ? out.specular : out.indirect, beta * s.multiple, TraceTerm::Indirect);
                 beta *= s.T;
             });
+        if (auto* r = recorder()) r->vertex(P_, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            seen += beta * (P_.scene.background + P_.escaped(normalize(ray.dir)));
+            add(seen, beta * (P_.scene.background + P_.escaped(normalize(ray.dir))), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        seen += seen_emission(P_, hit, wo, beta);
+        add(seen, seen_emission(P_, hit, wo, beta), TraceTerm::Emission);
 
         const shading::Bsdf bsdf = P_.bsdf(hit);
         if (bsdf.has_non_specular()) {
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
             if (o_.photon_viz) {
-                seen += beta * photon::radiance_estimate(maps_.global(), est_[kGlobalMap], q, wo, bsdf);
+                add(seen, beta * estimate(kGlobalMap, q, wo, bsdf), TraceTerm::Indirect);
             } else {
                 Rgb& d = via_delta ? out.specular : out.direct;
                 Rgb& c = via_delta ? out.specular : out.caustic;
                 Rgb& i = via_delta ? out.specular : out.indirect;
-                if (o_.direct) d += beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays, walk.medium());
+                if (o_.direct)
+                    add(d, beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays, walk.medium()),
+                        TraceTerm::Light);
                 if (o_.caustics) {
                     photon::SurfaceQuery qc = q;
                     qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
-                    c += beta * photon::radiance_estimate(maps_.caustic(), est_[kCausticMap], qc, wo, bsdf);
+                    add(c, beta * estimate(kCausticMap, qc, wo, bsdf), TraceTerm::Caustic);
                 }
                 if (o_.indirect_light) {
                     if (o_.fast_global)
-                        i += beta *
-                             photon::radiance_estimate(maps_.indirect(), est_[kIndirectMap], q, wo, bsdf);
+                        add(i, beta * estimate(kIndirectMap, q, wo, bsdf), TraceTerm::Indirect);
                     else
-                        i += beta * final_gather(hit, bsdf, wo, walk.medium(), sampler, rays);
+                        add(i, beta * final_gather(hit, bsdf, wo, walk.medium(), sampler, rays),
+                            TraceTerm::Indirect);
                 }
             }
         }
@@ -113,6 +136,7 @@ RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, Ra
         const auto s = bsdf.sample_lobes(delta, wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         if ((s->flags & shading::kTransmission) ? !o_.transmissive : !o_.specular) break;
+        if (auto* r = recorder()) r->scattered(*s);
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         via_delta = true;
@@ -162,10 +186,13 @@ Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, 
             // The volume cache's first-order estimate (photon/volume_cache.h) where it has a point
             // nearby, else the two maps' k-nearest estimates.
             Rgb est;
-            if (!maps_.volume_cache.lookup(x, volume_est_.max_radius, wo, m.phase().g, est))
+            const bool cached = maps_.volume_cache.lookup(x, volume_est_.max_radius, wo, m.phase().g, est);
+            if (!cached)
                 est = photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, m.phase()) +
                       photon::volume_radiance_estimate(maps_.volume_caustic(), volume_caustic_est_, x, wo,
                                                        m.phase());
+            if (auto* r = recorder())
+                r->lookup({cached ? "volume cache" : "volume + volume caustic", x, 0, 0, est});
             const Rgb sigma_s = m.at(x).sigma_s;
             for (int c = 0; c < 3; ++c) Ls[c] += sigma_s[c] > 0 ? est[c] / sigma_s[c] : 0.0f;
             L += beta * Ls;
@@ -179,10 +206,13 @@ Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, 
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
             Rgb E;
             if (bsdf.is_lambertian() && !maps_.cache.empty() &&
-                maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E))
+                maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E)) {
                 L += beta * bsdf.diffuse_albedo() * kInvPi * E;
-            else
-                L += beta * photon::radiance_estimate(maps_.global(), est_[kGlobalMap], q, wo, bsdf);
+                if (auto* r = recorder())
+                    r->lookup({"irradiance cache", q.p, 0, 0, bsdf.diffuse_albedo() * kInvPi * E});
+            } else {
+                L += beta * estimate(kGlobalMap, q, wo, bsdf);
+            }
         }
         const uint32_t delta = bsdf.split_lobes(wo).delta;
         if (!delta) break;

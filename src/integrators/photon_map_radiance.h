@@ -37,6 +37,8 @@ public:
                         Sampler& sampler, RayCounts& rays) const;
 
     const photon::EstimateOptions& estimate_options(int map) const { return est_[map]; }
+    // Map m's density estimate at q (global, caustic or indirect), a lookup --trace-pixel records.
+    Rgb estimate(int m, const photon::SurfaceQuery& q, Vec3 wo, const shading::Bsdf& bsdf) const;
 
 private:
     const Prepared& P_;

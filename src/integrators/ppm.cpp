@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "integrators/path_recorder.h"
 #include "integrators/pixel_loop.h"
 #include "integrators/progressive_budget.h"
 #include "integrators/sppm.h"
@@ -26,17 +27,22 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const int direct_samples = direct_samples_for(opt_, true);
     const InitialRadius initial{opt_.radius, opt_.radius_pixels, P.camera.pixel_footprint()};
     std::vector<VisiblePoint> vps(slots);
+    // Hit point s of pixel (x, y): its eye path, keyed by (seed, slot).
+    const auto eye_path = [&](int x, int y, int s, VisiblePoint& vp, RayCounts& rays) {
+        const size_t i = (size_t(y) * size_t(ro.width) + size_t(x)) * size_t(eye) + size_t(s);
+        Sampler sampler(ro.seed, 0x70706d657965ULL, i);
+        const Vec2 jitter = eye == 1 ? Vec2{0.5f, 0.5f} : stratified_sample(s, eye, sampler.next2());
+        const Vec2 lens = sampler.next2();
+        const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+        ++rays.camera;
+        return trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+    };
     tbb::parallel_for(0, ro.height, [&](int y) {
         RayCounts rays;
         for (int x = 0; x < ro.width; ++x)
             for (int s = 0; s < eye; ++s) {
                 const size_t i = (size_t(y) * size_t(ro.width) + size_t(x)) * size_t(eye) + size_t(s);
-                Sampler sampler(ro.seed, 0x70706d657965ULL, i);
-                const Vec2 jitter = eye == 1 ? Vec2{0.5f, 0.5f} : stratified_sample(s, eye, sampler.next2());
-                const Vec2 lens = sampler.next2();
-                const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
-                ++rays.camera;
-                const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vps[i], rays);
+                const Rgb L = eye_path(x, y, s, vps[i], rays);
                 PixelStats& st = state.slots[i];
                 for (int c = 0; c < 3; ++c) st.direct[c] = L.is_finite() ? double(L[c]) : 0.0;
                 if (!L.is_finite()) P.stats.add_dropped_samples(1);  // counted for -v, never added
@@ -47,6 +53,17 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
 
     const uint64_t photons = opt_.photons_per_iter;
     PhotonAccumulator acc(slots);
+    // --trace-pixel: that pixel's eye paths run again, recorded, and its hit points' photons.
+    PathRecorder* const trace = requested_trace();
+    if (trace) {
+        const size_t first = (size_t(trace->y()) * size_t(ro.width) + size_t(trace->x())) * size_t(eye);
+        acc.record(trace, first, size_t(eye));
+        for (int s = 0; s < eye; ++s)
+            record_eye_path(*trace, uint64_t(s), -1, first + size_t(s), false, [&](VisiblePoint& vp) {
+                RayCounts uncounted;
+                return eye_path(trace->x(), trace->y(), s, vp, uncounted);
+            });
+    }
     photon::HitPointGrid grid;
     // Hit points in media (free flights of the eye pass) take the 3D estimate.
     std::vector<uint8_t> volume_slot(slots, 0);
@@ -59,12 +76,14 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     while (budget.next()) {
         // Photon pass: photons within each hit point's current radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);
+        if (trace) trace->begin_pass(state.iterations, false, [&](size_t s) { return state.slots[s].r2; });
         RayCounts prays;
         prays.photon = acc.photon_pass(P, vps, grid, ro.seed, state.iterations, photons);
         P.stats.add_rays(prays);
         // Update: N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + Φ) R²_new/R²_old.
         state.photons_emitted += photons;
         acc.update(state.slots, vps, opt_.alpha);
+        if (trace) trace->end_pass(state.photons_emitted, [&](size_t s) { return state.slots[s]; });
         budget.after_iteration(resolve_film);
     }
     resolve_film();

@@ -6,6 +6,7 @@
 #include <tbb/parallel_for.h>
 
 #include "film/tiles.h"
+#include "integrators/path_recorder.h"
 #include "integrators/progressive_budget.h"
 #include "integrators/sppm_core.h"
 
@@ -42,6 +43,20 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     PhotonAccumulator acc(pixels * per_pixel);
     photon::HitPointGrid grid;
     const auto tiles = film::make_tiles(ro.width, ro.height);
+    // Pixel (x, y)'s eye path of iteration `it`, keyed by (seed, pixel, iteration).
+    const auto eye_path = [&](int x, int y, uint64_t it, VisiblePoint& vp, RayCounts& rays) {
+        Sampler sampler(ro.seed, 0x65796570617373ULL, size_t(y) * size_t(ro.width) + size_t(x), it);
+        const Vec2 jitter = sampler.next2();
+        const Vec2 lens = sampler.next2();
+        const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+        ++rays.camera;
+        return trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+    };
+    // --trace-pixel: that pixel's eye paths run again, recorded, and its slots' photons.
+    PathRecorder* trace = requested_trace();
+    const size_t traced =
+        trace ? (size_t(trace->y()) * size_t(ro.width) + size_t(trace->x())) * per_pixel : 0;
+    acc.record(trace, traced, per_pixel);
     // Pixel = direct sum / iterations + τ / (π R² N_emitted).
     auto resolve_film = [&] {
         resolve(state.slots, int(per_pixel), 1.0, state.iterations > 0 ? 1.0 / double(state.iterations) : 0.0,
@@ -59,16 +74,9 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
             uint64_t dropped = 0;
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
-                    const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
-                    Sampler sampler(ro.seed, 0x65796570617373ULL, i, it);
-                    const Vec2 jitter = sampler.next2();
-                    const Vec2 lens = sampler.next2();
-                    const accel::Ray ray =
-                        P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
-                    ++rays.camera;
-                    const size_t base = i * per_pixel;
+                    const size_t base = (size_t(y) * size_t(ro.width) + size_t(x)) * per_pixel;
                     VisiblePoint& vp = vps[base];
-                    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+                    const Rgb L = eye_path(x, y, it, vp, rays);
                     if (per_pixel == 2) {  // the volume slot takes a volume point
                         VisiblePoint& vv = vps[base + 1];
                         vv.bsdf.reset();
@@ -91,6 +99,13 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
             for (size_t i = 0; i < vps.size(); ++i)
                 if (vps[i].present()) state.slots[i].r2 *= pilot.max_scale;
+        if (trace) {
+            record_eye_path(*trace, it, int64_t(it), traced, per_pixel == 2, [&](VisiblePoint& vp) {
+                RayCounts uncounted;
+                return eye_path(trace->x(), trace->y(), it, vp, uncounted);
+            });
+            trace->begin_pass(it, is_pilot, [&](size_t s) { return state.slots[s].r2; });
+        }
 
         // Photon pass: photons within each visible point's radius add M_i and Φ_i.
         build_grid(grid, vps, state.slots);
@@ -107,6 +122,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
             state.photons_emitted += photons;
             acc.update(state.slots, vps, opt_.alpha);
         }
+        if (trace) trace->end_pass(state.photons_emitted, [&](size_t s) { return state.slots[s]; });
         budget.after_iteration(resolve_film);
     }
     resolve_film();

@@ -99,17 +99,24 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
                 s.m.fetch_add(1, std::memory_order_relaxed);
             }
         };
-        // Photons scattering in a medium (not straight from a light: single scattering is sampled
-        // at the visible point) reach the volume points whose ball holds them.
-        const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
-            if (h.bounces == 0) return;
-            grid.query(h.p, [&](uint32_t i) {
-                const GatherPoint& g = gather_[i];
-                if (g.kind != GatherPoint::kVolume || h.bounces > g.max_bounces) return;
-                add(i, h.power * shading::henyey_greenstein(dot(-vps[i].wo, h.wi), g.kd_pi.r));
-            });
+        // --trace-pixel: what the traced slots gather is recorded too (path_recorder.h).
+        const auto record = [&](uint32_t i, uint64_t idx, Vec3 p, Rgb power, Vec3 wi, const Rgb& c) {
+            if (size_t(i) - trace_first_ >= trace_count_ || c.is_black() || !c.is_finite()) return;
+            trace_->photon(i, {idx, p, power, wi, c});
         };
         for (uint64_t idx = blk * kBlock; idx < end; ++idx) {
+            // Photons scattering in a medium (not straight from a light: single scattering is
+            // sampled at the visible point) reach the volume points whose ball holds them.
+            const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
+                if (h.bounces == 0) return;
+                grid.query(h.p, [&](uint32_t i) {
+                    const GatherPoint& g = gather_[i];
+                    if (g.kind != GatherPoint::kVolume || h.bounces > g.max_bounces) return;
+                    const Rgb c = h.power * shading::henyey_greenstein(dot(-vps[i].wo, h.wi), g.kd_pi.r);
+                    add(i, c);
+                    record(i, idx, h.p, h.power, h.wi, c);
+                });
+            };
             const auto on_surface = [&](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
                 grid.query(h.hit.p, [&](uint32_t i) {
@@ -125,6 +132,7 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
                         c = vp.bsdf->eval(vp.wo, h.wi) * h.power;
                     }
                     add(i, c);
+                    record(i, idx, h.hit.p, h.power, h.wi, c);
                 });
             };
             rays += photon::trace_photon(ps, seed, pass, idx, popt, photon::Visitor{on_surface, on_volume});
@@ -177,6 +185,17 @@ void PhotonAccumulator::update(std::vector<PixelStats>& stats, const std::vector
         else
             progressive_update(stats[i], m, phi, double(alpha));
     });
+}
+
+void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, size_t slot, bool volume_slot,
+                     const std::function<Rgb(VisiblePoint& vp)>& run) {
+    VisiblePoint vp;
+    {
+        RecordingScope scope(&trace, sample, iteration);
+        scope.done(run(vp));
+    }
+    if (vp.present())
+        trace.visible_point(slot + (volume_slot && vp.volume() ? 1 : 0), vp.p, vp.medium, vp.beta);
 }
 
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,

@@ -10,12 +10,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
 
 #include "core/rng.h"
 #include "film/film.h"
+#include "integrators/path_recorder.h"
 #include "integrators/prepared.h"
 #include "integrators/progressive_checkpoint.h"
 #include "integrators/progressive_options.h"
@@ -95,6 +97,12 @@ public:
     // The pilot pass instead of update(): sets each visible point's r2 (the pilot's gathering disc)
     // by pilot_r2 from the photon count alone and clears the sums; N and τ stay 0 (see PilotRadius).
     void pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, const PilotRadius& a);
+    // --trace-pixel: the photons slots [first, first + count) gather also go to `trace`.
+    void record(PathRecorder* trace, size_t first, size_t count) {
+        trace_ = trace;
+        trace_first_ = first;
+        trace_count_ = trace ? count : 0;
+    }
 
 private:
     template <class F>
@@ -113,7 +121,16 @@ private:
     std::vector<GatherPoint> gather_;
     size_t count_;
     double scale_ = 1;  // fixed-point units per unit of flux contribution
+    PathRecorder* trace_ = nullptr;
+    size_t trace_first_ = 0, trace_count_ = 0;
 };
+
+// --trace-pixel (path_recorder.h): runs an eye path again through `run` (which fills the visible
+// point) with `trace` recording it as camera sample `sample` (SPPM: of iteration `iteration`), and
+// records its visible point, stored in slot `slot`, or `slot + 1` for a volume point when
+// `volume_slot` (SPPM with media).
+void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, size_t slot, bool volume_slot,
+                     const std::function<Rgb(VisiblePoint& vp)>& run);
 
 // Builds the grid over the visible points with their current radii.
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
+#include "integrators/path_recorder.h"
 #include "integrators/sppm_core.h"
 #include "shading/surface_walk.h"
 
@@ -18,6 +19,11 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
     vp.bsdf.reset();
     vp.medium = -1;
     Rgb L(0.0f), beta(1.0f);
+    // Adds a contribution to the path's radiance (and to the trace as `term`).
+    const auto add = [&](Rgb c, TraceTerm term) {
+        L += c;
+        if (auto* r = recorder()) r->add(term, c);
+    };
     const shading::MediaSet* media = P.active_media();
     // Its distance() is the visible point's path length.
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
@@ -30,10 +36,12 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
         const shading::SurfaceWalk::Event event =
             media ? walk.next(ray, hit, sampler, beta, emitted,
                               [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
-                                  L += beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, rays);
+                                  add(beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, rays),
+                                      TraceTerm::Light);
                               })
                   : walk.next(ray, hit);
-        L += emitted;
+        add(emitted, TraceTerm::Emission);
+        if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
             break;
         if (event == shading::SurfaceWalk::Event::Medium) {
@@ -54,11 +62,11 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
             // Every vertex so far was specular, so escaped light is seen directly.
-            L += beta * (P.scene.background + P.escaped(normalize(ray.dir)));
+            add(beta * (P.scene.background + P.escaped(normalize(ray.dir))), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        L += seen_emission(P, hit, wo, beta);
+        add(seen_emission(P, hit, wo, beta), TraceTerm::Emission);
         if (depth == P.options.max_depth) break;
         const Bsdf bsdf = P.bsdf(hit);
 
@@ -72,7 +80,7 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
             const int n = std::max(1, direct_samples);
             for (int k = 0; k < n; ++k)
                 direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false, walk.medium());
-            L += w * direct * (1.0f / float(n));
+            add(w * direct * (1.0f / float(n)), TraceTerm::Light);
             vp.p = hit.p;
             vp.wo = wo;
             vp.beta = w;
@@ -84,6 +92,7 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
         const float u_lobe = sampler.next();
         const auto s = bsdf.sample_lobes(split.delta, wo, u_lobe, sampler.next2());
         if (!s || s->weight.is_black() || !s->weight.is_finite()) break;
+        if (auto* r = recorder()) r->scattered(*s);
         beta *= s->weight * (1 / (1 - p_ns));
         ray = accel::spawn_ray(hit, s->wi);
         walk.leave(hit, s->wi);

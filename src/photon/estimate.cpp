@@ -2,6 +2,7 @@
 #include "photon/estimate.h"
 
 #include <algorithm>
+#include <cmath>
 #include <vector>
 
 namespace phos::photon {
@@ -15,9 +16,12 @@ Neighbour* scratch(uint32_t k) {
 }
 
 // Runs the kNN query with the surface test and calls g(photon, weight) for every accepted photon,
-// weight including the filter and the 1 / (mean_w pi r^2) normalisation.
+// weight including the filter and the 1 / (mean_w pi r^2) normalisation; `r2` receives the squared
+// radius of the disc used (the search radius when nothing was found).
 template <class G>
-uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, G&& g) {
+uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, float& r2_used,
+                G&& g) {
+    r2_used = o.max_radius * o.max_radius;
     if (map.empty() || o.k == 0) return 0;
     Neighbour* nb = scratch(o.k);
     const float max_r2 = o.max_radius * o.max_radius;
@@ -31,6 +35,7 @@ uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const Surface
     if (r.count == o.k && r2 < min_r2) {
         // Dense region: every accepted photon within the minimum radius instead of the k nearest.
         const float norm = 1.0f / (o.filter.mean_weight() * kPi * min_r2);
+        r2_used = min_r2;
         uint32_t n = 0;
         map.for_each_in_radius(q.p, min_r2, [&](uint32_t i, float d2) {
             const Photon& ph = map.photon(i);
@@ -41,6 +46,7 @@ uint32_t gather(const PhotonKdTree& map, const EstimateOptions& o, const Surface
         return n;
     }
     if (!(r2 > 0)) return 0;
+    r2_used = r2;
     const float norm = 1.0f / (o.filter.mean_weight() * kPi * r2);
     const bool box = o.filter.kind == FilterKind::Box;
     for (uint32_t i = 0; i < r.count; ++i) {
@@ -76,25 +82,28 @@ bool accept_photon(const Photon& ph, const SurfaceQuery& q, const EstimateOption
 }
 
 Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, Vec3 wo,
-                      const shading::Bsdf& bsdf, uint32_t* n_used) {
+                      const shading::Bsdf& bsdf, uint32_t* n_used, float* radius_used) {
     Rgb sum(0.0f);
     uint32_t n;
+    float r2;
     if (bsdf.is_lambertian()) {
         // Lambert only: f = kd / pi for every photon on wo's side, which the normal test ensures.
-        n = gather(map, o, q, [&](const Photon& ph, float w) { sum += ph.power() * w; });
+        n = gather(map, o, q, r2, [&](const Photon& ph, float w) { sum += ph.power() * w; });
         sum *= bsdf.diffuse_albedo() * kInvPi;
     } else {
-        n = gather(map, o, q,
+        n = gather(map, o, q, r2,
                    [&](const Photon& ph, float w) { sum += bsdf.eval(wo, ph.wi()) * ph.power() * w; });
     }
     if (n_used) *n_used = n;
+    if (radius_used) *radius_used = std::sqrt(r2);
     return sum;
 }
 
 Rgb irradiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q,
                         uint32_t* n_used) {
     Rgb sum(0.0f);
-    const uint32_t n = gather(map, o, q, [&](const Photon& ph, float w) { sum += ph.power() * w; });
+    float r2;
+    const uint32_t n = gather(map, o, q, r2, [&](const Photon& ph, float w) { sum += ph.power() * w; });
     if (n_used) *n_used = n;
     return sum;
 }

@@ -45,9 +45,10 @@ bool accept_photon(const Photon& ph, const SurfaceQuery& q, const EstimateOption
 
 // Reflected radiance towards wo: sum f(wo, wi_p) Phi_p w_p / (mean_w pi r^2) over the accepted
 // neighbours, f = the non-delta BSDF lobes. Lambertian-only BSDFs take a fast path (kd / pi times
-// the irradiance, with no per-photon BSDF evaluation). `n_used` (optional) receives the photon count.
+// the irradiance, with no per-photon BSDF evaluation). `n_used` (optional) receives the photon count,
+// `radius_used` (optional) the disc's radius (the search radius when no photon was found).
 Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, Vec3 wo,
-                      const shading::Bsdf& bsdf, uint32_t* n_used = nullptr);
+                      const shading::Bsdf& bsdf, uint32_t* n_used = nullptr, float* radius_used = nullptr);
 
 // Irradiance sum Phi_p w_p / (mean_w pi r^2) (W/m^2 per channel) at q.
 Rgb irradiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q,

@@ -15,6 +15,7 @@
 #include "app/lib/memory_check.h"
 #include "app/lib/photon_cloud.h"
 #include "app/lib/photon_view.h"
+#include "app/lib/render_command.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
@@ -23,8 +24,6 @@
 #include "integrators/photon_map.h"
 #include "integrators/prepared.h"
 #include "io/image/atomic_write.h"
-#include "io/load_scene.h"
-#include "scene/emission_lights.h"
 
 namespace phos::app {
 namespace {
@@ -47,48 +46,6 @@ const options::Table& photons_run_options() {
 const options::Table& photons_sampling_options() {
     static const options::Table t = only(integrators::sampling_options(), {"seed"});
     return t;
-}
-
-// The scene file's integrator parameters (pbrt `Integrator ... "integer seed" 5`) onto the option
-// tables by name, as phos render applies them: the command line wins; a bad value is an error at
-// the parameter; one that no option takes is an error with --strict (render warns about it).
-std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
-    std::set<std::string> applied;
-    const scene::RenderSettings& st = scene.settings;
-    for (const scene::IntegratorParameter& p : st.integrator_parameters) {
-        const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
-        const options::Option* opt = nullptr;
-        void* object = nullptr;
-        for (const BoundTable& b : cmd.tables())
-            if (const options::Option* o = b.table->find_pbrt(p.name)) opt = o, object = b.object;
-        if (!opt) {
-            if (cmd.run.strict && st.unavailable_integrator.empty())
-                throw ParseError(p.file, p.line, p.column, what + " is not used by phos");
-            continue;
-        }
-        if (cmd.was_given(opt->name)) continue;
-        if (!opt->pbrt_unset.empty() && p.values == std::vector<std::string>{opt->pbrt_unset}) continue;
-        if (int(p.values.size()) != opt->arity)
-            throw ParseError(
-                p.file, p.line, p.column,
-                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
-        try {
-            opt->set(object, p.values);
-            applied.insert(opt->name);
-        } catch (const options::ValueError& e) {
-            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
-        }
-    }
-    return applied;
-}
-
-// The --quality preset's photon budgets, except those given on the command line or by the scene.
-void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene) {
-    for (const auto& [name, value] : quality_preset(cmd.run.quality)) {
-        if (cmd.was_given(name) || from_scene.count(name)) continue;
-        if (const options::Option* o = integrators::photon_map_options().find(name))
-            o->set(&cmd.photon_map, {value});
-    }
 }
 
 // Checks everything that can be checked before any work: output path, format, map names.
@@ -176,15 +133,12 @@ int run_photons(const PhotonsCommand& command) {
     scene::Scene scene;
     {
         ScopedTimer t(stats, "load");
-        scene = io::load_scene(command.scene_path, {.raw_materials = cmd.scene.raw_materials,
-                                                    .legacy_attenuation = cmd.scene.legacy_attenuation,
-                                                    .strict = cmd.run.strict,
-                                                    .no_default_lights = cmd.scene.no_default_lights});
-        if (cmd.scene.emission_lights && scene::emissive_shapes_to_lights(scene) == 0)
-            log::warn("--emission-lights: the scene has no emissive surfaces");
+        cmd.scene_path = command.scene_path;
+        scene = load_render_scene(cmd);
     }
     cmd.run.integrator = "photonmap";
-    apply_quality(cmd, apply_scene_parameters(cmd, scene));
+    std::string spp_source = "default";  // the sample count plays no part here
+    apply_quality(cmd, apply_scene_parameters(cmd, scene), spp_source);
     for (const BoundTable& b : cmd.tables()) {
         try {
             options::validate(*b.table, b.object);
@@ -205,11 +159,7 @@ int run_photons(const PhotonsCommand& command) {
     }
 
     const integrators::RenderOptions& opt = cmd.render;
-    integrators::PrepareOptions prep;
-    prep.bsdf.schlick = cmd.scene.schlick;
-    prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
-    prep.lens_radius = opt.lens_radius;
-    prep.focal_distance = opt.focal_distance;
+    const integrators::PrepareOptions prep = prepare_options(cmd);
     std::optional<integrators::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "app/lib/memory_check.h"
+#include "app/lib/trace_output.h"
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
@@ -162,61 +163,9 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     return src;
 }
 
-// The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
-// the option tables by name, for options the command line did not give. A value outside the
-// option's range is an error at the parameter; a parameter no option takes is a warning (an error
-// with --strict).
-std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
-    std::set<std::string> applied;
-    const scene::RenderSettings& st = scene.settings;
-    const bool own = !st.integrator || *st.integrator == cmd.run.integrator;
-    for (const scene::IntegratorParameter& p : st.integrator_parameters) {
-        const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
-        const options::Option* opt = nullptr;
-        void* object = nullptr;
-        for (const BoundTable& b : cmd.tables())
-            if (const options::Option* o = b.table->find_pbrt(p.name)) opt = o, object = b.object;
-        if (!opt) {
-            // An integrator phos substitutes already had one warning for the whole directive.
-            if (!st.unavailable_integrator.empty()) continue;
-            const std::string msg = what + " is not used by phos";
-            if (cmd.run.strict) throw ParseError(p.file, p.line, p.column, msg);
-            if (own) log::warn(ParseError::format(p.file, p.line, p.column, msg + " (ignored)"));
-            continue;
-        }
-        if (cmd.was_given(opt->name)) continue;  // the command line wins
-        // A value meaning "pbrt's default" (photonsperiteration -1) keeps phos's default.
-        if (!opt->pbrt_unset.empty() && p.values == std::vector<std::string>{opt->pbrt_unset}) continue;
-        if (int(p.values.size()) != opt->arity)
-            throw ParseError(
-                p.file, p.line, p.column,
-                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
-        try {
-            opt->set(object, p.values);
-            applied.insert(opt->name);
-        } catch (const options::ValueError& e) {
-            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
-        }
-        if (opt->name == "iterations" && !cmd.was_given("spp") && !cmd.was_given("aa"))
-            cmd.render.spp = cmd.progressive.iterations;
-    }
-    return applied;
-}
-
-// The --quality preset: its options, except those given on the command line or by the scene file
-// (the sample count only where it is still the default).
+// The --quality preset (see apply_quality in render_command.h), saying where the sample count came from.
 void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, Sources& src) {
-    for (const auto& [name, value] : quality_preset(cmd.run.quality)) {
-        if (cmd.was_given(name) || from_scene.count(name)) continue;
-        if (name == "spp") {
-            if (src.spp.rfind("default", 0) != 0 || cmd.was_given("aa") || cmd.was_given("iterations") ||
-                cmd.was_given("time"))
-                continue;
-            src.spp = "--quality " + cmd.run.quality;
-        }
-        for (const BoundTable& b : cmd.tables())
-            if (const options::Option* o = b.table->find(name)) o->set(b.object, {value});
-    }
+    apply_quality(cmd, from_scene, src.spp);
 }
 
 // Every table's values checked (values from tests or scene files included), and options given on
@@ -358,6 +307,82 @@ bool output_exists(const std::string& path) {
 
 }  // namespace
 
+// The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
+// the option tables by name, for options the command line did not give. A value outside the
+// option's range is an error at the parameter; a parameter no option takes is a warning (an error
+// with --strict).
+std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
+    std::set<std::string> applied;
+    const scene::RenderSettings& st = scene.settings;
+    const bool own = !st.integrator || *st.integrator == cmd.run.integrator;
+    for (const scene::IntegratorParameter& p : st.integrator_parameters) {
+        const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
+        const options::Option* opt = nullptr;
+        void* object = nullptr;
+        for (const BoundTable& b : cmd.tables())
+            if (const options::Option* o = b.table->find_pbrt(p.name)) opt = o, object = b.object;
+        if (!opt) {
+            // An integrator phos substitutes already had one warning for the whole directive.
+            if (!st.unavailable_integrator.empty()) continue;
+            const std::string msg = what + " is not used by phos";
+            if (cmd.run.strict) throw ParseError(p.file, p.line, p.column, msg);
+            if (own) log::warn(ParseError::format(p.file, p.line, p.column, msg + " (ignored)"));
+            continue;
+        }
+        if (cmd.was_given(opt->name)) continue;  // the command line wins
+        // A value meaning "pbrt's default" (photonsperiteration -1) keeps phos's default.
+        if (!opt->pbrt_unset.empty() && p.values == std::vector<std::string>{opt->pbrt_unset}) continue;
+        if (int(p.values.size()) != opt->arity)
+            throw ParseError(
+                p.file, p.line, p.column,
+                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
+        try {
+            opt->set(object, p.values);
+            applied.insert(opt->name);
+        } catch (const options::ValueError& e) {
+            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
+        }
+        if (opt->name == "iterations" && !cmd.was_given("spp") && !cmd.was_given("aa"))
+            cmd.render.spp = cmd.progressive.iterations;
+    }
+    return applied;
+}
+
+// The --quality preset: its options, except those given on the command line or by the scene file
+// (the sample count only where it is still the default).
+void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, std::string& spp_source) {
+    for (const auto& [name, value] : quality_preset(cmd.run.quality)) {
+        if (cmd.was_given(name) || from_scene.count(name)) continue;
+        if (name == "spp") {
+            if (spp_source.rfind("default", 0) != 0 || cmd.was_given("aa") || cmd.was_given("iterations") ||
+                cmd.was_given("time"))
+                continue;
+            spp_source = "--quality " + cmd.run.quality;
+        }
+        for (const BoundTable& b : cmd.tables())
+            if (const options::Option* o = b.table->find(name)) o->set(b.object, {value});
+    }
+}
+
+scene::Scene load_render_scene(const RenderCommand& cmd) {
+    scene::Scene scene = io::load_scene(cmd.scene_path, {.raw_materials = cmd.scene.raw_materials,
+                                                         .legacy_attenuation = cmd.scene.legacy_attenuation,
+                                                         .strict = cmd.run.strict,
+                                                         .no_default_lights = cmd.scene.no_default_lights});
+    if (cmd.scene.emission_lights && scene::emissive_shapes_to_lights(scene) == 0)
+        log::warn("--emission-lights: the scene has no emissive surfaces");
+    return scene;
+}
+
+integrators::PrepareOptions prepare_options(const RenderCommand& cmd) {
+    integrators::PrepareOptions prep;
+    prep.bsdf.schlick = cmd.scene.schlick;
+    prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
+    prep.lens_radius = cmd.render.lens_radius;
+    prep.focal_distance = cmd.render.focal_distance;
+    return prep;
+}
+
 std::string layer_path(const std::string& output, const std::string& layer) {
     const std::filesystem::path p(output);
     return (p.parent_path() / (p.stem().string() + "." + layer + p.extension().string())).string();
@@ -376,14 +401,7 @@ int run_render(const RenderCommand& command) {
     scene::Scene scene;
     {
         ScopedTimer t(stats, "load");
-        scene = io::load_scene(cmd.scene_path, {.raw_materials = cmd.scene.raw_materials,
-                                                .legacy_attenuation = cmd.scene.legacy_attenuation,
-                                                .strict = cmd.run.strict,
-                                                .no_default_lights = cmd.scene.no_default_lights});
-        if (cmd.scene.emission_lights) {
-            const int n = scene::emissive_shapes_to_lights(scene);
-            if (n == 0) log::warn("--emission-lights: the scene has no emissive surfaces");
-        }
+        scene = load_render_scene(cmd);
     }
 
     // Resolve settings: command line, then the scene file, then defaults.
@@ -396,6 +414,8 @@ int run_render(const RenderCommand& command) {
     Sources sources = resolve_settings(cmd, scene);
     apply_quality(cmd, apply_scene_parameters(cmd, scene), sources);
     check_options(cmd);
+    check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
+    if (!cmd.run.trace_json.empty()) check_writable(cmd.run.trace_json, "--trace-json");
     const std::string& integrator_name = cmd.run.integrator;
     const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";
     if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
@@ -419,11 +439,7 @@ int run_render(const RenderCommand& command) {
     const integrators::RenderOptions& opt = cmd.render;
     check_memory(cmd, scene, stats);  // refuses before any work when the memory would not do
 
-    integrators::PrepareOptions prep;
-    prep.bsdf.schlick = cmd.scene.schlick;
-    prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
-    prep.lens_radius = opt.lens_radius;
-    prep.focal_distance = opt.focal_distance;
+    const integrators::PrepareOptions prep = prepare_options(cmd);
     std::optional<integrators::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");
@@ -486,8 +502,12 @@ int run_render(const RenderCommand& command) {
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
     Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet));
+    // --trace-pixel: the integrator records that pixel's camera samples (integrators/path_recorder.h).
+    std::optional<integrators::PathRecorder> trace;
+    if (cmd.run.trace_x >= 0) trace.emplace(cmd.run.trace_x, cmd.run.trace_y);
     {
         ScopedTimer t(stats, "render");
+        const integrators::TraceRequest request(trace ? &*trace : nullptr);
         integrator->render(*prepared, film, progress);
     }
     const integrators::RenderBudget::Done& done = *cmd.budget.done;
@@ -511,6 +531,9 @@ int run_render(const RenderCommand& command) {
         ScopedTimer t(stats, "write");
         write_images(output, film, layers, cmd.run.exposure);
     }
+    if (trace)  // --trace-pixel: printed, and written with --trace-json
+        report_trace(*trace, {integrator_name, film.main().value(trace->x(), trace->y())},
+                     cmd.run.trace_json);
     const std::string so_far = work_done(done, progressive, size_t(opt.width) * size_t(opt.height));
     if (cmd.run.verbose) {
         stats.add_value("image", std::to_string(opt.width) + "x" + std::to_string(opt.height) + ", " +

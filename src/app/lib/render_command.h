@@ -1,11 +1,28 @@
 // `phos render`: the function that runs a render from its options (render_options.h).
 #pragma once
 
+#include <set>
 #include <string>
 
 #include "app/lib/render_options.h"
+#include "integrators/prepared.h"
+#include "scene/scene.h"
 
 namespace phos::app {
+
+// The scene of `cmd` loaded as the render loads it (reading switches, --emission-lights).
+scene::Scene load_render_scene(const RenderCommand& cmd);
+// The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
+// the option tables by name, for options the command line did not give; returns the names set. A
+// value outside the option's range is an error at the parameter; a parameter no option takes is a
+// warning for the scene's own integrator (an error with --strict).
+std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene);
+// The --quality preset's options, except those given on the command line or set by the scene file
+// (`from_scene`); the sample count only while `spp_source` (where it came from) is still a default,
+// which then names the preset.
+void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, std::string& spp_source);
+// How the scene is prepared for rendering (shading switches, --dof lens).
+integrators::PrepareOptions prepare_options(const RenderCommand& cmd);
 
 // Where layer `layer` of `output` is written: out.png -> out.caustic.png.
 std::string layer_path(const std::string& output, const std::string& layer);

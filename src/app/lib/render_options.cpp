@@ -71,10 +71,34 @@ const options::Table& run_options() {
                             "write the --preview window's pixels to FILE when it closes (docs, tests)");
         shot.effect = Effect::None;
         shot.default_text = "none";
-        auto& tev = b.text("tev", &RunOptions::tev, "HOST:PORT",
-                           "stream the image to a running tev viewer (alone: " + std::string(kTevDefault) + ")");
+        auto& tev =
+            b.text("tev", &RunOptions::tev, "HOST:PORT",
+                   "stream the image to a running tev viewer (alone: " + std::string(kTevDefault) + ")");
         tev.effect = Effect::None;
         tev.default_text = "none";
+        // --trace-pixel / --trace-json (app/lib/trace_output.h; the range against the image is
+        // checked once its size is known).
+        auto& trace = b.custom(
+            "trace-pixel", "X Y", 2,
+            "print every camera sample of pixel (X, Y) vertex by vertex to stdout: events, directions, "
+            "throughput, light samples, photon lookups (ppm/sppm: visible points and gathered photons)",
+            [](RunOptions& o, const std::vector<std::string>& v) {
+                const long long x = options::parse_integer(v.at(0)), y = options::parse_integer(v.at(1));
+                options::TableBuilder<RunOptions>::check_range(double(x), between(0, 65535));
+                options::TableBuilder<RunOptions>::check_range(double(y), between(0, 65535));
+                o.trace_x = int(x);
+                o.trace_y = int(y);
+            },
+            [](const RunOptions& o) {
+                return o.trace_x < 0 ? std::string("none")
+                                     : std::to_string(o.trace_x) + " " + std::to_string(o.trace_y);
+            });
+        trace.effect = Effect::None;
+        trace.default_text = "none";
+        auto& trace_json = b.text("trace-json", &RunOptions::trace_json, "FILE",
+                                  "also write the --trace-pixel record as JSON to FILE");
+        trace_json.effect = Effect::None;
+        trace_json.default_text = "none";
         return b.build();
     }();
     return table;

@@ -37,6 +37,9 @@ struct RunOptions {
     bool preview_hold = false;       // keep the window after the render until closed
     std::string preview_screenshot;  // the window's pixels written here when it closes
     std::string tev;                 // --tev HOST:PORT: stream to a tev viewer (empty: no)
+    // --trace-pixel X Y: print every camera sample of that pixel (-1: none); --trace-json FILE.
+    int trace_x = -1, trace_y = -1;
+    std::string trace_json;
 };
 
 // How the scene is read and shaded (they change the image).
