@@ -15,8 +15,11 @@ scene::Scene load_scene(const std::string& path, const LoadOptions& options) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
-    if (!std::filesystem::exists(path)) throw ParseError(path, 0, 0, "cannot open scene file: no such file");
-    if (std::filesystem::is_directory(path)) throw ParseError(path, 0, 0, "is a directory, not a scene file");
+    std::error_code ec;  // the non-throwing overloads: an unusable name (too long, say) is not found
+    if (!std::filesystem::exists(path, ec))
+        throw ParseError(path, 0, 0, "cannot open scene file: no such file");
+    if (std::filesystem::is_directory(path, ec))
+        throw ParseError(path, 0, 0, "is a directory, not a scene file");
     if (ext == ".scn")
         return load_scn(path, ScnOptions{.raw_materials = options.raw_materials,
                                          .no_default_lights = options.no_default_lights,

@@ -117,7 +117,8 @@ TEST(SelfIntersection, PlanarSurfacesNeverRehitThemselves) {
     q.to_world = Transform::translate({200, 100, 0}) * Transform::rotate(33, {1, 2, 3});
     Shape d = disk({-3, 7, 2}, normalize(Vec3(0.3f, 1, 0.2f)), 4, 1);
     for (const Shape& s : {q, d}) {
-        const accel::EmbreeScene es(single(s));
+        const scene::Scene sc = single(s);  // EmbreeScene keeps a reference to its scene
+        const accel::EmbreeScene es(sc);
         int hits = 0;
         for (int k = 0; k < 2000; ++k) {
             accel::SurfaceHit h;
@@ -189,7 +190,8 @@ TEST(NoLeak, WallsMeetingAtACorner) {
 // its edges or rims): every ray must hit the shape again, none may escape through an edge.
 template <class Inside, class Edge>
 void check_closed(const Shape& s, Inside inside, Edge edge, Sampler& rng) {
-    const accel::EmbreeScene es(single(s));
+    const scene::Scene sc = single(s);  // EmbreeScene keeps a reference to its scene
+    const accel::EmbreeScene es(sc);
     int bounces = 0, escapes = 0;
     for (int path = 0; path < 300; ++path) {
         // Start inside, aiming straight at an edge or corner every other path.

@@ -45,8 +45,11 @@ std::string bmp_truncation(std::FILE* f) {
     const int64_t width = int32_t(get32(h + 18)), height = int32_t(get32(h + 22));
     const int64_t bpp = uint16_t(h[28] | h[29] << 8);
     if (width <= 0 || height == 0 || bpp <= 0 || bpp > 32) return "";
-    const int64_t row = ((width * bpp + 31) / 32) * 4;
-    const int64_t needed = int64_t(offset) + row * (height < 0 ? -height : height);
+    const int64_t row = ((width * bpp + 31) / 32) * 4, rows = height < 0 ? -height : height;
+    // row < 2^36 and rows <= 2^31: their product may not fit in 64 bits, and then no file is long enough.
+    if (rows > (INT64_MAX - int64_t(offset)) / row)
+        return "truncated BMP (" + std::to_string(size) + " bytes; its header asks for more than 2^63)";
+    const int64_t needed = int64_t(offset) + row * rows;
     if (size >= 0 && size < needed)
         return "truncated BMP (" + std::to_string(size) + " of " + std::to_string(needed) + " bytes)";
     return "";

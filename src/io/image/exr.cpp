@@ -8,6 +8,7 @@
 #include <ImfOutputFile.h>
 
 #include <exception>
+#include <filesystem>
 #include <string>
 
 #include "core/error.h"
@@ -44,6 +45,9 @@ Image read_exr(const std::string& path) {
         const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
         if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
             throw_read_error(path, "unsupported EXR data window size");
+        std::error_code ec;
+        const auto file_bytes = std::filesystem::file_size(path, ec);
+        if (!ec) check_pixel_count(path, w, h, file_bytes);
         const Imf::ChannelList& channels = file.header().channels();
         const bool has_rgb =
             channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");

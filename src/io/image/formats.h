@@ -31,4 +31,12 @@ std::string bmp_truncation(std::FILE* f);
 // "cannot read 'path': reason" — the one wording all readers use.
 [[noreturn]] void throw_read_error(const std::string& path, const std::string& reason);
 
+// Refuses (throw_read_error) a header that claims more pixels than a file of `file_bytes` bytes
+// can plausibly encode, before anything is allocated for them. The bound, kMaxPixelsPerByte, is
+// far above what any compression reaches on real images (a 1-bit PNG of one colour is about 8,000
+// pixels per byte), so only corrupt or hostile headers meet it.
+constexpr unsigned long long kMaxPixelsPerByte = 1ull << 15;
+void check_pixel_count(const std::string& path, long long width, long long height,
+                       unsigned long long file_bytes);
+
 }  // namespace phos::io::detail

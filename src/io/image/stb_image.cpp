@@ -13,11 +13,14 @@
 #include <stb/stb_image.h>
 #pragma GCC diagnostic pop
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
 #include "io/image/formats.h"
@@ -35,13 +38,123 @@ std::string stb_reason() {
     return r ? std::string(r) : std::string("unknown decoding error");
 }
 
+// stb_image 2.27 (Debian 12) copies a JPEG Huffman table's symbols into 256-entry arrays without
+// checking that the table's 16 code counts add up to at most 256, so a corrupt DHT segment
+// overwrites the decoder's memory. This walks the file the way stb does (segments skipped by their
+// length, entropy-coded data scanned for markers, fill bytes 0xFF skipped) and returns a reason
+// when any DHT segment stb could reach holds such a table, else "". Keeps `f`'s position.
+std::string jpeg_huffman_problem(std::FILE* f) {
+    const long start = std::ftell(f);
+    std::vector<unsigned char> b;
+    unsigned char buf[4096];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) b.insert(b.end(), buf, buf + n);
+    std::fseek(f, start, SEEK_SET);
+    // stb takes a file for a JPEG when it starts with an SOI marker, 0xFF fill bytes allowed.
+    size_t p = 0;
+    while (p < b.size() && b[p] == 0xFF) ++p;
+    if (p == 0 || p >= b.size() || b[p] != 0xD8) return "";  // not a JPEG
+    ++p;
+    // Bytes past the end read as 0, as in stb.
+    const auto at = [&](size_t i) -> unsigned { return i < b.size() ? b[i] : 0u; };
+    while (p < b.size()) {
+        if (b[p] != 0xFF) {  // entropy-coded data or padding: look for the next marker
+            ++p;
+            continue;
+        }
+        while (p < b.size() && b[p] == 0xFF) ++p;
+        if (p >= b.size()) break;
+        const unsigned m = b[p++];
+        if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD8)) continue;  // stuffing, TEM, RSTn, SOI
+        if (m == 0xD9) break;                                              // EOI: stb stops here
+        const size_t length = at(p) << 8 | at(p + 1);
+        if (m == 0xC4) {
+            long left = long(length) - 2;
+            size_t q = p + 2;
+            while (left > 0) {
+                const unsigned tc = at(q) >> 4, th = at(q) & 15;
+                if (tc > 1 || th > 3) break;  // stb rejects the segment before using it
+                unsigned codes = 0;
+                for (size_t i = 1; i <= 16; ++i) codes += at(q + i);
+                if (codes > 256)
+                    return "corrupt JPEG (a Huffman table declares " + std::to_string(codes) +
+                           " codes; at most 256 are possible)";
+                q += 17 + codes;
+                left -= long(17 + codes);
+            }
+        }
+        p += std::max<size_t>(length, 2);
+    }
+    return "";
+}
+
+// stb_image 2.27 decodes a run-length encoded Radiance HDR scanline with a loop that never ends when
+// a "dump" count is 0, which is also what it reads at the end of the file: a truncated or corrupt
+// file hangs it. This walks the scanlines of the `width` x `height` HDR in `f` as stb does and
+// returns a reason when it would meet such a count, else "". Keeps `f`'s position.
+std::string hdr_rle_problem(std::FILE* f, int width, int height) {
+    if (width < 8 || width >= 32768) return "";  // stb reads flat pixels then, which always ends
+    const long start = std::ftell(f);
+    std::vector<unsigned char> b;
+    unsigned char buf[4096];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) b.insert(b.end(), buf, buf + n);
+    std::fseek(f, start, SEEK_SET);
+    const auto at = [&](size_t i) -> unsigned { return i < b.size() ? b[i] : 0u; };  // 0 past the end
+    // The header: the magic line, lines up to an empty one, then the "-Y h +X w" line.
+    size_t p = 0;
+    const auto skip_line = [&] {
+        const size_t first = p;
+        while (p < b.size() && b[p] != '\n') ++p;
+        const bool empty = p == first;
+        if (p < b.size()) ++p;
+        return empty;
+    };
+    skip_line();
+    while (p < b.size() && !skip_line()) {
+    }
+    skip_line();
+    const std::string problem =
+        "corrupt HDR (a run-length encoded scanline ends early or holds an empty run)";
+    for (int y = 0; y < height; ++y) {
+        const unsigned c1 = at(p), c2 = at(p + 1), len_high = at(p + 2);
+        p += 3;
+        if (c1 != 2 || c2 != 2 || (len_high & 0x80)) return "";  // stb reads the rest as flat pixels
+        if (int(len_high << 8 | at(p++)) != width) return "";    // stb rejects the scanline
+        for (int k = 0; k < 4; ++k)
+            for (int x = 0; x < width;) {
+                unsigned count = at(p++);
+                if (count > 128) {
+                    ++p;  // the run's value
+                    count -= 128;
+                } else {
+                    if (count == 0) return problem;
+                    p += count;
+                }
+                if (int(count) > width - x) return "";  // stb rejects the run
+                x += int(count);
+            }
+    }
+    return "";
+}
+
 }  // namespace
 
 Image read_stb(const std::string& path, bool srgb) {
     std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
     if (!f) throw_read_error(path, std::strerror(errno));
     if (const std::string reason = bmp_truncation(f.get()); !reason.empty()) throw_read_error(path, reason);
+    if (const std::string reason = jpeg_huffman_problem(f.get()); !reason.empty())
+        throw_read_error(path, reason);
+    // stb allocates the whole image from the header before reading any pixel (and for TGA then
+    // loops over every pixel even when the file ends), so a corrupt size is refused first.
     int w = 0, h = 0, n = 0;
+    if (stbi_info_from_file(f.get(), &w, &h, &n)) {
+        std::error_code ec;
+        const auto file_bytes = std::filesystem::file_size(path, ec);
+        if (!ec) check_pixel_count(path, w, h, file_bytes);
+        if (stbi_is_hdr_from_file(f.get()))
+            if (const std::string reason = hdr_rle_problem(f.get(), w, h); !reason.empty())
+                throw_read_error(path, reason);
+    }
     Image image;
 
     if (stbi_is_hdr_from_file(f.get())) {

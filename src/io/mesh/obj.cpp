@@ -3,7 +3,9 @@
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
+#include <algorithm>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -25,6 +27,26 @@ int line_in_message(const std::string& msg) {
     return 0;
 }
 
+// tinyobjloader 2.0 (Debian 12) converts the joint ids of its `vw` (skin weight) extension lines to
+// int unchecked: undefined behaviour for a value such as 1e38. phos does not use skin weights, so
+// those lines are blanked before parsing, their line breaks kept (\n, \r\n or \r, as tinyobjloader
+// splits lines) so that line numbers in messages stay right.
+std::string without_skin_weights(const std::string& text) {
+    std::string out;
+    out.reserve(text.size());
+    for (size_t i = 0; i < text.size();) {
+        const size_t end = std::min(text.find_first_of("\r\n", i), text.size());
+        size_t k = i;
+        while (k < end && (text[k] == ' ' || text[k] == '\t')) ++k;
+        const bool vw = end - k >= 3 && text[k] == 'v' && text[k + 1] == 'w' &&
+                        (text[k + 2] == ' ' || text[k + 2] == '\t');
+        if (!vw) out.append(text, i, end - i);
+        if (end < text.size()) out.push_back(text[end]);
+        i = end + 1;
+    }
+    return out;
+}
+
 std::string trim(std::string s) {
     while (!s.empty() && (s.back() == '\n' || s.back() == '\r' || s.back() == ' ')) s.pop_back();
     return s;
@@ -33,37 +55,39 @@ std::string trim(std::string s) {
 }  // namespace
 
 LoadedMesh read_obj(const std::string& path) {
-    {
-        std::ifstream probe(path);
-        if (!probe) throw ParseError(path, 0, 0, "cannot open OBJ file");
-    }
-    tinyobj::ObjReaderConfig config;
-    config.triangulate = true;
-    config.vertex_color = false;
-    tinyobj::ObjReader reader;
-    const bool ok = reader.ParseFromFile(path, config);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw ParseError(path, 0, 0, "cannot open OBJ file");
+    std::istringstream text(without_skin_weights(std::string(std::istreambuf_iterator<char>(in), {})));
+    // Material libraries are looked up beside the OBJ file, as tinyobjloader's own file loader does.
+    const size_t slash = path.find_last_of('/');
+    tinyobj::MaterialFileReader material_reader(slash == std::string::npos ? "" : path.substr(0, slash + 1));
+    tinyobj::attrib_t attrib;
+    std::vector<tinyobj::shape_t> shapes;
+    std::vector<tinyobj::material_t> materials;
+    std::string warning, error;
+    const bool ok = tinyobj::LoadObj(&attrib, &shapes, &materials, &warning, &error, &text, &material_reader,
+                                     /*triangulate=*/true, /*default_vcols_fallback=*/false);
     // Warnings come one per line; report each. tinyobjloader calls an out-of-range face index a
     // warning, but the face is unusable, so that one is an error here.
-    std::istringstream warnings(reader.Warning());
+    std::istringstream warnings(warning);
     for (std::string w; std::getline(warnings, w);) {
         w = trim(w);
         if (w.empty()) continue;
         if (w.find("out of bounds") != std::string::npos) throw ParseError(path, line_in_message(w), 0, w);
         log::warn(path + ": " + w);
     }
-    if (!ok || !reader.Error().empty()) {
-        const std::string msg = trim(reader.Error());
+    if (!ok || !error.empty()) {
+        const std::string msg = trim(error);
         throw ParseError(path, line_in_message(msg), 0, msg.empty() ? "malformed OBJ file" : msg);
     }
 
-    const tinyobj::attrib_t& attrib = reader.GetAttrib();
     LoadedMesh out;
-    for (const tinyobj::material_t& m : reader.GetMaterials()) out.material_names.push_back(m.name);
+    for (const tinyobj::material_t& m : materials) out.material_names.push_back(m.name);
 
     // A single-index mesh can only carry normals/uvs if every corner has them.
     bool all_normals = true, all_uvs = true;
     size_t corners = 0;
-    for (const tinyobj::shape_t& s : reader.GetShapes())
+    for (const tinyobj::shape_t& s : shapes)
         for (const tinyobj::index_t& i : s.mesh.indices) {
             all_normals &= i.normal_index >= 0;
             all_uvs &= i.texcoord_index >= 0;
@@ -80,7 +104,7 @@ LoadedMesh read_obj(const std::string& path) {
     const size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3,
                  nt = attrib.texcoords.size() / 2;
     bool any_material = false;
-    for (const tinyobj::shape_t& s : reader.GetShapes()) {
+    for (const tinyobj::shape_t& s : shapes) {
         const auto& idx = s.mesh.indices;
         for (size_t f = 0; f < s.mesh.num_face_vertices.size(); ++f) {
             if (s.mesh.num_face_vertices[f] != 3)

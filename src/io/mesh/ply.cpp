@@ -1,6 +1,7 @@
 // PLY triangle-mesh reader (ASCII and binary little/big endian) and writer. Only the vertex
 // positions, normals and texture coordinates and the face index lists are used; every other
 // element and property is parsed (so binary offsets stay right) and discarded.
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstdint>
@@ -52,6 +53,26 @@ Type parse_type(const std::string& s) {
 }
 
 bool is_integer(Type t) { return t != Type::Float32 && t != Type::Float64; }
+
+// Whether `v` (already known to be a whole number for integer types) fits the declared type.
+bool in_range(Type t, double v) {
+    switch (t) {
+        case Type::Int8:
+            return v >= -128 && v <= 127;
+        case Type::UInt8:
+            return v >= 0 && v <= 255;
+        case Type::Int16:
+            return v >= -32768 && v <= 32767;
+        case Type::UInt16:
+            return v >= 0 && v <= 65535;
+        case Type::Int32:
+            return v >= -2147483648.0 && v <= 2147483647.0;
+        case Type::UInt32:
+            return v >= 0 && v <= 4294967295.0;
+        default:
+            return true;
+    }
+}
 
 // What a vertex property means to us.
 enum class Role { None, X, Y, Z, NX, NY, NZ, U, V, FaceIndices };
@@ -155,6 +176,10 @@ private:
         if (is_integer(t) && v != std::floor(v)) {
             col_ = start;
             fail("expected an integer, got '" + tok + "'");
+        }
+        if (!in_range(t, v)) {
+            col_ = start;
+            fail("'" + tok + "' is out of range for its property type");
         }
         return v;
     }
@@ -327,6 +352,34 @@ scene::TriangleMesh read_ply(const std::string& path) {
     const bool uvs = has(Role::U) && has(Role::V);
 
     // ---- body ----
+    // Every element instance takes at least one byte per property (a character in ASCII; the value,
+    // or a list's count, in binary), so a count the rest of the file cannot hold is a corrupt
+    // header: refusing it here keeps it from reserving gigabytes or looping for ages.
+    {
+        in.clear();  // a header ending at the end of the file leaves eofbit set
+        const std::streamoff body_start = in.tellg();
+        in.seekg(0, std::ios::end);
+        const std::streamoff file_end = in.tellg();
+        in.seekg(body_start);
+        if (body_start < 0 || file_end < body_start || !in)
+            throw ParseError(path, line_no, 1, "cannot determine the size of the PLY body");
+        uint64_t left = uint64_t(file_end - body_start);
+        for (const Element& e : elements) {
+            uint64_t per_instance = 0;
+            for (const Property& p : e.props)
+                per_instance += format == Format::Ascii
+                                    ? 1
+                                    : uint64_t(type_size(p.count_type != Type::None ? p.count_type : p.type));
+            per_instance = std::max<uint64_t>(per_instance, 1);
+            if (e.count > left / per_instance)
+                throw ParseError(path, e.header_line, 1,
+                                 "unexpected end of file: element '" + e.name + "' declares " +
+                                     std::to_string(e.count) + " instances of at least " +
+                                     std::to_string(per_instance) + " byte(s) each, but only " +
+                                     std::to_string(left) + " bytes are left");
+            left -= e.count * per_instance;
+        }
+    }
     scene::TriangleMesh mesh;
     BodyReader body(in, format, path, line_no + 1);
     std::vector<uint32_t> poly;

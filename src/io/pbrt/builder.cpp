@@ -48,10 +48,12 @@ void SceneBuilder::require_world(bool world, const std::string& directive, const
 std::string SceneBuilder::resolve(const std::string& filename, const Loc& loc) const {
     const fs::path p(filename);
     if (p.is_absolute()) return filename;
+    // The non-throwing overloads: a name the file system rejects (too long, say) is simply not found.
+    std::error_code ec;
     const fs::path local = fs::path(loc.filename()).parent_path() / p;
-    if (fs::exists(local)) return local.string();
+    if (fs::exists(local, ec)) return local.string();
     const fs::path main = fs::path(main_dir_) / p;
-    if (fs::exists(main)) return main.string();
+    if (fs::exists(main, ec)) return main.string();
     return local.string();
 }
 

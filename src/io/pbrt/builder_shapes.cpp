@@ -164,7 +164,8 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
             const Param* fp = params.find("filename");
             if (!fp) loc.fail(d + ": missing \"string filename\"");
             const std::string path = resolve(params.get_string("filename", ""), fp->loc);
-            if (!std::filesystem::exists(path)) fp->loc.fail(d + ": cannot open '" + path + "'");
+            std::error_code ec;
+            if (!std::filesystem::exists(path, ec)) fp->loc.fail(d + ": cannot open '" + path + "'");
             s.mesh = read_ply(path);
         } else {
             s.mesh = mesh_from_params(type == "bilinearmesh");

@@ -2,6 +2,7 @@
 #include "io/pbrt/params.h"
 
 #include <cmath>
+#include <limits>
 
 #include "core/log.h"
 
@@ -62,9 +63,14 @@ void ParamList::add(Param p) {
         if (t == "blackbody" && p.numbers.size() != 1)
             p.loc.fail("blackbody parameter " + p.declaration() + " needs one temperature");
         if (t == "integer")
-            for (double v : p.numbers)
+            for (double v : p.numbers) {
                 if (v != std::floor(v))
                     p.loc.fail("integer parameter " + p.declaration() + " has a non-integer value");
+                // Read as int later (get_int, get_ints); a value beyond int cannot be converted.
+                if (v < double(std::numeric_limits<int>::min()) ||
+                    v > double(std::numeric_limits<int>::max()))
+                    p.loc.fail("integer parameter " + p.declaration() + " has a value out of range");
+            }
     } else if (textual) {
         if (!p.numbers.empty() || !p.bools.empty())
             p.loc.fail("parameter " + p.declaration() + " needs a quoted string");

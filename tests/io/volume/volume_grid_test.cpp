@@ -201,7 +201,12 @@ TEST(VolumeGrid, UnreadableFilesThrowInputErrorNamingThem) {
     f.write_nvdb(nvdb);
     const std::string vb = bytes_of(vdb), nb = bytes_of(nvdb);
     for (double frac : {0.1, 0.5, 0.9}) {
+#ifndef __SANITIZE_ADDRESS__
+        // Debian's OpenVDB 10.0 takes the size of a blosc chunk cut off by the end of the file from
+        // an uninitialised variable (later releases check the read). The huge allocation that can
+        // follow throws std::bad_alloc, which phos reports; AddressSanitizer aborts instead.
         expect_error(dir.write("cut.vdb", vb.substr(0, size_t(double(vb.size()) * frac))), "");
+#endif
         expect_error(dir.write("cut.nvdb", nb.substr(0, size_t(double(nb.size()) * frac))), "");
     }
     // A flipped byte in the data of a grid with a full checksum fails it.

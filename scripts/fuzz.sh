@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Fuzzes phos's readers with libFuzzer (fuzz/, docs/testing.md): installs what is missing, builds
+# build-fuzz with clang-14 (-fsanitize=fuzzer,address,undefined), assembles the seed corpora and
+# runs each target in turn, then prints executions, coverage and findings per target.
+# Usage: scripts/fuzz.sh [--smoke] [SECONDS] [TARGET...]
+#   SECONDS  fuzzing time per target (default 60); TARGET: scn pbrt scene_format off ply obj image
+#            checkpoint (default: all). --smoke (CI): every seed plus a few seconds per target.
+# Exits 1 if any target crashed, hung, leaked, ran out of memory or tripped a sanitizer; the inputs
+# are in build-fuzz/artifacts/, the logs in build-fuzz/logs/.
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+build="$here/build-fuzz"
+shared="${PHOS_SHARED_DIR:-$here/../shared}"
+all_targets=(scn pbrt scene_format off ply obj image checkpoint)
+
+smoke=0
+seconds=60
+targets=()
+for a in "$@"; do
+  case "$a" in
+    --smoke) smoke=1 ;;
+    ''|*[!0-9]*) targets+=("$a") ;;
+    *) seconds="$a" ;;
+  esac
+done
+[ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
+for t in "${targets[@]}"; do
+  [[ " ${all_targets[*]} " == *" $t "* ]] || { echo "fuzz: unknown target '$t' (${all_targets[*]})" >&2; exit 2; }
+done
+if [ "$smoke" = 1 ]; then seconds="${PHOS_FUZZ_SMOKE_SECONDS:-4}"; fi
+
+# ---- packages (only the missing ones) ----
+packages=(clang-14 libclang-rt-14-dev cmake pkg-config python3 libembree-dev libtbb-dev libopenexr-dev
+          libpng-dev libstb-dev libtinyobjloader-dev libopenvdb-dev libnanovdb-dev libboost-iostreams-dev
+          libblosc-dev zlib1g-dev)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "fuzz: installing ${missing[*]}" >&2
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; else SUDO=; fi
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# ---- build ----
+cmake -S "$here" -B "$build" -DCMAKE_CXX_COMPILER=clang++-14 -DPHOS_FUZZ=ON -DPHOS_BUILD_TESTS=OFF \
+  -DPHOS_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g" >/dev/null
+build_targets=()
+for t in "${targets[@]}"; do build_targets+=(--target "${t}_fuzzer"); done
+cmake --build "$build" -j"$(nproc)" "${build_targets[@]}"
+
+# ---- corpora: generated and shipped seeds (fresh each run) plus what earlier runs found ----
+rm -rf "$build/seeds"
+python3 "$here/fuzz/make_seeds.py" "$build/seeds" "$here" "$shared"
+mkdir -p "$build/artifacts" "$build/logs"
+
+dict_of() { case "$1" in scene_format) echo scene ;; *) echo "$1" ;; esac; }
+# Input size caps. Images: a header may claim up to 32768 pixels per byte of file (io/image), so
+# 1 KB keeps valid but extreme images (a 1-bit PNG of 30 million pixels) within -rss_limit_mb.
+max_len_of() { case "$1" in image) echo 1024 ;; checkpoint) echo 4096 ;; *) echo 8192 ;; esac; }
+
+failed=()
+rows=()
+for t in "${targets[@]}"; do
+  if [ "$smoke" = 1 ]; then
+    corpus="$build/smoke-corpus/$t"  # seeds only: the same work every time
+    rm -rf "$corpus"
+  else
+    corpus="$build/corpus/$t"
+  fi
+  mkdir -p "$corpus" "$build/seeds/$t"
+  log="$build/logs/$t.log"
+  before=$(find "$build/artifacts" -name "$t-*" | wc -l)
+  echo "fuzz: $t for ${seconds}s" >&2
+  rc=0
+  start=$SECONDS
+  ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}" \
+  "$build/fuzz/${t}_fuzzer" "$corpus" "$build/seeds/$t" \
+    -dict="$here/fuzz/$(dict_of "$t").dict" -max_len="$(max_len_of "$t")" \
+    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
+    -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1 || rc=$?
+  took=$((SECONDS - start))
+  after=$(find "$build/artifacts" -name "$t-*" | wc -l)
+  execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -1)
+  cov=$(grep -oE 'cov: [0-9]+ ft: [0-9]+' "$log" | tail -1 || true)
+  findings=$((after - before))
+  status=ok
+  if [ "$rc" -ne 0 ] || [ "$findings" -gt 0 ]; then
+    status="FINDING (exit $rc, $findings new artefact(s); see $log)"
+    failed+=("$t")
+  fi
+  rows+=("$(printf '%-13s %12s  %-22s %6s  %s' "$t" "${execs:-?}" "${cov:-?}" "$took" "$status")")
+done
+
+printf '\n%-13s %12s  %-22s %6s  %s\n' target executions coverage 'time s' result
+printf '%s\n' "${rows[@]}"
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "fuzz: findings in ${failed[*]} (inputs in $build/artifacts/)" >&2
+  exit 1
+fi

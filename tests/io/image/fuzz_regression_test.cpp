@@ -1,0 +1,127 @@
+// Inputs found by fuzzing the image readers (fuzz/image_fuzzer.cpp, scripts/fuzz.sh), kept as
+// regression tests: each must be rejected with InputError, not corrupt memory; valid files of the
+// same kind must still read.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <string>
+
+#include "core/error.h"
+#include "io/image/image_io.h"
+#include "io/image/temp_dir.h"
+
+namespace phos::io {
+namespace {
+
+using test::TempDir;
+
+std::string from_hex(const std::string& hex) {
+    std::string bytes;
+    for (size_t i = 0; i + 1 < hex.size(); i += 2)
+        bytes.push_back(char(std::stoi(hex.substr(i, 2), nullptr, 16)));
+    return bytes;
+}
+
+std::string write(const TempDir& dir, const std::string& name, const std::string& bytes) {
+    const std::string path = dir.file(name);
+    std::ofstream(path, std::ios::binary) << bytes;
+    return path;
+}
+
+// An 8x8 grey baseline JPEG whose DC table has the given 16 code counts (as hex) and one symbol,
+// and whose AC table has one code (as in fuzz/make_seeds.py).
+std::string tiny_jpeg(const std::string& dc_counts) {
+    std::string q = "ffdb004300";
+    for (int i = 0; i < 64; ++i) q += "01";
+    return from_hex("ffd8" + q + "ffc0000b080008000801011100" + "ffc40014" + "00" + dc_counts + "00" +
+                    "ffc40014" + "10" + "01000000000000000000000000000000" + "00" + "ffda000801010000" +
+                    "3f00" + "3f" + "ffd9");
+}
+
+// stb_image 2.27 builds a Huffman table from 16 code counts without checking that they add up to
+// at most 256: counts of 0xFF overran the decoder's 257-byte size list (the fuzzer's input below,
+// found as a UBSan out-of-bounds index; ASan sees the heap overflow of the symbol copy).
+TEST(ImageFuzz, JpegHuffmanTableWithTooManyCodesIsRejected) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "ffd8ffdb00430001010101010101010101010101010101010101010101010101010101010101010101010101010101"
+        "010101010101010101010101010101010101010101ffc0000b080008000801011100ffc40014000100000000000000"
+        "0000ffffff010008000000000008000000000000000000000002000000000000000000000000003f003fffd9");
+    // stb also takes a file starting with 0xFF fill bytes before the SOI marker for a JPEG (the
+    // fuzzer's second input).
+    for (const std::string& bytes :
+         {found, tiny_jpeg("ffffffffffffffffffffffffffffffff"), "\xff\xff\xff" + found}) {
+        try {
+            read_image(write(dir, "bad.jpg", bytes));
+            ADD_FAILURE() << "accepted a JPEG with an impossible Huffman table";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("Huffman table"), std::string::npos) << e.what();
+        }
+    }
+    // The same file with a proper table (one code) reads: an 8x8 mid-grey image.
+    const Image ok = read_image(write(dir, "ok.jpg", tiny_jpeg("01000000000000000000000000000000")), false);
+    ASSERT_EQ(ok.width, 8);
+    ASSERT_EQ(ok.height, 8);
+    EXPECT_NEAR(ok.at(3, 3).r, 128.0f / 255.0f, 1e-6f);
+}
+
+// A 22-byte run-length TGA claiming 65535 x 2817 pixels: stb_image allocates the whole image and
+// then loops over every pixel although the file has ended (the fuzzer's timeout). Headers claiming
+// implausibly many pixels for the file's size are now refused before decoding.
+TEST(ImageFuzz, HugeHeaderOnATinyFileIsRejected) {
+    TempDir dir;
+    const std::string tga = from_hex("00000a00000000000000ffffffff010b1860830a141e");
+    try {
+        read_image(write(dir, "huge.tga", tga));
+        ADD_FAILURE() << "accepted a 22-byte TGA of 65535 x 2817 pixels";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("implausibly many"), std::string::npos) << e.what();
+    }
+    // A real TGA of the same kind (one run of 4 pixels) still reads.
+    const Image ok =
+        read_image(write(dir, "ok.tga", from_hex("00000a0000000000000000000400010018208300ff00")), false);
+    ASSERT_EQ(ok.width, 4);
+    ASSERT_EQ(ok.height, 1);
+    EXPECT_EQ(ok.at(3, 0), Rgb(0.0f, 1.0f, 0.0f));
+}
+
+// phos's own BMP truncation check multiplied the row size by the height in 64-bit signed
+// arithmetic: 1,819,434,868 pixels wide (the bytes "t_rl" of a mangled HDR header) at 24 bits
+// times 1,735,548,773 rows overflowed (undefined behaviour, reported by UBSan). Such a header is
+// now refused as truncated.
+TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "424d46000000464f524d41543d33322d6269745f726c655f7267010018000000000010000000130b0000130b00000000"
+        "00424d460000000000000036000000280000000a00233f524742450a000002000000010018000000000010000000130b"
+        "0000130b00000000000000000000ffff000000ff0000ffffff0000");
+    try {
+        read_image(write(dir, "huge.bmp", found));
+        ADD_FAILURE() << "accepted a 123-byte BMP whose header asks for more than 2^63 bytes";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("truncated BMP"), std::string::npos) << e.what();
+    }
+}
+
+// stb_image loops forever on a run-length encoded Radiance HDR scanline that ends early (at the end
+// of the file it reads a "dump" count of 0 again and again): the fuzzer's input below, 8 pixels
+// wide, has a run for one component and then ends. Such files are now refused before decoding.
+TEST(ImageFuzz, TruncatedRunLengthHdrIsRejected) {
+    TempDir dir;
+    const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
+    const std::string found = header + from_hex("020200088801010101010101");
+    try {
+        read_image(write(dir, "cut.hdr", found));
+        ADD_FAILURE() << "accepted a truncated run-length HDR";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("corrupt HDR"), std::string::npos) << e.what();
+    }
+    // The whole scanline (a run of 8 for each component) reads.
+    const Image ok = read_image(write(dir, "ok.hdr", header + from_hex("020200088864883288198880")), false);
+    ASSERT_EQ(ok.width, 8);
+    ASSERT_EQ(ok.height, 1);
+    EXPECT_GT(ok.at(7, 0).r, ok.at(7, 0).g);
+}
+
+}  // namespace
+}  // namespace phos::io
