@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs what is missing, builds phos and runs the whole test suite.
 #
-# scripts/test.sh --sanitize runs the sanitizers instead (docs/testing.md, "Sanitizers"):
+# scripts/test.sh --sanitize runs the sanitizers instead (docs/testing.md, "Sanitizers"); only the
+# first step with --sanitize=address, only the second with --sanitize=thread:
 #  1. the whole suite built with ASan + UBSan in build-asan (its tests run its own sanitized phos);
 #  2. the threaded tests built with TSan in build-tsan. Every render uses all cores, but the whole
 #     suite under TSan takes far longer, so "threaded tests" are those that exist to exercise
@@ -15,7 +16,13 @@
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 
-if [ "${1:-}" = --sanitize ]; then
+case "${1:-}" in
+  --sanitize) asan=1 tsan=1 ;;
+  --sanitize=address) asan=1 tsan=0 ;;
+  --sanitize=thread) asan=0 tsan=1 ;;
+  *) asan=0 tsan=0 ;;
+esac
+if [ $asan = 1 ]; then
   export ASAN_OPTIONS="detect_leaks=1:abort_on_error=1:strict_string_checks=1:check_initialization_order=1"
   export LSAN_OPTIONS="suppressions=$here/scripts/lsan.supp:print_suppressions=0"
   export UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
@@ -28,7 +35,8 @@ if [ "${1:-}" = --sanitize ]; then
   gl='^(Preview|PhotonViewer)\.'
   (cd "$here/build-asan" && ctest --output-on-failure -j"$(nproc)" -E "^Memory\.|$gl")
   (cd "$here/build-asan" && ASAN_OPTIONS="$ASAN_OPTIONS:detect_leaks=0" ctest --output-on-failure -R "$gl")
-
+fi
+if [ $tsan = 1 ]; then
   # ignore_noninstrumented_modules: no memory accesses are recorded for malloc, free, memcpy...
   # called from the uninstrumented libraries (Embree's own allocations otherwise look racy).
   export TSAN_OPTIONS="suppressions=$here/scripts/tsan.supp:print_suppressions=0:second_deadlock_stack=1:ignore_noninstrumented_modules=1"
@@ -39,8 +47,8 @@ if [ "${1:-}" = --sanitize ]; then
   # child forked from the test process), and under TSan that child exits 0 instead of 130.
   (cd "$here/build-tsan" && ctest --output-on-failure -j"$(nproc)" -R 'Thread|^Preview\.|^TevRender\.|^Interrupt\.' \
     -E '^Interrupt\.SecondSignalExitsAtOnce$')
-  exit 0
 fi
+if [ $asan = 1 ] || [ $tsan = 1 ]; then exit 0; fi
 
 "$here/scripts/setup.sh" "$here/build"
 cd "$here/build"
