@@ -19,6 +19,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "scene/shape.h"
 
 namespace phos::fuzz {
 
@@ -151,6 +152,16 @@ void expect_reader_errors(F&& read) {
 [[noreturn]] inline void invariant_failed(const char* what) {
     std::fprintf(stderr, "phos fuzz: invariant violated: %s\n", what);
     std::abort();
+}
+
+// What every caller of a mesh reader relies on: indices in range, whole triangles, normals and uvs
+// absent or one per vertex.
+inline void check_mesh(const scene::TriangleMesh& m) {
+    for (uint32_t i : m.indices)
+        if (i >= m.positions.size()) invariant_failed("index out of range");
+    if (m.indices.size() % 3 != 0) invariant_failed("partial triangle");
+    if (!m.normals.empty() && m.normals.size() != m.positions.size()) invariant_failed("normal count");
+    if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) invariant_failed("uv count");
 }
 
 // ---- fixtures: small valid files an input may name ----

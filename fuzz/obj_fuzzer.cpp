@@ -12,12 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     phos::fuzz::expect_reader_errors([&] {
         const phos::io::LoadedMesh l = phos::io::read_obj(path);
         const phos::scene::TriangleMesh& m = l.mesh;
-        for (uint32_t i : m.indices)
-            if (i >= m.positions.size()) phos::fuzz::invariant_failed("index out of range");
-        if (m.indices.size() % 3 != 0) phos::fuzz::invariant_failed("partial triangle");
-        if (!m.normals.empty() && m.normals.size() != m.positions.size())
-            phos::fuzz::invariant_failed("normal count");
-        if (!m.uvs.empty() && m.uvs.size() != m.positions.size()) phos::fuzz::invariant_failed("uv count");
+        phos::fuzz::check_mesh(m);
         if (!l.triangle_materials.empty() && l.triangle_materials.size() != m.triangle_count())
             phos::fuzz::invariant_failed("material count");
         for (int k : l.triangle_materials)
