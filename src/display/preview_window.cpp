@@ -30,6 +30,8 @@ struct PreviewWindow::State {
     const LiveImage* image = nullptr;
     PreviewOptions options;
     std::atomic<bool> render_done{false};
+    // options.hold, which the destructor may withdraw while the window's thread reads it.
+    std::atomic<bool> hold{false};
     std::mutex mutex;
     std::condition_variable cv;
     int started = 0;  // 0 pending, 1 open, -1 failed
@@ -41,7 +43,7 @@ PreviewWindow::PreviewWindow() : state_(std::make_unique<State>()) {}
 
 PreviewWindow::~PreviewWindow() {
     if (thread_.joinable()) {
-        state_->options.hold = false;
+        state_->hold = false;
         finish();
     }
 }
@@ -134,6 +136,7 @@ void run_window(PreviewWindow::State& s);
 bool PreviewWindow::start(const LiveImage& image, const PreviewOptions& options, std::string& why) {
     state_->image = &image;
     state_->options = options;
+    state_->hold = options.hold;
     thread_ = std::thread([this] { run_window(*state_); });
     std::unique_lock lock(state_->mutex);
     state_->cv.wait(lock, [&] { return state_->started != 0; });
@@ -203,7 +206,7 @@ void run_window(PreviewWindow::State& s) {
     Image current(w, h);
     while (!glfwWindowShouldClose(window)) {
         const uint64_t version = image.version();
-        if (s.render_done && !s.options.hold && version == shown) break;  // the final image is shown
+        if (s.render_done && !s.hold && version == shown) break;  // the final image is shown
         glfwWaitEventsTimeout(0.05);
         const std::vector<std::string> names = image.layer_names();
         for (int key : s.keys) {

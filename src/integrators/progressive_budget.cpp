@@ -41,7 +41,9 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
         opt_.on_checkpoint(state_);
         last_checkpoint_ = state_.iterations;
     }
-    if (opt_.on_frame) {
+    // The film is resolved at most once per iteration, for the watchers and the preview alike.
+    const bool resolved = opt_.on_frame != nullptr;
+    if (resolved) {
         resolve_film();
         opt_.on_frame(film_);
     }
@@ -49,7 +51,7 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
     time_up_ = opt_.time > 0 && std::chrono::duration<double>(now - t0_).count() >= opt_.time;
     if (next() && opt_.on_preview && opt_.write_every > 0 &&
         std::chrono::duration<double>(now - last_preview_).count() >= opt_.write_every) {
-        resolve_film();
+        if (!resolved) resolve_film();
         opt_.on_preview(film_);
         last_preview_ = clock::now();
     }
