@@ -2,9 +2,11 @@
 # Fuzzes phos's readers with libFuzzer (fuzz/, docs/testing.md): installs what is missing, builds
 # build-fuzz with clang-14 (-fsanitize=fuzzer,address,undefined), assembles the seed corpora and
 # runs each target in turn, then prints executions, coverage and findings per target.
-# Usage: scripts/fuzz.sh [--smoke] [SECONDS] [TARGET...]
+# Usage: scripts/fuzz.sh [--smoke] [--runs N] [SECONDS] [TARGET...]
 #   SECONDS  fuzzing time per target (default 60); TARGET: scn pbrt scene_format off ply obj image
 #            checkpoint (default: all). --smoke (CI): every seed plus a few seconds per target.
+#   --runs N also stops a target after N executions (whichever comes first: `--runs 10000000 3600`
+#            is the "10 M executions or one hour" campaign of docs/testing.md).
 # Exits 1 if any target crashed, hung, leaked, ran out of memory or tripped a sanitizer; the inputs
 # are in build-fuzz/artifacts/, the logs in build-fuzz/logs/.
 set -euo pipefail
@@ -15,10 +17,17 @@ all_targets=(scn pbrt scene_format off ply obj image checkpoint)
 
 smoke=0
 seconds=60
+runs=-1
 targets=()
+want_runs=0
 for a in "$@"; do
+  if [ "$want_runs" = 1 ]; then
+    [[ "$a" =~ ^[0-9]+$ ]] || { echo "fuzz: --runs needs a count, not '$a'" >&2; exit 2; }
+    runs="$a"; want_runs=0; continue
+  fi
   case "$a" in
     --smoke) smoke=1 ;;
+    --runs) want_runs=1 ;;
     ''|*[!0-9]*) targets+=("$a") ;;
     *) seconds="$a" ;;
   esac
@@ -53,8 +62,10 @@ for t in "${targets[@]}"; do build_targets+=(--target "${t}_fuzzer"); done
 cmake --build "$build" -j"$(nproc)" "${build_targets[@]}"
 
 # ---- corpora: generated and shipped seeds (fresh each run) plus what earlier runs found ----
-rm -rf "$build/seeds"
-python3 "$here/fuzz/make_seeds.py" "$build/seeds" "$here" "$shared"
+# (one seed folder per invocation, so that campaigns over different targets can run side by side)
+seeds="$build/seeds.$$"
+trap 'rm -rf "$seeds"' EXIT
+python3 "$here/fuzz/make_seeds.py" "$seeds" "$here" "$shared"
 mkdir -p "$build/artifacts" "$build/logs"
 
 dict_of() { case "$1" in scene_format) echo scene ;; *) echo "$1" ;; esac; }
@@ -71,16 +82,16 @@ for t in "${targets[@]}"; do
   else
     corpus="$build/corpus/$t"
   fi
-  mkdir -p "$corpus" "$build/seeds/$t"
+  mkdir -p "$corpus" "$seeds/$t"
   log="$build/logs/$t.log"
   before=$(find "$build/artifacts" -name "$t-*" | wc -l)
   echo "fuzz: $t for ${seconds}s" >&2
   rc=0
   start=$SECONDS
   ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}" \
-  "$build/fuzz/${t}_fuzzer" "$corpus" "$build/seeds/$t" \
+  "$build/fuzz/${t}_fuzzer" "$corpus" "$seeds/$t" \
     -dict="$here/fuzz/$(dict_of "$t").dict" -max_len="$(max_len_of "$t")" \
-    -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
+    -max_total_time="$seconds" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
     -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1 || rc=$?
   took=$((SECONDS - start))
   after=$(find "$build/artifacts" -name "$t-*" | wc -l)

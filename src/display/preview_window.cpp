@@ -245,16 +245,36 @@ void run_window(PreviewWindow::State& s) {
         s.keys.clear();
         const uint64_t now = image.version();
         if (now == shown && !view_changed) continue;
-        // While the render runs, at most four redraws a second (each is a copy, a tone map and an
-        // upload; with a software OpenGL the drawing itself takes CPU from the render).
+        // While the render runs, redraws are spaced so that the window takes at most ~2 % of one
+        // core (and at most four a second): each is a copy, a tone map and an upload of what
+        // changed, and with a software OpenGL the drawing itself takes CPU from the render.
         if (!view_changed && !s.render_done && clock::now() < next_draw) continue;
-        next_draw = clock::now() + std::chrono::milliseconds(250);
+        const auto began = clock::now();
         layer %= names.size();
-        const std::vector<Rgb> values = image.read(layer);
-        for (size_t i = 0; i < values.size() && i < current.pixels.size(); ++i) current.pixels[i] = values[i];
-        const std::vector<uint8_t> rgb = io::to_srgb8(current, exposure);
-        glBindTexture(GL_TEXTURE_2D, texture);
-        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+        if (view_changed) {  // another layer or exposure: everything
+            const std::vector<Rgb> values = image.read(layer);
+            for (size_t i = 0; i < values.size() && i < current.pixels.size(); ++i)
+                current.pixels[i] = values[i];
+            const std::vector<uint8_t> rgb = io::to_srgb8(current, exposure);
+            glBindTexture(GL_TEXTURE_2D, texture);
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, w, h, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+        } else {  // only the blocks that changed since the last redraw
+            glBindTexture(GL_TEXTURE_2D, texture);
+            for (const Region& r : image.changed_since(shown)) {
+                const std::vector<Rgb> values = image.read_region(layer, r);
+                if (values.size() != size_t(r.width()) * size_t(r.height())) continue;
+                Image part(r.width(), r.height());
+                for (int y = 0; y < r.height(); ++y)
+                    for (int x = 0; x < r.width(); ++x) {
+                        const Rgb v = values[size_t(y) * size_t(r.width()) + size_t(x)];
+                        part.pixels[size_t(y) * size_t(r.width()) + size_t(x)] = v;
+                        current.pixels[size_t(r.y0 + y) * size_t(w) + size_t(r.x0 + x)] = v;
+                    }
+                const std::vector<uint8_t> rgb = io::to_srgb8(part, exposure);
+                glTexSubImage2D(GL_TEXTURE_2D, 0, r.x0, r.y0, r.width(), r.height(), GL_RGB, GL_UNSIGNED_BYTE,
+                                rgb.data());
+            }
+        }
         char title[256];
         std::snprintf(title, sizeof title, "%s  [%s, exposure %+.1f%s]", s.options.title.c_str(),
                       names[layer].c_str(), exposure, s.render_done ? ", done" : "");
@@ -263,6 +283,8 @@ void run_window(PreviewWindow::State& s) {
         glfwSwapBuffers(window);
         shown = now;
         view_changed = false;
+        next_draw = clock::now() +
+                    std::max<clock::duration>(std::chrono::milliseconds(250), (clock::now() - began) * 50);
     }
     if (!s.options.screenshot_path.empty()) {
         draw(window, texture, w, h);

@@ -1,6 +1,7 @@
 // The tev streaming thread (see tev_stream.h).
 #include "display/tev_stream.h"
 
+#include <algorithm>
 #include <chrono>
 #include <vector>
 
@@ -35,22 +36,29 @@ void TevStream::start(const LiveImage& image, const io::TevAddress& address, con
             image.wait(sent, 0.25);
             const bool last = image.finished();
             const uint64_t version = image.version();
+            const auto began = clock::now();
             if (version != sent) {
                 const std::vector<std::string> layers = image.layer_names();
                 const std::vector<std::string> channels = channels_of(layers);
                 bool ok = true;
-                if (layers != created) {
+                uint64_t since = sent;
+                if (layers != created) {  // a new image in tev: send everything
                     ok = tev.create_image(name, w, h, channels, created.empty());
                     created = layers;
+                    since = 0;
                 }
-                std::vector<float> data(size_t(w) * size_t(h) * channels.size());
-                for (size_t l = 0; l < layers.size() && ok; ++l) {
-                    const std::vector<Rgb> values = image.read(l);
-                    for (size_t i = 0; i < values.size(); ++i)
-                        for (int c = 0; c < 3; ++c)
-                            data[i * channels.size() + l * 3 + size_t(c)] = values[i][c];
+                // Only the blocks that changed since the last update, one update per row of blocks.
+                for (const Region& r : image.changed_since(since)) {
+                    std::vector<float> data(size_t(r.width()) * size_t(r.height()) * channels.size());
+                    for (size_t l = 0; l < layers.size() && ok; ++l) {
+                        const std::vector<Rgb> values = image.read_region(l, r);
+                        for (size_t i = 0; i < values.size(); ++i)
+                            for (int c = 0; c < 3; ++c)
+                                data[i * channels.size() + l * 3 + size_t(c)] = values[i][c];
+                    }
+                    ok = ok &&
+                         tev.update_image(name, channels, r.x0, r.y0, r.width(), r.height(), data.data());
                 }
-                ok = ok && tev.update_image(name, channels, 0, 0, w, h, data.data());
                 bytes_ = tev.bytes_sent();
                 if (!ok) {
                     log::warn("--tev: " + tev.error() + "; stopped streaming (the render goes on)");
@@ -59,8 +67,10 @@ void TevStream::start(const LiveImage& image, const io::TevAddress& address, con
                 sent = version;
             }
             if (last && image.version() == sent) break;
-            // At most four updates a second: a large image is megabytes per update.
-            const auto pause = clock::now() + std::chrono::milliseconds(250);
+            // At most four updates a second (a large image is megabytes per update), and spaced so
+            // that streaming takes at most ~2 % of one core.
+            const auto pause = clock::now() + std::max<clock::duration>(std::chrono::milliseconds(250),
+                                                                        (clock::now() - began) * 50);
             while (!image.finished() && clock::now() < pause) image.wait(image.version(), 0.05);
         }
         tev.close();
