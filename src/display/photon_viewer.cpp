@@ -26,6 +26,14 @@ Rgb group_colour(int g) {
     return kColours[size_t(g) % std::size(kColours)];
 }
 
+Rgb bounce_colour(int bounces) {
+    static const Rgb kColours[] = {{1.0f, 1.0f, 1.0f},   {1.0f, 0.2f, 0.15f}, {1.0f, 0.55f, 0.1f},
+                                   {0.95f, 0.9f, 0.15f}, {0.3f, 0.9f, 0.3f},  {0.2f, 0.85f, 0.9f},
+                                   {0.25f, 0.4f, 1.0f},  {0.6f, 0.3f, 1.0f},  {1.0f, 0.25f, 0.85f}};
+    if (bounces < 0) return Rgb(0.5f);
+    return kColours[std::min<size_t>(size_t(bounces), std::size(kColours) - 1)];
+}
+
 #ifdef PHOS_HAS_GLFW
 
 namespace {
@@ -72,7 +80,8 @@ struct Viewer {
     Camera camera, home;
     float extent = 1;
     std::vector<bool> shown;
-    int colouring = 0;  // 0 power, 1 map
+    int colouring = 0;   // ViewerColouring: 0 power, 1 map, 2 bounces
+    int colourings = 2;  // 3 when the points have bounce counts
     float point_size = 2;
     bool dragging = false, panning = false, moved = false;
     double last_x = 0, last_y = 0, press_x = 0, press_y = 0;
@@ -193,8 +202,12 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
     v.camera.distance = v.extent / std::tan(v.camera.fovy / 2) * 1.1f;
     v.home = v.camera;
 
-    // Vertex arrays: positions, then both colourings (power, map) one after the other.
-    std::vector<float> xyz, rgb(scene.points.size() * 6), lines;
+    // Vertex arrays: positions, then the colourings (power, map, bounces) one after the other.
+    bool bounces = !scene.points.empty();
+    for (const ViewerPoint& p : scene.points) bounces &= p.bounces >= 0;
+    v.colourings = bounces ? 3 : 2;
+    v.colouring = std::min(int(options.colouring), v.colourings - 1);
+    std::vector<float> xyz, rgb(scene.points.size() * 3 * size_t(v.colourings)), lines;
     xyz.reserve(scene.points.size() * 3);
     for (size_t i = 0; i < scene.points.size(); ++i) {
         const ViewerPoint& p = scene.points[i];
@@ -203,6 +216,7 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
         for (int c = 0; c < 3; ++c) {
             rgb[3 * i + size_t(c)] = p.colour[c];
             rgb[3 * (scene.points.size() + i) + size_t(c)] = g[c];
+            if (bounces) rgb[3 * (2 * scene.points.size() + i) + size_t(c)] = bounce_colour(p.bounces)[c];
         }
     }
     for (const Vec3& p : scene.lines) lines.insert(lines.end(), {p.x, p.y, p.z});
@@ -215,7 +229,7 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
             const size_t g = size_t(key - GLFW_KEY_1);
             if (g < s.scene->group_names.size()) s.shown[g] = !s.shown[g];
         } else if (key == GLFW_KEY_C) {
-            s.colouring = (s.colouring + 1) % 2;
+            s.colouring = (s.colouring + 1) % s.colourings;
         } else if (key == GLFW_KEY_EQUAL || key == GLFW_KEY_KP_ADD) {
             s.point_size = std::min(s.point_size + 1, 16.0f);
         } else if (key == GLFW_KEY_MINUS || key == GLFW_KEY_KP_SUBTRACT) {

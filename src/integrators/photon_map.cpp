@@ -87,7 +87,7 @@ PhotonMaps PhotonMaps::load(const std::string& bytes, const std::string& what) {
 PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)
     : options_(options), budget_(std::move(budget)) {}
 
-PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
+PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounces) const {
     const PhotonMapOptions o = resolve(options_, P);
     PhotonMaps maps;
     photon::TraceOptions to;
@@ -114,6 +114,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     to.max_depth = o.max_photon_depth;
     to.seed = P.options.seed;
     to.caustic_projection = o.projection_maps;
+    to.record_bounces = record_bounces;
 
     const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
     auto t0 = std::chrono::steady_clock::now();
@@ -127,8 +128,15 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P) const {
     t0 = std::chrono::steady_clock::now();
     const uint64_t stored = traced.stored();
     for (int m = 0; m < photon::kMapCount; ++m) {
-        maps.map[m].build(traced.photons[m]);
+        photon::KdTreeOptions ko;
+        ko.keep_input_index = record_bounces;
+        maps.map[m].build(traced.photons[m], ko);
         maps.emitted[m] = traced.emitted[m];
+        if (record_bounces) {  // into tree order
+            maps.bounces[m].resize(maps.map[m].size());
+            for (uint32_t i = 0; i < maps.map[m].size(); ++i)
+                maps.bounces[m][i] = traced.bounces[m][maps.map[m].input_index(i)];
+        }
         std::vector<photon::Photon>().swap(traced.photons[m]);
     }
     const double build_s = seconds_since(t0);

@@ -28,6 +28,9 @@ struct PhotonMaps {
     photon::VolumeCache volume_cache;
     // The volume maps' photons with their kernel radii for --volume-estimate beam (else empty).
     photon::BeamBvh volume_beams, volume_caustic_beams;
+    // Only from build_maps(..., record_bounces = true), for the photon tools: per photon of map[m]
+    // (tree order), the scattering events before it was stored. Not part of save().
+    std::vector<uint8_t> bounces[photon::kMapCount];
 
     // All of the above as bytes (a checkpoint's payload) and back, exactly: a resumed render reads
     // its maps instead of tracing them again. `what` names the source in errors.
@@ -48,7 +51,8 @@ public:
     // Pass 1 alone (photon tracing, k-d trees, irradiance cache), reporting to prepared.stats.
     // Exposed for tests and benchmarks. An interrupt during tracing leaves the maps incomplete:
     // render() then takes no samples.
-    PhotonMaps build_maps(const Prepared& prepared) const;
+    // With `record_bounces`, the maps also keep each photon's bounce count (PhotonMaps::bounces).
+    PhotonMaps build_maps(const Prepared& prepared, bool record_bounces = false) const;
     // Pass 2 with given maps, in sample passes within the budget (pixel_loop.h).
     // With `store_maps`, each checkpoint also holds the maps (PhotonMaps::save).
     void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film, Progress& progress,

@@ -21,6 +21,7 @@ struct Slice {
     std::vector<Photon> photons[kMapCount];
     std::vector<Rgb> power[kMapCount];
     std::vector<uint32_t> emission[kMapCount];
+    std::vector<uint8_t> bounces[kMapCount];  // only with TraceOptions::record_bounces
     uint64_t rays = 0;
 };
 
@@ -61,18 +62,20 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     NormalCodes normals;
     // Volume photons: no normal; the volume map takes those after a non-specular scattering, the
     // volume caustic map those after specular bounces only (single scattering is not stored).
-    const auto store = [&](const Photon& ph, const bool into[kMapCount], const Rgb& power, uint64_t j) {
+    const auto store = [&](const Photon& ph, const bool into[kMapCount], const Rgb& power, uint64_t j,
+                           int bounces) {
         for (int m = 0; m < kMapCount; ++m) {
             if (!active[m] || !into[m]) continue;
             s.photons[m].push_back(ph);
             s.power[m].push_back(power);
             s.emission[m].push_back(uint32_t(j));
+            if (o.record_bounces) s.bounces[m].push_back(uint8_t(std::min(bounces, 255)));
         }
     };
     for (uint64_t j = 0; j < count; ++j) {
         const auto on_volume = [&](const PhotonVolumeHit& h) {
             const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
-            store(Photon(h.p, Rgb(0.0f), h.wi, Vec3(0.0f)), into, h.power, j);
+            store(Photon(h.p, Rgb(0.0f), h.wi, Vec3(0.0f)), into, h.power, j, h.bounces);
             // After a scattering in a medium the path can only feed the non-caustic maps.
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
         };
@@ -83,7 +86,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             Photon ph(h.hit.p, Rgb(0.0f), h.wi, Vec3(0.0f));
             ph.normal_axis = normals.get(n);  // = set_normal(n), split axis bits as constructed
             const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse, false, false};
-            store(ph, into, h.power, j);
+            store(ph, into, h.power, j, h.bounces);
             // Only caustic maps still filling: a path that went diffuse can never store a
             // caustic photon again, so stop it here (most of the caustic map's rounds).
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
@@ -159,6 +162,9 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
                 }
                 out.photons[m].insert(out.photons[m].end(), s.photons[m].begin(), s.photons[m].begin() + end);
                 raw[m].insert(raw[m].end(), s.power[m].begin(), s.power[m].begin() + end);
+                if (o.record_bounces)
+                    out.bounces[m].insert(out.bounces[m].end(), s.bounces[m].begin(),
+                                          s.bounces[m].begin() + end);
             }
         }
         for (const Slice& s : slices) out.rays += s.rays;

@@ -48,13 +48,18 @@ struct TraceOptions {
     // stream emitted only towards specular objects. Off: one stream fills every map.
     bool caustic_projection = true;
     int projection_resolution = 128;  // cells per side of each light's direction map
+    // Also record each stored photon's bounce count (TracedPhotons::bounces; for the photon tools).
+    bool record_bounces = false;
 };
 
 struct TracedPhotons {
     std::vector<Photon> photons[kMapCount];  // power already divided by emitted[m]
-    uint64_t emitted[kMapCount] = {};        // N of each map (photon power = flux share / N)
-    bool reached[kMapCount] = {};            // the target was met (false if capped by max_emit)
-    uint64_t total_emitted = 0;              // photon paths traced
+    // With TraceOptions::record_bounces, per photon of photons[m]: the scattering events before it
+    // was stored (0 = straight from a light), at most 255. Empty otherwise.
+    std::vector<uint8_t> bounces[kMapCount];
+    uint64_t emitted[kMapCount] = {};  // N of each map (photon power = flux share / N)
+    bool reached[kMapCount] = {};      // the target was met (false if capped by max_emit)
+    uint64_t total_emitted = 0;        // photon paths traced
     uint64_t rays = 0;
     double caustic_fraction = 1;    // share of the emitted power the projection maps sample
     double projection_seconds = 0;  // building the projection maps

@@ -23,10 +23,10 @@ int lit_pixels(const Image& img) {
     return n;
 }
 
-int view(const std::string& maps, const std::string& shot) {
+int view(const std::string& maps, const std::string& shot, const std::string& colour = "power") {
     const std::string cmd = "xvfb-run -a -s '-screen 0 1280x1024x24' " + std::string(PHOS_BINARY) +
                             " photons " + kScene + " --global 20000 --caustic 20000 --maps " + maps +
-                            " --view --screenshot " + shot + " -q 2>&1";
+                            " --colour " + colour + " --view --screenshot " + shot + " -q 2>&1";
     return std::system(cmd.c_str());
 }
 
@@ -45,6 +45,33 @@ TEST(PhotonViewer, DrawsThePhotonsOverTheScene) {
     EXPECT_GT(n_both, 5000) << "the viewer is (nearly) blank";
     EXPECT_GT(n_caustic, 200);
     EXPECT_GT(n_both, n_caustic * 3 / 2);  // the global map is shown too
+}
+
+TEST(PhotonViewer, ColoursByBounceCount) {
+    // The caustic map alone: every photon has 1 or more bounces, so in the bounce colouring no
+    // point is white (0 bounces) and most are red, orange or yellow (1 bounce off the mirror, 2 or 3
+    // through the glass sphere); the power colouring draws the same points differently.
+    if (!display::preview_available()) GTEST_SKIP() << "built without GLFW";
+    ASSERT_EQ(std::system("command -v xvfb-run >/dev/null 2>&1"), 0) << "scripts/setup.sh installs xvfb";
+    TempDir dir;
+    ASSERT_EQ(view("caustic", dir.file("power.png")), 0);
+    ASSERT_EQ(view("caustic", dir.file("bounces.png"), "bounces"), 0);
+    const Image power = io::read_image(dir.file("power.png")),
+                bounces = io::read_image(dir.file("bounces.png"));
+    int white = 0, warm = 0, lit = 0;
+    for (const Rgb& p : bounces.pixels) {
+        const int r = io::linear_to_srgb8(p.r), g = io::linear_to_srgb8(p.g), b = io::linear_to_srgb8(p.b);
+        if (std::max({r, g, b}) <= 60) continue;
+        ++lit;
+        white += r > 200 && g > 200 && b > 200;
+        warm += r > 200 && b < 80;  // red, orange, yellow: 1-3 bounces
+    }
+    std::printf("bounce colouring: %d lit, %d white, %d red/orange/yellow\n", lit, white, warm);
+    EXPECT_GT(lit, 200);
+    EXPECT_EQ(white, 0) << "a caustic photon drawn as straight from the light";
+    EXPECT_GT(warm, lit / 2);
+    EXPECT_NE(power.pixels, bounces.pixels);
+    EXPECT_GT(lit_pixels(power), 200);
 }
 
 TEST(PhotonViewer, ScreenshotNeedsView) {

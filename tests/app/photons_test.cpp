@@ -146,12 +146,14 @@ TEST(Photons, PlyHoldsEveryStoredPhotonWithTheMapsPower) {
     const auto r = run_phos("photons " + kScene + kBudget + " -o " + out);
     ASSERT_EQ(r.exit_code, 0) << r.output;
     const Ply ply = read_ply(read_bytes(out));
-    const std::vector<std::string> names{"x",       "y",  "z",  "red", "green", "blue", "power_r", "power_g",
-                                         "power_b", "dx", "dy", "dz",  "nx",    "ny",   "nz",      "map"};
+    const std::vector<std::string> names{"x",       "y",       "z",       "red", "green",  "blue",
+                                         "power_r", "power_g", "power_b", "dx",  "dy",     "dz",
+                                         "nx",      "ny",      "nz",      "map", "bounces"};
     ASSERT_EQ(ply.properties.size(), names.size());
     for (size_t i = 0; i < names.size(); ++i) {
         EXPECT_EQ(ply.properties[i].second, names[i]);
-        const bool byte = names[i] == "red" || names[i] == "green" || names[i] == "blue" || names[i] == "map";
+        const bool byte = names[i] == "red" || names[i] == "green" || names[i] == "blue" ||
+                          names[i] == "map" || names[i] == "bounces";
         EXPECT_EQ(ply.properties[i].first, byte ? "uchar" : "float") << names[i];
     }
     EXPECT_EQ(ply.count, counts.at("global") + counts.at("caustic"));
@@ -169,7 +171,7 @@ TEST(Photons, PlyHoldsEveryStoredPhotonWithTheMapsPower) {
     pm.global.photons = 5000;
     pm.caustic.photons = 2000;
     pm.irradiance_cache = false;
-    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(prepared);
+    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(prepared, true);
 
     const auto sums = sums_by_map(ply);
     ASSERT_EQ(sums.size(), 2u);
@@ -187,6 +189,26 @@ TEST(Photons, PlyHoldsEveryStoredPhotonWithTheMapsPower) {
             EXPECT_NEAR(s.power[c], total[c], 1e-6 * total[c]) << photon::map_name(m) << " channel " << c;
         }
     }
+    // Bounce counts: the dump's are the maps' (k-d tree order, global map first); caustic photons
+    // came through glass or off the mirror (>= 1 bounce); the global map holds direct photons (0).
+    std::vector<uint8_t> expected(maps.bounces[photon::kGlobalMap].begin(),
+                                  maps.bounces[photon::kGlobalMap].end());
+    expected.insert(expected.end(), maps.bounces[photon::kCausticMap].begin(),
+                    maps.bounces[photon::kCausticMap].end());
+    ASSERT_EQ(expected.size(), ply.count);
+    size_t direct = 0, mismatched = 0;
+    for (size_t i = 0; i < ply.count; ++i) {
+        const double b = ply.values.at("bounces")[i];
+        mismatched += b != double(expected[i]);
+        if (int(ply.values.at("map")[i]) == photon::kCausticMap) {
+            EXPECT_GE(b, 1.0);
+        }
+        direct += b == 0;
+    }
+    EXPECT_EQ(mismatched, 0u);
+    EXPECT_GT(direct, counts.at("global") / 4);  // most light reaches the walls directly
+    EXPECT_LT(direct, counts.at("global"));
+
     // Directions are unit vectors; surface photons carry unit normals.
     for (size_t i = 0; i < ply.count; i += 97) {
         const auto& v = ply.values;

@@ -147,5 +147,48 @@ TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
     }
 }
 
+TEST(PhotonTracer, RecordedBounceCountsFollowTheRouletteAndChangeNothing) {
+    // In the closed box every emitted photon hits a wall first (bounce 0, stored in the global map)
+    // and survives each bounce with probability rho, so the global map holds exactly N photons with
+    // 0 bounces and about N rho^k with k bounces (binomial: 5 sigma). The indirect map has none
+    // with 0. Recording changes no photon.
+    const float rho = 0.5f;
+    BoxScene box(rho, 1.0f, false);
+    TraceOptions o;
+    o.emit = 20000;
+    o.wanted[kIndirectMap] = true;
+    o.wanted[kCausticMap] = false;
+    const TracedPhotons plain = trace_photons(box.ps(), o);
+    o.record_bounces = true;
+    const TracedPhotons t = trace_photons(box.ps(), o);
+    for (int m = 0; m < kMapCount; ++m) {
+        ASSERT_EQ(t.bounces[m].size(), t.photons[m].size()) << map_name(m);
+        ASSERT_EQ(t.photons[m].size(), plain.photons[m].size());
+        EXPECT_TRUE(plain.bounces[m].empty());
+        if (t.photons[m].empty()) continue;
+        EXPECT_EQ(0, std::memcmp(t.photons[m].data(), plain.photons[m].data(),
+                                 t.photons[m].size() * sizeof(Photon)));
+    }
+    std::vector<double> count(8, 0.0);
+    for (uint8_t b : t.bounces[kGlobalMap]) count[std::min<size_t>(b, 7)] += 1;
+    const double N = double(t.emitted[kGlobalMap]);
+    EXPECT_EQ(count[0], N);
+    for (int k = 1; k < 5; ++k) {
+        const double p = std::pow(double(rho), k);
+        EXPECT_NEAR(count[size_t(k)] / N, p, 5 * std::sqrt(p * (1 - p) / N)) << k << " bounces";
+    }
+    for (uint8_t b : t.bounces[kIndirectMap]) ASSERT_GE(b, 1);
+
+    // Caustic photons arrive after the mirror sphere: at least one bounce each.
+    BoxScene mirror(rho, 1.0f, true);
+    TraceOptions c;
+    c.target[kCausticMap] = 2000;
+    c.record_bounces = true;
+    const TracedPhotons tc = trace_photons(mirror.ps(), c);
+    ASSERT_EQ(tc.bounces[kCausticMap].size(), tc.photons[kCausticMap].size());
+    ASSERT_FALSE(tc.bounces[kCausticMap].empty());
+    for (uint8_t b : tc.bounces[kCausticMap]) ASSERT_GE(b, 1);
+}
+
 }  // namespace
 }  // namespace phos::photon

@@ -73,13 +73,22 @@ io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vect
     size_t n = 0;
     for (const int m : kinds) n += maps.map[m].size();
     // Pointers stay valid: every column is added before any is used.
-    cloud.columns.reserve(16);
+    cloud.columns.reserve(17);
     std::vector<io::PointColumn*> c;
     for (const char* name : {"x", "y", "z"}) c.push_back(&cloud.add_floats(name));
     for (const char* name : {"red", "green", "blue"}) c.push_back(&cloud.add_bytes(name));
     for (const char* name : {"power_r", "power_g", "power_b", "dx", "dy", "dz", "nx", "ny", "nz"})
         c.push_back(&cloud.add_floats(name));
     c.push_back(&cloud.add_bytes("map"));
+    // Bounce counts when the maps were built with them (PhotonMapIntegrator::build_maps).
+    bool bounces = true;
+    for (const int m : kinds) bounces &= maps.bounces[m].size() == maps.map[m].size();
+    if (bounces) {
+        c.push_back(&cloud.add_bytes("bounces"));
+        cloud.comments.push_back(
+            "bounces: scattering events before the photon was stored (0: straight from a light; at most "
+            "255)");
+    }
     for (io::PointColumn* col : c) {
         if (col->is_float)
             col->floats.reserve(n);
@@ -104,6 +113,7 @@ io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vect
             const float g[] = {power.r, power.g, power.b, wi.x, wi.y, wi.z, normal.x, normal.y, normal.z};
             for (int k = 0; k < 9; ++k) c[size_t(6 + k)]->floats.push_back(g[k]);
             c[15]->bytes.push_back(uint8_t(m));
+            if (bounces) c[16]->bytes.push_back(maps.bounces[m][size_t(&p - photons.data())]);
             total[0] += power.r, total[1] += power.g, total[2] += power.b;
         }
         cloud.comments.push_back(

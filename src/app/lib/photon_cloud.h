@@ -27,7 +27,8 @@ inline constexpr double kColourPercentile = 0.99;
 // red green blue (uchar: power / the map's kColourPercentile largest channel, scaled down to keep
 // the hue where a channel exceeds 1, sRGB-encoded), power_r power_g power_b (float, W as stored),
 // dx dy dz (unit vector towards where the photon came from), nx ny nz (the surface normal; 0 0 0
-// for photons without one, in media) and map (uchar, the MapKind), with comments saying so.
+// for photons without one, in media), map (uchar, the MapKind) and, when the maps hold bounce
+// counts (PhotonMaps::bounces), bounces (uchar), with comments saying so.
 io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vector<int>& kinds);
 
 // The columns of the dissertation viewer's text format: position, power, direction.

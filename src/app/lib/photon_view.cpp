@@ -109,12 +109,16 @@ display::ViewerScene viewer_scene(const io::PointCloud& cloud, const scene::Scen
     const io::PointColumn &x = column(cloud, "x"), &y = column(cloud, "y"), &z = column(cloud, "z");
     const io::PointColumn &r = column(cloud, "red"), &g = column(cloud, "green"), &b = column(cloud, "blue");
     const io::PointColumn& map = column(cloud, "map");
+    const io::PointColumn* bounces = nullptr;
+    for (const io::PointColumn& c : cloud.columns)
+        if (c.name == "bounces") bounces = &c;
     v.points.resize(cloud.size());
     for (size_t i = 0; i < cloud.size(); ++i) {
         display::ViewerPoint& p = v.points[i];
         p.position = Vec3(x.floats[i], y.floats[i], z.floats[i]);
         p.colour = Rgb(float(r.bytes[i]) / 255.0f, float(g.bytes[i]) / 255.0f, float(b.bytes[i]) / 255.0f);
         p.group = map.bytes[i];
+        if (bounces) p.bounces = bounces->bytes[i];
         p.id = uint32_t(i);
     }
     v.lines = scene_lines(scene);

@@ -90,10 +90,11 @@ CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable 
     sub->add_option("-o,--output", cmd.output, "point cloud to write (.ply; .txt with --format text)")
         ->type_name("FILE")
         ->group("Output");
-    sub->add_option("--format", cmd.format,
-                    "ply: x y z, red green blue, power_r power_g power_b (W), dx dy dz, nx ny nz, map per "
-                    "photon; text: the dissertation viewer's format (the count, then per photon position, "
-                    "power, direction) (default: ply)")
+    sub->add_option(
+           "--format", cmd.format,
+           "ply: x y z, red green blue, power_r power_g power_b (W), dx dy dz, nx ny nz, map, "
+           "bounces per photon; text: the dissertation viewer's format (the count, then per photon position, "
+           "power, direction) (default: ply)")
         ->check(CLI::IsMember({"ply", "text"}))
         ->type_name("FORMAT")
         ->group("Output");
@@ -104,6 +105,12 @@ CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable 
         ->group("Output");
     sub->add_option("--screenshot", cmd.screenshot, "with --view: draw one frame, write it to FILE, close")
         ->type_name("FILE")
+        ->group("Output");
+    sub->add_option("--colour", cmd.colour,
+                    "with --view: the first colouring (c cycles them): power, map, or bounces (white: "
+                    "straight from a light, then red, orange, yellow, green, cyan, blue, violet; magenta 8+)")
+        ->check(CLI::IsMember({"power", "map", "bounces"}))
+        ->type_name("COLOURING")
         ->group("Output");
     sub->add_option("--maps", cmd.maps,
                     "maps to write, comma-separated: global, caustic, indirect, volume, volume-caustic "
@@ -170,7 +177,7 @@ int run_photons(const PhotonsCommand& command) {
     log::info("phos: " + std::filesystem::path(command.scene_path).filename().string() +
               ": tracing the photonmap integrator's photon maps, seed " + std::to_string(opt.seed));
 
-    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared);
+    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared, true);
     if (interrupt::requested()) {
         log::warn("interrupted while tracing photons: nothing written" +
                   std::string(std::filesystem::exists(command.output)
@@ -196,6 +203,9 @@ int run_photons(const PhotonsCommand& command) {
         display::ViewerOptions vo;
         vo.title = "phos photons: " + std::filesystem::path(command.scene_path).filename().string();
         vo.screenshot_path = command.screenshot;
+        vo.colouring = command.colour == "map"       ? display::ViewerColouring::Map
+                       : command.colour == "bounces" ? display::ViewerColouring::Bounces
+                                                     : display::ViewerColouring::Power;
         std::string why;
         if (!display::run_photon_viewer(viewer_scene(cloud, scene, names), vo, why))
             log::warn("--view: " + why + (command.output.empty() ? "" : "; writing the file only"));

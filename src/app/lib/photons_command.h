@@ -18,11 +18,12 @@ namespace phos::app {
 struct PhotonsCommand {
     std::string scene_path;
     std::string output;
-    std::string format = "ply";  // ply | text
-    bool ascii = false;          // ASCII PLY instead of binary little-endian
-    std::string maps;            // comma-separated map names; empty: every traced map
-    bool view = false;           // --view: the 3-D photon viewer (display/photon_viewer.h)
-    std::string screenshot;      // --screenshot FILE: the viewer draws one frame, writes it, closes
+    std::string format = "ply";    // ply | text
+    bool ascii = false;            // ASCII PLY instead of binary little-endian
+    std::string maps;              // comma-separated map names; empty: every traced map
+    bool view = false;             // --view: the 3-D photon viewer (display/photon_viewer.h)
+    std::string screenshot;        // --screenshot FILE: the viewer draws one frame, writes it, closes
+    std::string colour = "power";  // --colour power|map|bounces: the viewer's first colouring
     // The options phos render takes for the photon maps, under the same names: the photon-map and
     // scene tables, --seed, and --threads, -v, -q, --strict, --quality of the run table.
     RenderCommand settings;
