@@ -80,8 +80,9 @@ struct Viewer {
     Camera camera, home;
     float extent = 1;
     std::vector<bool> shown;
-    int colouring = 0;   // ViewerColouring: 0 power, 1 map, 2 bounces
-    int colourings = 2;  // 3 when the points have bounce counts
+    std::vector<bool> present;  // groups that have points
+    int colouring = 0;          // ViewerColouring: 0 power, 1 map, 2 bounces
+    int colourings = 2;         // 3 when the points have bounce counts
     float point_size = 2;
     bool dragging = false, panning = false, moved = false;
     double last_x = 0, last_y = 0, press_x = 0, press_y = 0;
@@ -161,6 +162,17 @@ void draw(GLFWwindow* window, const Viewer& v, const std::vector<float>& xyz, co
     glDisableClientState(GL_VERTEX_ARRAY);
 }
 
+// "TITLE  [colour power; maps global caustic; points 2 px]": the state the keys change.
+std::string viewer_title(const std::string& title, const Viewer& v) {
+    static const char* const kColourings[] = {"power", "map", "bounces"};
+    std::string maps;
+    for (size_t g = 0; g < v.scene->group_names.size(); ++g)
+        if (v.shown[g] && g < v.present.size() && v.present[g]) maps += " " + v.scene->group_names[g];
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "; points %d px]", int(v.point_size));
+    return title + "  [colour " + kColourings[v.colouring] + "; maps" + (maps.empty() ? " none" : maps) + buf;
+}
+
 Image window_pixels(GLFWwindow* window) {
     int fw = 0, fh = 0;
     glfwGetFramebufferSize(window, &fw, &fh);
@@ -188,6 +200,8 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
     v.scene = &scene;
     v.point_size = options.point_size;
     v.shown.assign(std::max<size_t>(scene.group_names.size(), 1) + 256, true);
+    v.present.assign(v.shown.size(), false);
+    for (const ViewerPoint& p : scene.points) v.present[p.group] = true;
     // Bounds of the points and the geometry: the orbit's centre and distance.
     Vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
     auto grow = [&](Vec3 p) {
@@ -281,6 +295,7 @@ bool run_photon_viewer(const ViewerScene& scene, const ViewerOptions& options, s
 
     while (!glfwWindowShouldClose(window)) {
         if (v.dirty) {
+            glfwSetWindowTitle(window, viewer_title(options.title, v).c_str());
             draw(window, v, xyz, rgb, lines);
             if (!options.screenshot_path.empty()) {
                 try {

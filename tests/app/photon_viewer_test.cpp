@@ -5,6 +5,7 @@
 
 #include <cstdlib>
 #include <filesystem>
+#include <regex>
 
 #include "display/preview_window.h"
 #include "io/image/image_io.h"
@@ -72,6 +73,32 @@ TEST(PhotonViewer, ColoursByBounceCount) {
     EXPECT_GT(warm, lit / 2);
     EXPECT_NE(power.pixels, bounces.pixels);
     EXPECT_GT(lit_pixels(power), 200);
+}
+
+TEST(PhotonViewer, KeysAndAClickDoWhatTheDocsSay) {
+    // Real key presses and a click (xdotool, tests/app/photon_viewer_keys.sh); the title shows the
+    // state each key changes, the click prints the picked photon's record, q closes (exit 0).
+    if (!display::preview_available()) GTEST_SKIP() << "built without GLFW";
+    ASSERT_EQ(std::system("command -v xvfb-run >/dev/null 2>&1"), 0) << "scripts/setup.sh installs xvfb";
+    ASSERT_EQ(std::system("command -v xdotool >/dev/null 2>&1"), 0) << "scripts/setup.sh installs xdotool";
+    TempDir dir;
+    const std::string cmd = "timeout 120 xvfb-run -a -s '-screen 0 1280x1024x24' bash " +
+                            source_path("tests/app/photon_viewer_keys.sh") + " " + PHOS_BINARY + " " +
+                            kScene + " " + dir.path().string() + " >/dev/null 2>&1";
+    std::system(cmd.c_str());
+    const std::string titles = read_bytes(dir.file("titles")), log = read_bytes(dir.file("log"));
+    for (const char* want :
+         {"[colour power; maps global caustic; points 2 px]",
+          "[colour map; maps global caustic; points 2 px]",
+          "[colour bounces; maps global caustic; points 2 px]", "[colour power; maps caustic; points 2 px]",
+          "[colour power; maps global caustic; points 3 px]", "exit 0"})
+        EXPECT_NE(titles.find(want), std::string::npos) << want << " not in:\n" << titles << log;
+    // The record: every PLY property, the map named, a bounce count.
+    const std::regex record(
+        R"(photon \d+: x \S+ y \S+ z \S+ red \d+ green \d+ blue \d+ power_r \S+ power_g \S+ )"
+        R"(power_b \S+ dx \S+ dy \S+ dz \S+ nx \S+ ny \S+ nz \S+ map \d \((global|caustic)\) )"
+        R"(bounces \d+)");
+    EXPECT_TRUE(std::regex_search(log, record)) << log;
 }
 
 TEST(PhotonViewer, ScreenshotNeedsView) {

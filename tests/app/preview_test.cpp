@@ -1,7 +1,8 @@
 // The --preview window under Xvfb (a virtual X server, Debian's xvfb, installed by
 // scripts/setup.sh): it opens, shows the image as rendered (its framebuffer, read back when it
 // closes, equals the PNG output pixel for pixel at the window's magnification), and the render
-// ends by itself unless --preview-hold; without a display --preview warns once and renders on.
+// ends by itself unless --preview-hold; without a display --preview warns once and renders on. Its
+// keys are pressed for real (xdotool, tests/app/preview_keys.sh) and do what docs/usage.md says.
 #include <gtest/gtest.h>
 
 #include <cstdlib>
@@ -66,6 +67,43 @@ TEST(Preview, WithoutADisplayItWarnsAndRendersOn) {
     EXPECT_NE(r.output.find("warning: --preview: "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("rendering without the window"), std::string::npos) << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));
+}
+
+double mean(const Image& image) {
+    double sum = 0;
+    for (const Rgb& p : image.pixels) sum += p.average();
+    return sum / double(image.pixels.size());
+}
+
+TEST(Preview, KeysChangeExposureAndLayerSaveAndQuit) {
+    if (!display::preview_available()) GTEST_SKIP() << "built without GLFW";
+    ASSERT_TRUE(have_xvfb()) << "xvfb-run is missing: scripts/setup.sh installs xvfb";
+    ASSERT_EQ(std::system("command -v xdotool >/dev/null 2>&1"), 0) << "scripts/setup.sh installs xdotool";
+    TempDir dir;
+    const std::string cmd = "timeout 120 xvfb-run -a -s '-screen 0 1280x1024x24' bash " +
+                            source_path("tests/app/preview_keys.sh") + " " + PHOS_BINARY + " " + kScene +
+                            " " + dir.path().string() + " >/dev/null 2>&1";
+    std::system(cmd.c_str());
+    const std::string titles = read_bytes(dir.file("titles")), log = read_bytes(dir.file("log"));
+    // Each key's effect shows in the title: exposure +0.5 after '=', -0.5 after '-' twice, the
+    // next layer (caustic, the first of --layers) after 'l'; 'q' ends the render as Ctrl-C does.
+    for (const char* want : {"[image, exposure +0.0]", "[image, exposure +0.5]", "[image, exposure -0.5]",
+                             "[caustic, exposure -0.5]", "exit 130"})
+        EXPECT_NE(titles.find(want), std::string::npos) << want << " not in:\n" << titles << log;
+    EXPECT_NE(log.find("preview: saved caustic to " + dir.file("out.snapshot-1.exr")), std::string::npos)
+        << log;
+    EXPECT_NE(log.find("warning: interrupted: the image holds the work done so far"), std::string::npos)
+        << log;
+    ASSERT_TRUE(std::filesystem::exists(dir.file("out.exr"))) << log;
+    ASSERT_TRUE(std::filesystem::exists(dir.file("out.snapshot-1.exr"))) << log;
+    // The snapshot is the layer shown (the caustic layer of a box without glass: nearly black),
+    // not the image.
+    const Image image = io::read_image(dir.file("out.exr")),
+                snapshot = io::read_image(dir.file("out.snapshot-1.exr"));
+    EXPECT_EQ(snapshot.width, 64);
+    EXPECT_EQ(snapshot.height, 48);
+    EXPECT_GT(mean(image), 0.01);
+    EXPECT_LT(mean(snapshot), 0.1 * mean(image));
 }
 
 TEST(Preview, KeysMapToActions) {
