@@ -13,7 +13,8 @@ for t in "$@"; do targets+=(--target "$t"); done
 packages=(build-essential cmake pkg-config libembree-dev libtbb-dev libopenexr-dev libpng-dev libstb-dev
           libcli11-dev libgtest-dev libgmock-dev libbenchmark-dev libnanoflann-dev libtinyobjloader-dev
           libopenvdb-dev libnanovdb-dev libboost-iostreams-dev libblosc-dev zlib1g-dev
-          libglfw3-dev libgl-dev libgl1-mesa-dri libglx-mesa0 xvfb xauth xdotool)
+          libglfw3-dev libgl-dev libgl1-mesa-dri libglx-mesa0 xvfb xauth xdotool
+          libopenmpi-dev openmpi-bin)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

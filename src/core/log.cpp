@@ -10,6 +10,7 @@ namespace {
 std::mutex g_mutex;
 std::set<std::string> g_seen;
 bool g_quiet = false;
+bool g_silenced = false;
 int g_warnings = 0;
 }  // namespace
 
@@ -34,7 +35,12 @@ void info(const std::string& message) {
 
 void set_quiet(bool quiet) {
     std::lock_guard lock(g_mutex);
-    g_quiet = quiet;
+    g_quiet = quiet || g_silenced;
+}
+
+void silence() {
+    std::lock_guard lock(g_mutex);
+    g_silenced = g_quiet = true;
 }
 
 int warning_count() {

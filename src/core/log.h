@@ -11,6 +11,9 @@ void warn(const std::string& message);
 void warn_once(const std::string& key, const std::string& message);
 void info(const std::string& message);
 void set_quiet(bool quiet);
+// Silences this process for good (set_quiet(false) no longer speaks): the MPI ranks other than 0,
+// whose messages rank 0 prints.
+void silence();
 // Number of warnings printed so far (for tests).
 int warning_count();
 

@@ -85,6 +85,23 @@ void Layer::set_sums(const std::vector<double>& sums, uint64_t rejected) {
     rejected_.store(rejected, std::memory_order_relaxed);
 }
 
+void Layer::append_region_sums(int x0, int y0, int x1, int y1, std::vector<double>& out) const {
+    if (!(0 <= x0 && x0 <= x1 && x1 <= width_ && 0 <= y0 && y0 <= y1 && y1 <= height_))
+        throw std::invalid_argument("Layer::append_region_sums: outside the layer");
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const Pixel& p = pixels_[index(x, y)];
+            out.insert(out.end(), {p.r, p.g, p.b, p.w});
+        }
+}
+
+void Layer::set_region_sums(int x0, int y0, int x1, int y1, const double* sums) {
+    if (!(0 <= x0 && x0 <= x1 && x1 <= width_ && 0 <= y0 && y0 <= y1 && y1 <= height_))
+        throw std::invalid_argument("Layer::set_region_sums: outside the layer");
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, sums += 4) pixels_[index(x, y)] = {sums[0], sums[1], sums[2], sums[3]};
+}
+
 void Layer::clear() {
     for (Pixel& p : pixels_) p = Pixel{};
     rejected_.store(0, std::memory_order_relaxed);

@@ -48,6 +48,12 @@ public:
     // checkpoint; std::invalid_argument when the size does not match), with a rejected count.
     std::vector<double> sums() const;
     void set_sums(const std::vector<double>& sums, uint64_t rejected = 0);
+    // The same for the rectangle [x0, x1) x [y0, y1) (inside the layer): its sums appended to `out`,
+    // and overwritten from `sums` (4 doubles per pixel, row by row), e.g. a tile another process
+    // rendered. add_rejected counts samples another process rejected.
+    void append_region_sums(int x0, int y0, int x1, int y1, std::vector<double>& out) const;
+    void set_region_sums(int x0, int y0, int x1, int y1, const double* sums);
+    void add_rejected(uint64_t n) { rejected_.fetch_add(n, std::memory_order_relaxed); }
 
 private:
     struct Pixel {

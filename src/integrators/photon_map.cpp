@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
+#include "dist/ranks.h"
 #include "integrators/factory.h"
 #include "integrators/path_recorder.h"
 #include "integrators/photon_map_radiance.h"
@@ -245,7 +246,7 @@ void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& 
         P.stats.add_time("photon maps read from the checkpoint", seconds_since(t0));
     } else {
         maps = build_maps(P);
-        if (interrupt::requested()) {  // the maps are incomplete: no samples from them
+        if (dist::any(interrupt::requested())) {  // the maps are incomplete (on some rank): no samples
             budget_.done->interrupted = true;
             return;
         }

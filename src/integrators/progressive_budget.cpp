@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "core/interrupt.h"
+#include "dist/ranks.h"
 
 namespace phos::integrators {
 
@@ -48,8 +49,11 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
         opt_.on_frame(film_);
     }
     const auto now = clock::now();
-    time_up_ = opt_.time > 0 && std::chrono::duration<double>(now - t0_).count() >= opt_.time;
-    if (next() && opt_.on_preview && opt_.write_every > 0 &&
+    uint8_t time_up = opt_.time > 0 && std::chrono::duration<double>(now - t0_).count() >= opt_.time;
+    dist::broadcast(&time_up, 1);  // rank 0's clock decides for all
+    time_up_ = time_up != 0;
+    const bool more = !time_up_ && !interrupt::requested() && state_.iterations < target_;
+    if (more && opt_.on_preview && opt_.write_every > 0 &&
         std::chrono::duration<double>(now - last_preview_).count() >= opt_.write_every) {
         if (!resolved) resolve_film();
         opt_.on_preview(film_);
@@ -57,8 +61,8 @@ void ProgressiveBudget::after_iteration(const std::function<void()>& resolve_fil
     }
 }
 
-bool ProgressiveBudget::next() const {
-    if (interrupt::requested()) opt_.done->interrupted = true;
+bool ProgressiveBudget::next() {
+    if (dist::any(interrupt::requested())) opt_.done->interrupted = true;
     return !time_up_ && !opt_.done->interrupted && state_.iterations < target_;
 }
 

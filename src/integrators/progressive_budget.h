@@ -35,8 +35,10 @@ public:
 
     // Whether to run another iteration: fewer than the target are done, the time budget (when
     // there is one) was not crossed by the last iteration and no interrupt came. Iteration numbers
-    // are state.iterations.
-    bool next() const;
+    // are state.iterations. Under MPI it is collective: an interrupt on any rank stops every rank,
+    // and rank 0's clock decides the time budget (every rank holds the same state; rank 0 alone
+    // writes checkpoints and previews).
+    bool next();
 
     // Counts the iteration just run, saves a checkpoint every checkpoint_every iterations, checks
     // the clock, and writes a preview when one is due and the render goes on: `resolve_film()`

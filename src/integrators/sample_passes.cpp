@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "core/interrupt.h"
+#include "dist/ranks.h"
 
 namespace phos::integrators {
 
@@ -65,6 +66,7 @@ SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudg
     } else {
         state_.tile_samples.assign(tiles_.size(), 0);
     }
+    gather_.start(film_);
     last_checkpoint_ = state_.iterations = min_done();
     checkpoint_samples_ = taken();
     budget_.done->target = target_;
@@ -93,7 +95,8 @@ uint32_t SamplePasses::min_done() const {
 }
 
 bool SamplePasses::next() {
-    if (interrupt::requested()) budget_.done->interrupted = true;
+    // Collective: an interrupt on any rank stops every rank.
+    if (dist::any(interrupt::requested())) budget_.done->interrupted = true;
     if (time_up_ || budget_.done->interrupted || min_done() >= target_) return false;
     pass_end_ = uint32_t(std::min<uint64_t>(target_, uint64_t(min_done()) + pass_));
     pass_start_ = clock::now();
@@ -102,12 +105,14 @@ bool SamplePasses::next() {
 
 std::pair<uint32_t, uint32_t> SamplePasses::range(size_t t) const {
     const uint32_t first = state_.tile_samples[t];
+    if (!dist::owns(t)) return {first, first};  // another rank's tile
     return {first, std::max(first, pass_end_)};
 }
 
 bool SamplePasses::stopped() const { return interrupt::requested(); }
 
 void SamplePasses::tile_done(size_t t, const RayCounts& rays) {
+    if (!dist::owns(t)) return;
     const auto [first, last] = range(t);
     state_.tile_samples[t] = last;
     P_.stats.add_rays(rays);
@@ -117,43 +122,65 @@ void SamplePasses::tile_done(size_t t, const RayCounts& rays) {
 
 void SamplePasses::after_pass() {
     const auto now = clock::now();
+    if (dist::distributed()) {  // every rank learns the counts of the other ranks' tiles
+        const std::vector<uint32_t> mine = state_.tile_samples;
+        dist::max(state_.tile_samples.data(), state_.tile_samples.size());
+        uint64_t others = 0;
+        for (size_t t = 0; t < tiles_.size(); ++t)
+            others += uint64_t(tiles_[t].pixel_count()) * (state_.tile_samples[t] - mine[t]);
+        if (!timed_ && progress_started_) progress_.advance(others);
+    }
     const uint32_t before = uint32_t(state_.iterations);
     state_.iterations = min_done();
     budget_.done->started = true;
     budget_.done->units = state_.iterations;
     if (timed_) progress_.advance(state_.iterations - before);
-    if (budget_.on_frame) budget_.on_frame(film_);
-    if (budget_.on_checkpoint && budget_.checkpoint_every > 0 &&
-        state_.iterations >= last_checkpoint_ + uint64_t(budget_.checkpoint_every) && !stopped())
-        save_checkpoint();
-    time_up_ = budget_.time > 0 && seconds(t0_, now) >= budget_.time;
-    const bool more = !time_up_ && !stopped() && state_.iterations < target_;
-    if (more && budget_.on_preview && budget_.write_every > 0 &&
-        seconds(last_preview_, now) >= budget_.write_every) {
-        budget_.on_preview(film_);
-        last_preview_ = clock::now();
-    }
+    // What to do now, decided by rank 0 (its clock, its outputs) and followed by every rank.
+    struct Decision {
+        uint8_t frame = 0, checkpoint = 0, preview = 0, time_up = 0;
+        uint32_t pass = 1;
+    } d;
+    d.frame = budget_.on_frame != nullptr;
+    d.checkpoint = budget_.on_checkpoint && budget_.checkpoint_every > 0 &&
+                   state_.iterations >= last_checkpoint_ + uint64_t(budget_.checkpoint_every) && !stopped();
+    d.time_up = budget_.time > 0 && seconds(t0_, now) >= budget_.time;
+    const bool more = !d.time_up && !stopped() && state_.iterations < target_;
+    d.preview = more && budget_.on_preview && budget_.write_every > 0 &&
+                seconds(last_preview_, now) >= budget_.write_every;
     // Passes of about half a second: often enough for --time and previews, long enough that the
     // wait for a pass's last tiles costs nothing.
     const double took = seconds(pass_start_, now);
+    d.pass = pass_;
     if (took < 0.25)
-        pass_ = std::min<uint32_t>(pass_ * 2, 1u << 16);
+        d.pass = std::min<uint32_t>(pass_ * 2, 1u << 16);
     else if (took > 1.0 && pass_ > 1)
-        pass_ /= 2;
+        d.pass = pass_ / 2;
+    dist::broadcast(&d, sizeof d);
+    time_up_ = d.time_up;
+    pass_ = d.pass;
+    if (d.frame || d.checkpoint || d.preview) gather_.gather(film_);
+    if (d.frame && budget_.on_frame) budget_.on_frame(film_);
+    if (d.checkpoint) save_checkpoint();
+    if (d.preview) {
+        if (budget_.on_preview) budget_.on_preview(film_);
+        last_preview_ = clock::now();
+    }
 }
 
 void SamplePasses::save_checkpoint() {
     state_.iterations = min_done();
-    state_.rejected_samples = film_.main().rejected();
-    state_.film.clear();
-    state_.film.emplace_back("", film_.main().sums());
-    for (const std::string& name : film_.layer_names())
-        state_.film.emplace_back(name, film_.layer(name).sums());
-    if (payload_) payload_(state_.payload);
-    budget_.on_checkpoint(state_);
-    state_.film.clear();
-    state_.film.shrink_to_fit();
-    std::string().swap(state_.payload);
+    if (budget_.on_checkpoint) {  // rank 0 (the other ranks only keep count)
+        state_.rejected_samples = film_.main().rejected();
+        state_.film.clear();
+        state_.film.emplace_back("", film_.main().sums());
+        for (const std::string& name : film_.layer_names())
+            state_.film.emplace_back(name, film_.layer(name).sums());
+        if (payload_) payload_(state_.payload);
+        budget_.on_checkpoint(state_);
+        state_.film.clear();
+        state_.film.shrink_to_fit();
+        std::string().swap(state_.payload);
+    }
     last_checkpoint_ = state_.iterations;
     checkpoint_samples_ = taken();
 }
@@ -169,6 +196,7 @@ void SamplePasses::finish() {
     if (progress_started_) progress_.finish();
     state_.iterations = min_done();
     const uint64_t samples = taken();
+    gather_.gather(film_);  // rank 0 holds the whole image
     if (budget_.on_checkpoint && samples != checkpoint_samples_) save_checkpoint();
     budget_.done->units = state_.iterations;
     budget_.done->samples = samples;

@@ -15,6 +15,11 @@
 // tiles not yet started, and the film then holds each pixel's own samples, correctly normalised.
 // A checkpoint holds the film's sums and each tile's sample count, so resuming continues each tile
 // where it stopped: bit-identical to an uninterrupted render.
+//
+// Under MPI (dist/ranks.h) each rank takes the samples of the tiles it owns; between passes the
+// ranks agree on the tiles' counts, rank 0's clock and options decide (time budget, previews,
+// checkpoints, the pass size) for all, an interrupt on any rank stops all, and rank 0 gathers the
+// other ranks' tiles whenever it writes or shows the image (tile_gather.h).
 #pragma once
 
 #include <chrono>
@@ -31,6 +36,7 @@
 #include "integrators/prepared.h"
 #include "integrators/progressive_checkpoint.h"
 #include "integrators/render_budget.h"
+#include "integrators/tile_gather.h"
 
 namespace phos::integrators {
 
@@ -71,6 +77,7 @@ private:
     Progress& progress_;
     std::function<void(std::string&)> payload_;
     std::vector<film::Tile> tiles_;
+    TileGather gather_{tiles_};
     ProgressiveState state_;           // identity, tile_samples (the film's sums are taken when saving)
     uint64_t target_ = 0;              // samples per pixel asked
     uint32_t pass_ = 1;                // samples per pixel of the next pass

@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "dist/ranks.h"
 #include "integrators/direct_light.h"
 #include "integrators/progressive_budget.h"
 #include "photon/photon_path.h"
@@ -72,7 +73,10 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
     const photon::PhotonPathOptions popt{max_depth - 1};
     constexpr uint64_t kBlock = 4096;
-    const uint64_t blocks = (count + kBlock - 1) / kBlock;
+    // Under MPI each rank traces its share of the photon indices; update() sums the ranks' integer
+    // sums, so the result is the single process's exactly.
+    const auto [lo, hi] = dist::share(count);
+    const uint64_t blocks = (hi - lo + kBlock - 1) / kBlock;
     std::atomic<uint64_t> total_rays{0};
     const double scale = scale_;
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
@@ -83,7 +87,7 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
             local = v.data();
         }
         uint64_t rays = 0;
-        const uint64_t end = std::min(count, (blk + 1) * kBlock);
+        const uint64_t end = std::min(hi, lo + (blk + 1) * kBlock);
         // Adds contribution c of a photon to point i's sums.
         const auto add = [&](uint32_t i, const Rgb& c) {
             if (c.is_black() || !c.is_finite()) return;
@@ -104,7 +108,7 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
             if (size_t(i) - trace_first_ >= trace_count_ || c.is_black() || !c.is_finite()) return;
             trace_->photon(i, {idx, p, power, wi, c});
         };
-        for (uint64_t idx = blk * kBlock; idx < end; ++idx) {
+        for (uint64_t idx = lo + blk * kBlock; idx < end; ++idx) {
             // Photons scattering in a medium (not straight from a light: single scattering is
             // sampled at the visible point) reach the volume points whose ball holds them.
             const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
@@ -143,24 +147,41 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
 }
 
 // Calls f(i, m, sum) with each point's photon count and fixed-point flux sums, clearing them.
+// Under MPI the sums are those of every rank (exact: integers).
 template <class F>
 void PhotonAccumulator::drain(F&& f) {
     std::vector<LocalSlot*> locals;
     if (locals_)
         for (auto& v : locals_->per_thread)
             if (v.size() == count_) locals.push_back(v.data());
-    tbb::parallel_for(size_t(0), count_, [&](size_t i) {
+    // This rank's sums of point i, cleared.
+    const auto take = [&](size_t i, uint64_t& m, int64_t sum[3]) {
         Slot& s = slots_[i];
-        uint64_t m = s.m.exchange(0, std::memory_order_relaxed);
-        int64_t sum[3];
+        m = s.m.exchange(0, std::memory_order_relaxed);
         for (int k = 0; k < 3; ++k) sum[k] = s.phi[k].exchange(0, std::memory_order_relaxed);
         for (LocalSlot* l : locals) {
             for (int k = 0; k < 3; ++k) sum[k] += l[i].phi[k];
             m += l[i].m;
             l[i] = LocalSlot{};
         }
-        f(i, m, sum);
+    };
+    if (!dist::distributed()) {
+        tbb::parallel_for(size_t(0), count_, [&](size_t i) {
+            uint64_t m;
+            int64_t sum[3];
+            take(i, m, sum);
+            f(i, m, sum);
+        });
+        return;
+    }
+    std::vector<int64_t> all(count_ * 4);  // per point: Φ r, g, b, M
+    tbb::parallel_for(size_t(0), count_, [&](size_t i) {
+        uint64_t m;
+        take(i, m, &all[4 * i]);
+        all[4 * i + 3] = int64_t(m);
     });
+    dist::sum(all.data(), all.size());
+    tbb::parallel_for(size_t(0), count_, [&](size_t i) { f(i, uint64_t(all[4 * i + 3]), &all[4 * i]); });
 }
 
 void PhotonAccumulator::pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,

@@ -8,7 +8,9 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/byte_buffer.h"
 #include "core/interrupt.h"
+#include "dist/ranks.h"
 #include "photon/projection_map.h"
 
 namespace phos::photon {
@@ -98,6 +100,50 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
 
 }  // namespace
 
+namespace {
+
+// Under MPI each rank traces the batches it owns (dist::owns(b)); this gives every rank every
+// batch's slice (rank 0 gathers them and broadcasts the lot), so all ranks hold the same maps.
+void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount]) {
+    if (!dist::distributed()) return;
+    std::string mine;
+    {
+        ByteWriter w(mine);
+        for (size_t b = 0; b < slices.size(); ++b) {
+            if (!dist::owns(b)) continue;
+            const Slice& s = slices[b];
+            w.put(uint64_t(b));
+            w.put(s.rays);
+            for (int m = 0; m < kMapCount; ++m) {
+                if (!active[m]) continue;
+                w.put_vector(s.photons[m]);
+                w.put_vector(s.power[m]);
+                w.put_vector(s.emission[m]);
+                w.put_vector(s.bounces[m]);
+            }
+        }
+    }
+    std::string all;
+    for (const std::string& part : dist::gather(mine)) all += part;
+    dist::broadcast(all);
+    ByteReader r(all, "photon batches from the other ranks");
+    while (!r.at_end()) {
+        const uint64_t b = r.get<uint64_t>();
+        if (b >= slices.size()) r.fail("batch index out of range");
+        Slice& s = slices[b];
+        s.rays = r.get<uint64_t>();
+        for (int m = 0; m < kMapCount; ++m) {
+            if (!active[m]) continue;
+            s.photons[m] = r.get_vector<Photon>();
+            s.power[m] = r.get_vector<Rgb>();
+            s.emission[m] = r.get_vector<uint32_t>();
+            s.bounces[m] = r.get_vector<uint8_t>();
+        }
+    }
+}
+
+}  // namespace
+
 const char* map_name(int kind) {
     switch (kind) {
         case kGlobalMap:
@@ -135,16 +181,18 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     std::vector<Slice> slices;
     // An interrupt ends tracing at the next round (its batches are skipped): the caller renders
     // nothing from incomplete maps.
-    while (any && next < cap && ps.lights.size() > 0 && !interrupt::requested()) {
+    // (dist::any: under MPI an interrupt on one rank ends the rounds of all.)
+    while (any && next < cap && ps.lights.size() > 0 && !dist::any(interrupt::requested())) {
         const uint64_t n_round = std::min(round_batches * B, cap - next);
         const uint64_t nb = (n_round + B - 1) / B;
         slices.assign(nb, Slice{});
         tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
-            if (interrupt::requested()) return;
+            if (interrupt::requested() || !dist::owns(b)) return;
             const uint64_t first = next + b * B;
             trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
                         slices[b]);
         });
+        exchange_slices(slices, active);
         // Concatenate in batch order; a map that meets its target stops after that emission.
         for (int m = 0; m < kMapCount; ++m) {
             if (!active[m]) continue;

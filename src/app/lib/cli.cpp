@@ -22,6 +22,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/spelling.h"
+#include "dist/ranks.h"
 #include "integrators/progressive_checkpoint.h"
 
 namespace phos::app {
@@ -160,14 +161,47 @@ void register_table(CLI::App& render, const BoundTable& bound, std::set<std::str
     }
 }
 
-int print_error(const std::string& message) {
-    std::fprintf(stderr, "phos: %s\n", message.c_str());
-    return 2;
+bool g_render_command = false;  // the command is `render` (set once parsed)
+
+// Prints `line` (a failure) and returns `code`. Under MPI (docs/distributed.md): a render that
+// fails before it starts tells the other ranks (dist::agree_start), and the failure is printed
+// once, by rank 0 or by the rank that alone failed; one that fails mid-render (while the others
+// wait in a collective) ends the whole job; other failures are identical on every rank and rank 0
+// prints them.
+int report_failure(const std::string& line, int code) {
+    const auto print = [&](bool with_rank) {
+        if (with_rank)
+            std::fprintf(stderr, "%s (rank %d of %d)\n", line.c_str(), dist::rank(), dist::ranks());
+        else
+            std::fprintf(stderr, "%s\n", line.c_str());
+    };
+    if (!dist::distributed()) {
+        print(false);
+        return code;
+    }
+    if (g_render_command && !dist::started()) {
+        const dist::StartAgreement a = dist::agree_start(false);
+        if (dist::root() || !a.root_failed) print(!dist::root());
+        return code;
+    }
+    if (g_render_command && !dist::finished()) {
+        print(true);
+        std::fflush(stderr);
+        dist::abort_all(code);
+    }
+    if (dist::root()) print(false);
+    return code;
 }
+
+int print_error(const std::string& message) { return report_failure("phos: " + message, 2); }
 
 }  // namespace
 
 int run_cli(int argc, char** argv) {
+    if (!dist::root()) {  // under MPI, rank 0 speaks for all (docs/distributed.md)
+        log::silence();
+        if (!std::freopen("/dev/null", "w", stdout)) std::fclose(stdout);
+    }
     CLI::App app{"phos: a physically based photon-mapping renderer", "phos"};
     app.require_subcommand(1);
     app.set_version_flag("-V,--version", version_text());
@@ -277,12 +311,14 @@ int run_cli(int argc, char** argv) {
                     break;
                 }
             }
-            std::fprintf(stderr, "phos: %s\n", what.c_str());
-            std::fprintf(stderr, "Run 'phos help' or 'phos help render' for the options.\n");
-            return 2;
+            return report_failure(
+                "phos: " + what + "\nRun 'phos help' or 'phos help render' for the options.", 2);
         }
     };
     if (const int code = parse(args); code >= 0) return code;
+    // Under MPI the ranks share a render; any other command runs on rank 0 alone.
+    g_render_command = render->parsed();
+    if (dist::distributed() && !g_render_command && !dist::root()) return 0;
 
     try {
         if (help->parsed()) {
@@ -352,16 +388,13 @@ int run_cli(int argc, char** argv) {
         if (mont->parsed()) run_montage(montage_out, montage_in, montage_cell);
         return 0;
     } catch (const ParseError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
-        return 2;
+        return report_failure(e.what(), 2);
     } catch (const InputError& e) {
         return print_error(e.what());
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "phos: out of memory\n");
-        return 1;
+        return report_failure("phos: out of memory", 1);
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "phos: internal error: %s\n", e.what());
-        return 1;
+        return report_failure(std::string("phos: internal error: ") + e.what(), 1);
     }
 }
 

@@ -28,6 +28,7 @@
 #include "display/live_image.h"
 #include "display/preview_window.h"
 #include "display/tev_stream.h"
+#include "dist/ranks.h"
 #include "film/film.h"
 #include "integrators/aov.h"
 #include "integrators/factory.h"
@@ -246,7 +247,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
         if (std::filesystem::is_directory(path)) throw InputError("checkpoint '" + path + "' is a directory");
         if (!std::filesystem::is_directory(std::filesystem::absolute(path).parent_path()))
             throw InputError("checkpoint '" + path + "': its directory does not exist");
-        check_writable(path, "checkpoint");
+        if (dist::root()) check_writable(path, "checkpoint");
         // A checkpoint that cannot be written (disk full, read-only) leaves the previous one intact
         // and the render goes on: its image may still be written at the end.
         p.on_checkpoint = [path](const integrators::ProgressiveState& s) {
@@ -410,18 +411,24 @@ int run_render(const RenderCommand& command) {
         const std::filesystem::path p(*scene.settings.output);
         output = p.is_absolute() ? p.string() : p.filename().string();  // written to the current directory
     }
-    check_output(output);
+    if (dist::root()) check_output(output);  // under MPI rank 0 alone writes
     Sources sources = resolve_settings(cmd, scene);
     apply_quality(cmd, apply_scene_parameters(cmd, scene), sources);
     check_options(cmd);
     check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
-    if (!cmd.run.trace_json.empty()) check_writable(cmd.run.trace_json, "--trace-json");
+    if (!cmd.run.trace_json.empty() && dist::root()) check_writable(cmd.run.trace_json, "--trace-json");
     const std::string& integrator_name = cmd.run.integrator;
     const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";
     if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
         throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
     setup_budget(cmd, output, progressive);
     cmd.budget.clock_start = clock_start;
+    if (!dist::root()) {  // rank 0 alone writes, shows and streams (docs/distributed.md)
+        cmd.budget.on_checkpoint = nullptr;
+        cmd.budget.on_preview = nullptr;
+        cmd.run.preview = false;
+        cmd.run.tev.clear();
+    }
     // Watching the render (--preview, --tev): the render copies finished tiles and frames into the
     // live image, which the window's and the stream's threads read.
     std::unique_ptr<display::LiveImage> live;
@@ -501,15 +508,34 @@ int run_render(const RenderCommand& command) {
 
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
-    Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet));
+    Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet || !dist::root()));
     // --trace-pixel: the integrator records that pixel's camera samples (integrators/path_recorder.h).
     std::optional<integrators::PathRecorder> trace;
     if (cmd.run.trace_x >= 0) trace.emplace(cmd.run.trace_x, cmd.run.trace_y);
+    // Under MPI: every rank has set up without error, or none renders (a failing rank said why).
+    if (dist::distributed() && dist::agree_start(true).any_failed) return 2;
+    std::vector<std::string> rank_lines;  // -v under MPI: each rank's render time and rays
     {
         ScopedTimer t(stats, "render");
         const integrators::TraceRequest request(trace ? &*trace : nullptr);
+        const auto t0 = std::chrono::steady_clock::now();
         integrator->render(*prepared, film, progress);
+        if (dist::distributed()) {
+            const double seconds =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const RayCounts rays = stats.rays();
+            char line[160];
+            std::snprintf(line, sizeof line, "render %.3f s, %.4g M rays, %.3g MB exchanged", seconds,
+                          double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
+                          double(dist::bytes_exchanged()) * 1e-6);
+            rank_lines = dist::gather(line);
+        }
+        dist::mark_finished();
     }
+    if (!dist::root())
+        return interrupt::requested() || cmd.budget.done->interrupted
+                   ? interrupt::exit_status(interrupt::signal_number())
+                   : 0;
     const integrators::RenderBudget::Done& done = *cmd.budget.done;
     const bool interrupted = done.interrupted || interrupt::requested();
     const int status = interrupted ? interrupt::exit_status(interrupt::signal_number()) : 0;
@@ -540,6 +566,9 @@ int run_render(const RenderCommand& command) {
                                      so_far + ", integrator " + integrator_name);
         const uint64_t dropped = film.rejected_samples() + stats.dropped_samples();
         stats.add_value("samples dropped (NaN or infinite)", std::to_string(dropped));
+        for (size_t r = 0; r < rank_lines.size(); ++r)
+            stats.add_value("rank " + std::to_string(r) + " of " + std::to_string(rank_lines.size()),
+                            rank_lines[r]);
         add_peak_memory(stats);
         std::fputs(stats.report().c_str(), stderr);
     }

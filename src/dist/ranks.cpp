@@ -1,0 +1,176 @@
+// MPI behind the dist/ranks.h interface (OpenMPI from Debian's libopenmpi-dev when found by
+// CMake, PHOS_HAS_MPI); one rank otherwise.
+#include "dist/ranks.h"
+
+#include <cstdlib>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#ifdef PHOS_HAS_MPI
+#include <mpi.h>
+#endif
+
+namespace phos::dist {
+namespace {
+
+int g_rank = 0, g_ranks = 1;
+bool g_started = false;  // MPI_Init was called
+bool g_render_started = false, g_render_finished = false;
+uint64_t g_bytes = 0;
+
+}  // namespace
+
+std::pair<uint64_t, uint64_t> share(uint64_t count) {
+    const uint64_t n = uint64_t(ranks()), r = uint64_t(rank());
+    // first = floor(count * r / n) without overflow for any 64-bit count.
+    const auto at = [&](uint64_t k) { return count / n * k + count % n * k / n; };
+    return {at(r), at(r + 1)};
+}
+
+bool started() { return g_render_started; }
+void mark_finished() { g_render_finished = true; }
+bool finished() { return g_render_finished; }
+
+StartAgreement agree_start(bool ok) {
+    g_render_started = true;
+    uint32_t flags[2] = {ok ? 0u : 1u, (!ok && g_rank == 0) ? 1u : 0u};
+    max(flags, 2);
+    return {flags[0] != 0, flags[1] != 0};
+}
+
+int rank() { return g_rank; }
+int ranks() { return g_ranks; }
+uint64_t bytes_exchanged() { return g_bytes; }
+
+#ifdef PHOS_HAS_MPI
+
+bool built_with_mpi() { return true; }
+
+namespace {
+
+// Launched by an MPI launcher: OpenMPI's mpirun, SLURM's srun, or any PMI / PMIx launcher.
+bool launched_by_mpi() {
+    for (const char* v :
+         {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE", "SLURM_STEP_NUM_TASKS"})
+        if (std::getenv(v)) return true;
+    return false;
+}
+
+void check(int code, const char* what) {
+    if (code != MPI_SUCCESS) throw std::runtime_error(std::string("MPI: ") + what + " failed");
+}
+
+// MPI counts are int: large buffers go in chunks.
+constexpr size_t kChunk = size_t(1) << 30;
+
+}  // namespace
+
+void init(int* argc, char*** argv) {
+    if (g_started || !launched_by_mpi()) return;
+    int provided = 0;
+    // Only the main thread calls MPI (the render's oneTBB workers never do).
+    check(MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided), "MPI_Init_thread");
+    g_started = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &g_rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &g_ranks);
+}
+
+void finalize() {
+    if (!g_started) return;
+    MPI_Finalize();
+    g_started = false;
+}
+
+void broadcast(void* data, size_t bytes) {
+    if (g_ranks == 1 || bytes == 0) return;
+    for (size_t at = 0; at < bytes; at += kChunk) {
+        const size_t n = std::min(kChunk, bytes - at);
+        check(MPI_Bcast(static_cast<char*>(data) + at, int(n), MPI_BYTE, 0, MPI_COMM_WORLD), "MPI_Bcast");
+    }
+    g_bytes += bytes;
+}
+
+void broadcast(std::string& bytes) {
+    if (g_ranks == 1) return;
+    uint64_t n = bytes.size();
+    broadcast(&n, sizeof n);
+    bytes.resize(n);
+    broadcast(bytes.data(), n);
+}
+
+namespace {
+template <class T>
+void all_reduce(T* values, size_t n, MPI_Datatype type, MPI_Op op) {
+    if (g_ranks == 1 || n == 0) return;
+    const size_t chunk = kChunk / sizeof(T);
+    for (size_t at = 0; at < n; at += chunk) {
+        const size_t k = std::min(chunk, n - at);
+        check(MPI_Allreduce(MPI_IN_PLACE, values + at, int(k), type, op, MPI_COMM_WORLD), "MPI_Allreduce");
+    }
+    g_bytes += 2 * n * sizeof(T);
+}
+}  // namespace
+
+void sum(int64_t* values, size_t n) { all_reduce(values, n, MPI_INT64_T, MPI_SUM); }
+void sum(uint64_t* values, size_t n) { all_reduce(values, n, MPI_UINT64_T, MPI_SUM); }
+void max(uint32_t* values, size_t n) { all_reduce(values, n, MPI_UINT32_T, MPI_MAX); }
+
+bool any(bool value) {
+    uint32_t v = value ? 1 : 0;
+    max(&v, 1);
+    return v != 0;
+}
+
+std::vector<std::string> gather(const std::string& mine) {
+    if (g_ranks == 1) return {mine};
+    // Sizes first, then each rank's bytes to rank 0 in turn (point to point: any size).
+    std::vector<uint64_t> sizes(size_t(g_ranks), 0);
+    uint64_t n = mine.size();
+    check(MPI_Gather(&n, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, 0, MPI_COMM_WORLD), "MPI_Gather");
+    std::vector<std::string> out;
+    if (g_rank == 0) {
+        out.resize(size_t(g_ranks));
+        out[0] = mine;
+        for (int r = 1; r < g_ranks; ++r) {
+            out[size_t(r)].resize(sizes[size_t(r)]);
+            for (size_t at = 0; at < sizes[size_t(r)]; at += kChunk) {
+                const size_t k = std::min<size_t>(kChunk, sizes[size_t(r)] - at);
+                check(MPI_Recv(out[size_t(r)].data() + at, int(k), MPI_BYTE, r, 7, MPI_COMM_WORLD,
+                               MPI_STATUS_IGNORE),
+                      "MPI_Recv");
+            }
+            g_bytes += sizes[size_t(r)];
+        }
+    } else {
+        for (size_t at = 0; at < mine.size(); at += kChunk) {
+            const size_t k = std::min(kChunk, mine.size() - at);
+            check(MPI_Send(mine.data() + at, int(k), MPI_BYTE, 0, 7, MPI_COMM_WORLD), "MPI_Send");
+        }
+        g_bytes += mine.size();
+    }
+    return out;
+}
+
+void abort_all(int exit_code) {
+    if (g_started && g_ranks > 1) MPI_Abort(MPI_COMM_WORLD, exit_code);
+    std::exit(exit_code);
+}
+
+#else  // built without MPI: one rank
+
+bool built_with_mpi() { return false; }
+void init(int*, char***) {}
+void finalize() {}
+void broadcast(void*, size_t) {}
+void broadcast(std::string&) {}
+void sum(int64_t*, size_t) {}
+void sum(uint64_t*, size_t) {}
+void max(uint32_t*, size_t) {}
+bool any(bool value) { return value; }
+std::vector<std::string> gather(const std::string& mine) { return {mine}; }
+void abort_all(int exit_code) { std::exit(exit_code); }
+
+#endif
+
+}  // namespace phos::dist
