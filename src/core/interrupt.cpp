@@ -15,9 +15,12 @@ namespace {
 std::atomic<bool> g_requested{false};
 std::atomic<int> g_signal{0};
 std::atomic<int> g_count{0};
+std::atomic<bool> g_silent{false};
+std::atomic<bool> g_distributed{false};
 static_assert(std::atomic<bool>::is_always_lock_free && std::atomic<int>::is_always_lock_free);
 
 void say(const char* text) {
+    if (g_silent.load()) return;
     const ssize_t n = ::write(STDERR_FILENO, text, std::strlen(text));
     (void)n;
 }
@@ -29,14 +32,20 @@ extern "C" void on_signal(int signo) {
     }
     g_signal.store(signo);
     g_requested.store(true);
-    say(signo == SIGTERM ? "\nphos: terminated: finishing the current work and writing the image so far\n"
-                         : "\nphos: interrupted: finishing the current work and writing the image so far "
-                           "(Ctrl-C again to quit at once)\n");
+    if (g_distributed.load())
+        say("\nphos: stopping every rank: finishing the current work and writing the image so far (nothing "
+            "is written if a rank has died)\n");
+    else
+        say(signo == SIGTERM ? "\nphos: terminated: finishing the current work and writing the image so far\n"
+                             : "\nphos: interrupted: finishing the current work and writing the image so far "
+                               "(Ctrl-C again to quit at once)\n");
 }
 
 }  // namespace
 
-void install_handlers() {
+void install_handlers(bool silent, bool distributed) {
+    g_silent.store(silent);
+    g_distributed.store(distributed);
     struct sigaction sa;
     std::memset(&sa, 0, sizeof sa);
     sa.sa_handler = on_signal;

@@ -7,8 +7,10 @@
 
 namespace phos::interrupt {
 
-// Installs the handlers for SIGINT and SIGTERM (and ignores SIGXFSZ). Idempotent.
-void install_handlers();
+// Installs the handlers for SIGINT and SIGTERM (and ignores SIGXFSZ). Idempotent. With `silent`
+// the handler says nothing (the MPI ranks other than 0, whose rank 0 says it); `distributed`
+// words rank 0's message for an MPI job (whose image needs every rank).
+void install_handlers(bool silent = false, bool distributed = false);
 // Whether a stop was requested (cheap: one relaxed atomic load; safe from any thread).
 bool requested();
 // The signal that asked to stop (SIGINT, SIGTERM), or 0 when none did or the request came from

@@ -104,8 +104,9 @@ namespace {
 
 // Under MPI each rank traces the batches it owns (dist::owns(b)); this gives every rank every
 // batch's slice (rank 0 gathers them and broadcasts the lot), so all ranks hold the same maps.
-void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount]) {
+void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], TracedPhotons& out) {
     if (!dist::distributed()) return;
+    const auto t0 = std::chrono::steady_clock::now();
     std::string mine;
     {
         ByteWriter w(mine);
@@ -126,6 +127,7 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount]) {
     std::string all;
     for (const std::string& part : dist::gather(mine)) all += part;
     dist::broadcast(all);
+    out.exchanged_bytes += all.size();
     ByteReader r(all, "photon batches from the other ranks");
     while (!r.at_end()) {
         const uint64_t b = r.get<uint64_t>();
@@ -140,6 +142,7 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount]) {
             s.bounces[m] = r.get_vector<uint8_t>();
         }
     }
+    out.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
 }  // namespace
@@ -192,7 +195,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
             trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
                         slices[b]);
         });
-        exchange_slices(slices, active);
+        exchange_slices(slices, active, out);
         // Concatenate in batch order; a map that meets its target stops after that emission.
         for (int m = 0; m < kMapCount; ++m) {
             if (!active[m]) continue;

@@ -64,6 +64,8 @@ struct TracedPhotons {
     double caustic_fraction = 1;    // share of the emitted power the projection maps sample
     double projection_seconds = 0;  // building the projection maps
     double caustic_seconds = 0;     // tracing the caustic stream (projection maps only)
+    double exchange_seconds = 0;    // under MPI: exchanging the batches between ranks
+    uint64_t exchanged_bytes = 0;   // under MPI: the batches' bytes (every rank receives them all)
     uint64_t stored() const {
         uint64_t n = 0;
         for (const auto& p : photons) n += p.size();

@@ -393,7 +393,7 @@ int run_render(const RenderCommand& command) {
     const auto clock_start = std::chrono::steady_clock::now();
     RenderCommand cmd = command;
     log::set_quiet(cmd.run.quiet);
-    interrupt::install_handlers();
+    interrupt::install_handlers(!dist::root(), dist::distributed());
     std::optional<tbb::global_control> threads;
     if (cmd.run.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
