@@ -182,9 +182,9 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
                                                : 0.0));
     P.stats.add_value("bytes per photon", std::to_string(sizeof(photon::Photon)));
     if (dist::distributed())  // each rank traced its batches; all received every batch
-        P.stats.add_value(
-            "photon batches exchanged (MPI)",
-            fmt("%.3g MB in %.3f s", double(traced.exchanged_bytes) * 1e-6, traced.exchange_seconds));
+        P.stats.add_value("photon batches exchanged (MPI)",
+                          fmt("%.3g MB", double(traced.exchanged_bytes) * 1e-6) +
+                              fmt(" in %.3f s", traced.exchange_seconds));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
     P.stats.add_value("photon map build rate",
