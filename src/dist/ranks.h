@@ -44,6 +44,8 @@ void max(uint32_t* values, size_t n);  // element-wise maximum over ranks, in pl
 bool any(bool value);                  // true on every rank if it is true on some rank
 // Rank 0 receives every rank's bytes (index = rank; its own included); the others get {}.
 std::vector<std::string> gather(const std::string& mine);
+// Every rank receives every rank's bytes, concatenated in rank order.
+std::string all_gather(const std::string& mine);
 
 // The start of a distributed render, where the ranks agree that each set up without error (a
 // rank that failed calls it with ok = false instead of waiting in a later collective): returns

@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/path_recorder.h"
 #include "integrators/progressive_budget.h"
@@ -69,6 +70,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration); its
         // emission and direct light add to the pixel's direct sum.
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+            if (!dist::owns(t)) return;  // under MPI: another rank's tile (share_eye_pass)
             const film::Tile& tile = tiles[t];
             RayCounts rays;
             uint64_t dropped = 0;
@@ -95,6 +97,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
             P.stats.add_rays(rays);
             P.stats.add_dropped_samples(dropped);
         });
+        share_eye_pass(tiles, ro.width, per_pixel, vps, state.slots);
         const bool is_pilot = it == 0 && pilot.k > 0;
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
             for (size_t i = 0; i < vps.size(); ++i)

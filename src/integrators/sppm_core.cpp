@@ -7,7 +7,10 @@
 
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <stdexcept>
 #include <string>
+#include <type_traits>
 
 #include "core/error.h"
 #include "core/log.h"
@@ -182,6 +185,41 @@ void PhotonAccumulator::drain(F&& f) {
     });
     dist::sum(all.data(), all.size());
     tbb::parallel_for(size_t(0), count_, [&](size_t i) { f(i, uint64_t(all[4 * i + 3]), &all[4 * i]); });
+}
+
+void share_eye_pass(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
+                    std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots) {
+    if (!dist::distributed()) return;
+    // Plain data (the Bsdf holds its parameters, no pointers): copied as bytes.
+    static_assert(std::is_trivially_copyable_v<VisiblePoint> && std::is_trivially_copyable_v<PixelStats>);
+    constexpr size_t kPoint = sizeof(VisiblePoint) + sizeof(PixelStats);
+    // One tile's points and statistics, row by row, appended to / read from `bytes`.
+    const auto visit = [&](const film::Tile& tile, auto&& copy) {
+        for (int y = tile.y0; y < tile.y1; ++y)
+            for (int x = tile.x0; x < tile.x1; ++x) {
+                const size_t base = (size_t(y) * size_t(width) + size_t(x)) * per_pixel;
+                for (size_t s = base; s < base + per_pixel; ++s) copy(vps[s], slots[s]);
+            }
+    };
+    std::string mine;
+    for (size_t t = 0; t < tiles.size(); ++t)
+        if (dist::owns(t))
+            visit(tiles[t], [&](const VisiblePoint& v, const PixelStats& st) {
+                mine.append(reinterpret_cast<const char*>(&v), sizeof v);
+                mine.append(reinterpret_cast<const char*>(&st), sizeof st);
+            });
+    const std::string all = dist::all_gather(mine);  // rank 0 .. N-1, each its own in order
+    size_t at = 0;
+    const size_t n = size_t(dist::ranks());
+    for (size_t r = 0; r < n; ++r)
+        for (size_t t = r; t < tiles.size(); t += n)
+            visit(tiles[t], [&](VisiblePoint& v, PixelStats& st) {
+                if (at + kPoint > all.size())
+                    throw std::runtime_error("sppm: the ranks' eye passes disagree in size");
+                std::memcpy(static_cast<void*>(&v), all.data() + at, sizeof v);
+                std::memcpy(static_cast<void*>(&st), all.data() + at + sizeof v, sizeof st);
+                at += kPoint;
+            });
 }
 
 void PhotonAccumulator::pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,

@@ -17,6 +17,7 @@
 
 #include "core/rng.h"
 #include "film/film.h"
+#include "film/tiles.h"
 #include "integrators/path_recorder.h"
 #include "integrators/prepared.h"
 #include "integrators/progressive_checkpoint.h"
@@ -131,6 +132,12 @@ private:
 // `volume_slot` (SPPM with media).
 void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, size_t slot, bool volume_slot,
                      const std::function<Rgb(VisiblePoint& vp)>& run);
+
+// Under MPI (dist/ranks.h) each rank runs the eye pass for the tiles it owns; this gives every
+// rank every pixel's visible points and statistics from the tile's owner (rank 0 gathers, then
+// broadcasts them), so that all ranks go on with the same state. No-op with one rank.
+void share_eye_pass(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
+                    std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots);
 
 // Builds the grid over the visible points with their current radii.
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,

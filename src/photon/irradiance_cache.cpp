@@ -3,7 +3,12 @@
 
 #include <tbb/parallel_for.h>
 
+#include <cstring>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "dist/ranks.h"
 
 namespace phos::photon {
 
@@ -15,7 +20,9 @@ void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, u
     stride = std::max<uint32_t>(stride, 1);
     const size_t n = (map.size() + stride - 1) / stride;
     std::vector<Photon> pts(n);
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 256), [&](const tbb::blocked_range<size_t>& r) {
+    // Under MPI each rank estimates a contiguous share of the points and every rank receives all.
+    const auto [lo, hi] = dist::share(n);
+    tbb::parallel_for(tbb::blocked_range<size_t>(lo, hi, 256), [&](const tbb::blocked_range<size_t>& r) {
         for (size_t i = r.begin(); i < r.end(); ++i) {
             const Photon& ph = map.photon(uint32_t(i * stride));
             SurfaceQuery q;
@@ -25,6 +32,13 @@ void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, u
             pts[i] = Photon(ph.position, E, q.n, q.n);
         }
     });
+    if (dist::distributed()) {
+        const std::string all = dist::all_gather(
+            std::string(reinterpret_cast<const char*>(pts.data() + lo), (hi - lo) * sizeof(Photon)));
+        if (all.size() != n * sizeof(Photon))
+            throw std::runtime_error("irradiance cache: ranks disagree on its size");
+        std::memcpy(static_cast<void*>(pts.data()), all.data(), all.size());
+    }
     points_.build(pts);
 }
 

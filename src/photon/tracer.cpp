@@ -124,9 +124,7 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], T
             }
         }
     }
-    std::string all;
-    for (const std::string& part : dist::gather(mine)) all += part;
-    dist::broadcast(all);
+    const std::string all = dist::all_gather(mine);  // rank 0 .. N-1, each its own in order
     out.exchanged_bytes += all.size();
     ByteReader r(all, "photon batches from the other ranks");
     while (!r.at_end()) {
