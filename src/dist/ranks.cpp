@@ -15,7 +15,9 @@ namespace phos::dist {
 namespace {
 
 int g_rank = 0, g_ranks = 1;
+#ifdef PHOS_HAS_MPI
 bool g_started = false;  // MPI_Init was called
+#endif
 bool g_render_started = false, g_render_finished = false;
 uint64_t g_bytes = 0;
 
