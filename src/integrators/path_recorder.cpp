@@ -1,6 +1,10 @@
 // The --trace-pixel recorder (see path_recorder.h).
 #include "integrators/path_recorder.h"
 
+#include <cstring>
+#include <type_traits>
+
+#include "dist/ranks.h"
 #include "integrators/prepared.h"
 
 namespace phos::integrators {
@@ -168,5 +172,16 @@ PathRecorder* requested_trace() { return g_requested; }
 
 TraceRequest::TraceRequest(PathRecorder* r) { g_requested = r; }
 TraceRequest::~TraceRequest() { g_requested = nullptr; }
+
+void PathRecorder::gather_pending() {
+    if (!dist::distributed()) return;
+    using Entry = std::pair<size_t, TracedPhoton>;
+    static_assert(std::is_trivially_copyable_v<TracedPhoton>);
+    std::string mine(pending_.size() * sizeof(Entry), '\0');
+    if (!pending_.empty()) std::memcpy(mine.data(), static_cast<const void*>(pending_.data()), mine.size());
+    const std::string all = dist::all_gather(mine);
+    pending_.resize(all.size() / sizeof(Entry));
+    if (!all.empty()) std::memcpy(static_cast<void*>(pending_.data()), all.data(), all.size());
+}
 
 }  // namespace phos::integrators

@@ -160,6 +160,8 @@ private:
 
     int x_, y_;
     std::vector<TracedPath> paths_;
+    // Under MPI: every rank's photons of the pass (each rank traced a share of them). Collective.
+    void gather_pending();
     std::mutex photons_mutex_;
     std::vector<std::pair<size_t, TracedPhoton>> pending_;  // (slot, photon) of the current pass
 };
@@ -216,6 +218,7 @@ void PathRecorder::begin_pass(uint64_t iteration, bool pilot, R2&& r2) {
 
 template <class Stats>
 void PathRecorder::end_pass(uint64_t photons_emitted, Stats&& stats) {
+    gather_pending();
     std::stable_sort(pending_.begin(), pending_.end(),
                      [](const auto& a, const auto& b) { return a.second.index < b.second.index; });
     for (TracedVisiblePoint* vp : gathering()) {

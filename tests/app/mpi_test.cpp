@@ -112,6 +112,23 @@ TEST(Mpi, CheckpointsMoveBetweenRankCounts) {
     }
 }
 
+TEST(Mpi, PixelTracesAreTheSingleProcessOnes) {
+    // --trace-pixel under MPI: rank 0 reports every photon the pixel gathered, whichever rank
+    // traced it, and the same paths as one process.
+    REQUIRE_MPI();
+    TempDir dir;
+    for (const char* integrator : {"path", "photonmap", "sppm"}) {
+        const std::string opts = "render " + kScene + kSmall + "--integrator " + integrator +
+                                 " --spp 2 --photons-per-iter 20000 --global 20000 --trace-pixel 30 20 -q";
+        const std::string one = dir.file(std::string(integrator) + "-1.json"),
+                          two = dir.file(std::string(integrator) + "-2.json");
+        ASSERT_EQ(run_phos(opts + " --trace-json " + one + " -o " + dir.file("a.pfm")).exit_code, 0);
+        const auto r = run_mpi(2, opts + " --threads 1 --trace-json " + two + " -o " + dir.file("b.pfm"));
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_EQ(read_bytes(one), read_bytes(two)) << integrator;
+    }
+}
+
 TEST(Mpi, BadInputFailsOnceWithExit2) {
     REQUIRE_MPI();
     TempDir dir;
