@@ -2,10 +2,14 @@
 // CMake, PHOS_HAS_MPI); one rank otherwise.
 #include "dist/ranks.h"
 
+#include <sched.h>
+
+#include <algorithm>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <thread>
 
 #ifdef PHOS_HAS_MPI
 #include <mpi.h>
@@ -39,6 +43,21 @@ StartAgreement agree_start(bool ok) {
     uint32_t flags[2] = {ok ? 0u : 1u, (!ok && g_rank == 0) ? 1u : 0u};
     max(flags, 2);
     return {flags[0] != 0, flags[1] != 0};
+}
+
+int default_threads() {
+    if (g_ranks == 1) return 0;
+    int local = 1;
+    for (const char* v : {"OMPI_COMM_WORLD_LOCAL_SIZE", "MPI_LOCALNRANKS", "SLURM_NTASKS_PER_NODE"})
+        if (const char* e = std::getenv(v); e && std::atoi(e) > 0) {
+            local = std::atoi(e);
+            break;
+        }
+    const int machine = std::max(1, int(std::thread::hardware_concurrency()));
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    const int allowed = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : machine;
+    return std::max(1, std::min(allowed, machine / local));
 }
 
 int rank() { return g_rank; }

@@ -30,6 +30,12 @@ int ranks();  // the number of ranks, 1 without MPI
 inline bool root() { return rank() == 0; }
 inline bool distributed() { return ranks() > 1; }
 
+// The threads a rank should use when --threads is not given: 0 (oneTBB's default) with one rank;
+// under MPI, the CPUs this process may run on, but no more than the machine's CPUs divided by the
+// ranks on this machine (OMPI_COMM_WORLD_LOCAL_SIZE, MPI_LOCALNRANKS or SLURM_NTASKS_PER_NODE), so
+// ranks started with --bind-to none do not oversubscribe their machine.
+int default_threads();
+
 // Work splitting by index: item i belongs to rank i mod N (tiles: interleaved, so the ranks share
 // the image's easy and hard parts); a count split into N contiguous ranges [first, last).
 inline bool owns(size_t index) { return index % size_t(ranks()) == size_t(rank()); }

@@ -5,6 +5,7 @@
 
 #include <fcntl.h>
 #include <tbb/global_control.h>
+#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -397,6 +398,8 @@ int run_render(const RenderCommand& command) {
     std::optional<tbb::global_control> threads;
     if (cmd.run.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
+    else if (const int t = dist::default_threads(); t > 0)  // ranks sharing a machine share its cores
+        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(t));
 
     Stats stats;
     scene::Scene scene;
@@ -525,8 +528,11 @@ int run_render(const RenderCommand& command) {
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             const RayCounts rays = stats.rays();
             char line[160];
-            std::snprintf(line, sizeof line, "render %.3f s, %.4g M rays, %.3g MB exchanged", seconds,
-                          double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
+            std::snprintf(line, sizeof line, "%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged",
+                          int(std::min(size_t(tbb::this_task_arena::max_concurrency()),
+                                       tbb::global_control::active_value(
+                                           tbb::global_control::max_allowed_parallelism))),
+                          seconds, double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
                           double(dist::bytes_exchanged()) * 1e-6);
             rank_lines = dist::gather(line);
         }
