@@ -178,7 +178,7 @@ TEST(PbrtErrorsFiles, UnreadableVolumeFileIsReportedAtTheFilename) {
                   "WorldBegin\n\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\"\n   \"string filename\" "
                   "\"vol/garbage.nvdb\"\n");
     expect_pbrt_error(a, 4, 4, "garbage.nvdb", a);
-    expect_pbrt_error(a, 4, 4, "not a valid nvdb file", a);
+    expect_pbrt_error(a, 4, 4, "not a NanoVDB file", a);
     const std::string b =
         dir.write("b.pbrt",
                   "WorldBegin\nMakeNamedMedium \"m\" \"string type\" \"nanovdb\" \"string filename\" "
