@@ -8,21 +8,9 @@ set -u
 phos=$1 scene=$2 dir=$3
 "$phos" photons "$scene" --global 20000 --caustic 20000 --view >"$dir/log" 2>&1 &
 pid=$!
-wid=$(timeout 30 xdotool search --sync --name "phos photons" | head -1)
-[ -n "$wid" ] || { echo "no window" >>"$dir/titles"; kill "$pid"; exit 1; }
-# Waits (up to 10 s) until the window's title holds $1, and records it.
-wait_title() {
-  local t=""
-  for _ in $(seq 100); do
-    t=$(xdotool getwindowname "$wid")
-    case "$t" in *"$1"*) echo "$t" >>"$dir/titles"; return 0 ;; esac
-    sleep 0.1
-  done
-  echo "timed out waiting for '$1' in '$t'" >>"$dir/titles"
-  return 1
-}
+. "$(dirname "$0")/window_keys.sh"
+find_window "phos photons"
 wait_title "[colour power; maps global caustic; points 2 px]"
-xdotool windowfocus --sync "$wid" 2>/dev/null || true
 xdotool key c && wait_title "[colour map;"
 xdotool key c && wait_title "[colour bounces;"
 xdotool key c && wait_title "[colour power;"

@@ -8,21 +8,9 @@ phos=$1 scene=$2 dir=$3
 "$phos" render "$scene" --integrator path --width 64 --height 48 --spp 1000000 --layers --preview \
   -o "$dir/out.exr" >"$dir/log" 2>&1 &
 pid=$!
-wid=$(timeout 30 xdotool search --sync --name "phos" | head -1)
-[ -n "$wid" ] || { echo "no window" >>"$dir/titles"; kill "$pid"; exit 1; }
-# Waits (up to 10 s) until the window's title holds $1, and records it.
-wait_title() {
-  local t=""
-  for _ in $(seq 100); do
-    t=$(xdotool getwindowname "$wid")
-    case "$t" in *"$1"*) echo "$t" >>"$dir/titles"; return 0 ;; esac
-    sleep 0.1
-  done
-  echo "timed out waiting for '$1' in '$t'" >>"$dir/titles"
-  return 1
-}
+. "$(dirname "$0")/window_keys.sh"
+find_window "phos"
 wait_title "exposure +0.0"
-xdotool windowfocus --sync "$wid" 2>/dev/null || true
 xdotool key equal && wait_title "exposure +0.5"
 xdotool key minus && xdotool key minus && wait_title "exposure -0.5"
 xdotool key l && wait_title "[caustic,"
