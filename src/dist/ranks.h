@@ -16,6 +16,10 @@
 
 namespace phos::dist {
 
+// Makes rank 0 work alone from here on (ranks() == 1, every collective a no-op), for commands
+// other than render, which rank 0 runs by itself while the other ranks end.
+void go_solo();
+
 // Whether this phos was built with MPI.
 bool built_with_mpi();
 

@@ -129,6 +129,20 @@ TEST(Mpi, PixelTracesAreTheSingleProcessOnes) {
     }
 }
 
+TEST(Mpi, OtherCommandsRunOnRankZeroAlone) {
+    // phos photons (which traces photon maps, as render does) and phos info under mpirun: rank 0
+    // does the work by itself, once; the other ranks end at once.
+    REQUIRE_MPI();
+    TempDir dir;
+    const auto r = run_mpi(2, "photons " + kScene + " --global 5000 --caustic 5000 -o " + dir.file("p.ply"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.output.find("phos: wrote"), r.output.rfind("phos: wrote")) << r.output;
+    const auto one =
+        run_phos("photons " + kScene + " --global 5000 --caustic 5000 -q -o " + dir.file("q.ply"));
+    ASSERT_EQ(one.exit_code, 0) << one.output;
+    EXPECT_EQ(read_bytes(dir.file("p.ply")), read_bytes(dir.file("q.ply")));
+}
+
 TEST(Mpi, BadInputFailsOnceWithExit2) {
     REQUIRE_MPI();
     TempDir dir;

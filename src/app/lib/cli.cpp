@@ -318,7 +318,10 @@ int run_cli(int argc, char** argv) {
     if (const int code = parse(args); code >= 0) return code;
     // Under MPI the ranks share a render; any other command runs on rank 0 alone.
     g_render_command = render->parsed();
-    if (dist::distributed() && !g_render_command && !dist::root()) return 0;
+    if (dist::distributed() && !g_render_command) {
+        if (!dist::root()) return 0;
+        dist::go_solo();
+    }
 
     try {
         if (help->parsed()) {
