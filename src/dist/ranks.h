@@ -10,7 +10,10 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <span>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -56,6 +59,16 @@ bool any(bool value);                  // true on every rank if it is true on so
 std::vector<std::string> gather(const std::string& mine);
 // Every rank receives every rank's bytes, concatenated in rank order.
 std::string all_gather(const std::string& mine);
+// The same for arrays of plain values: every rank's `mine`, concatenated in rank order.
+template <class T>
+std::vector<T> all_gather(std::span<const T> mine) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    const std::string all =
+        all_gather(std::string(reinterpret_cast<const char*>(mine.data()), mine.size() * sizeof(T)));
+    std::vector<T> out(all.size() / sizeof(T));
+    if (!out.empty()) std::memcpy(static_cast<void*>(out.data()), all.data(), out.size() * sizeof(T));
+    return out;
+}
 
 // The start of a distributed render, where the ranks agree that each set up without error (a
 // rank that failed calls it with ok = false instead of waiting in a later collective): returns

@@ -1,9 +1,6 @@
 // The --trace-pixel recorder (see path_recorder.h).
 #include "integrators/path_recorder.h"
 
-#include <cstring>
-#include <type_traits>
-
 #include "dist/ranks.h"
 #include "integrators/prepared.h"
 
@@ -165,7 +162,7 @@ std::vector<TracedVisiblePoint*> PathRecorder::gathering() {
 
 void PathRecorder::photon(size_t slot, const TracedPhoton& p) {
     const std::lock_guard<std::mutex> lock(photons_mutex_);
-    pending_.emplace_back(slot, p);
+    pending_.push_back({slot, p});
 }
 
 PathRecorder* requested_trace() { return g_requested; }
@@ -175,13 +172,7 @@ TraceRequest::~TraceRequest() { g_requested = nullptr; }
 
 void PathRecorder::gather_pending() {
     if (!dist::distributed()) return;
-    using Entry = std::pair<size_t, TracedPhoton>;
-    static_assert(std::is_trivially_copyable_v<TracedPhoton>);
-    std::string mine(pending_.size() * sizeof(Entry), '\0');
-    if (!pending_.empty()) std::memcpy(mine.data(), static_cast<const void*>(pending_.data()), mine.size());
-    const std::string all = dist::all_gather(mine);
-    pending_.resize(all.size() / sizeof(Entry));
-    if (!all.empty()) std::memcpy(static_cast<void*>(pending_.data()), all.data(), all.size());
+    pending_ = dist::all_gather(std::span<const PendingPhoton>(pending_));
 }
 
 }  // namespace phos::integrators

@@ -163,7 +163,11 @@ private:
     // Under MPI: every rank's photons of the pass (each rank traced a share of them). Collective.
     void gather_pending();
     std::mutex photons_mutex_;
-    std::vector<std::pair<size_t, TracedPhoton>> pending_;  // (slot, photon) of the current pass
+    struct PendingPhoton {  // plain data, so the ranks can exchange them as bytes
+        size_t slot;
+        TracedPhoton photon;
+    };
+    std::vector<PendingPhoton> pending_;  // the current pass's photons
 };
 
 // The recorder active on this thread (null except while the traced pixel's samples run).
@@ -220,7 +224,7 @@ template <class Stats>
 void PathRecorder::end_pass(uint64_t photons_emitted, Stats&& stats) {
     gather_pending();
     std::stable_sort(pending_.begin(), pending_.end(),
-                     [](const auto& a, const auto& b) { return a.second.index < b.second.index; });
+                     [](const auto& a, const auto& b) { return a.photon.index < b.photon.index; });
     for (TracedVisiblePoint* vp : gathering()) {
         if (vp->passes.empty()) continue;
         TracedPass& pass = vp->passes.back();

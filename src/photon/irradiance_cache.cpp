@@ -3,7 +3,6 @@
 
 #include <tbb/parallel_for.h>
 
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -33,11 +32,8 @@ void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, u
         }
     });
     if (dist::distributed()) {
-        const std::string all = dist::all_gather(
-            std::string(reinterpret_cast<const char*>(pts.data() + lo), (hi - lo) * sizeof(Photon)));
-        if (all.size() != n * sizeof(Photon))
-            throw std::runtime_error("irradiance cache: ranks disagree on its size");
-        std::memcpy(static_cast<void*>(pts.data()), all.data(), all.size());
+        pts = dist::all_gather(std::span<const Photon>(pts.data() + lo, hi - lo));
+        if (pts.size() != n) throw std::runtime_error("irradiance cache: ranks disagree on its size");
     }
     points_.build(pts);
 }

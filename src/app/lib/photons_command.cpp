@@ -177,7 +177,9 @@ int run_photons(const PhotonsCommand& command) {
     log::info("phos: " + std::filesystem::path(command.scene_path).filename().string() +
               ": tracing the photonmap integrator's photon maps, seed " + std::to_string(opt.seed));
 
-    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared, true);
+    // Bounce counts (5 more bytes per photon) only for what shows them: the PLY file and the viewer.
+    const bool bounces = command.view || command.format != "text";
+    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared, bounces);
     if (interrupt::requested()) {
         log::warn("interrupted while tracing photons: nothing written" +
                   std::string(std::filesystem::exists(command.output)

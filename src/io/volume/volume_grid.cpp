@@ -96,6 +96,11 @@ scene::SparseGrid read_vdb(const std::string& path, const std::string& name) {
     }
 }
 
+// The bytes of the file (of `file_bytes`) after the stream's position.
+uint64_t bytes_left(std::istream& is, uint64_t file_bytes) {
+    return file_bytes - std::min<uint64_t>(file_bytes, uint64_t(is.tellg()));
+}
+
 // A segment's header and grid descriptions, read as nanovdb::io::Segment::read does but with every
 // size bounded by the file: a grid count, name or grid size the file cannot hold is an error (the
 // NanoVDB reader trusts them: a name without its terminating NUL is read past its end).
@@ -118,8 +123,7 @@ bool read_segment(std::istream& is, uint64_t file_bytes, const std::string& path
         is.read(reinterpret_cast<char*>(static_cast<nanovdb::io::MetaData*>(&m)),
                 sizeof(nanovdb::io::MetaData));
         if (!is) fail(path, "the file is truncated (a grid description)");
-        const uint64_t left = file_bytes - std::min<uint64_t>(file_bytes, uint64_t(is.tellg()));
-        if (m.nameSize == 0 || m.nameSize > left)
+        if (m.nameSize == 0 || m.nameSize > bytes_left(is, file_bytes))
             fail(path, "a grid name's length is not what the file holds");
         std::string name(m.nameSize, '\0');
         is.read(name.data(), std::streamsize(name.size()));
@@ -147,8 +151,7 @@ void read_grid_bytes(std::istream& is, char* data, uint64_t residual, nanovdb::i
     const auto chunk_bytes = [&] {
         uint64_t size = 0;
         is.read(reinterpret_cast<char*>(&size), sizeof size);
-        const uint64_t left = file_bytes - std::min<uint64_t>(file_bytes, uint64_t(is.tellg()));
-        if (!is || size == 0 || size > left)
+        if (!is || size == 0 || size > bytes_left(is, file_bytes))
             fail(path, "a compressed block's size is not what the file holds");
         std::vector<char> chunk(size);
         is.read(chunk.data(), std::streamsize(size));
