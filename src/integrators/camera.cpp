@@ -87,6 +87,47 @@ CameraModel::Footprint CameraModel::pixel_footprint() const {
     return f;
 }
 
+float CameraModel::direction_pdf(Vec3 unit_dir) const {
+    if (cam_.projection == scene::Camera::Projection::Orthographic) return 0;
+    const float c = dot(unit_dir, forward_);
+    if (!(c > 0)) return 0;
+    const float area = 4 * half_w_ * half_h_;
+    return 1 / (area * c * c * c);
+}
+
+bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
+    if (cam_.projection == scene::Camera::Projection::Orthographic) return false;
+    c.lens = eye_;
+    if (cam_.lens_radius > 0) {
+        const Vec2 d = warp::concentric_disk(u_lens) * cam_.lens_radius;
+        c.lens = eye_ + right_ * d.x + up_ * d.y;
+    }
+    const Vec3 to_ref = ref - c.lens;
+    const float dist = length(to_ref);
+    if (!(dist > 0)) return false;
+    const Vec3 dir = to_ref / dist;
+    const float cos_axis = dot(dir, forward_);
+    if (!(cos_axis > 0)) return false;
+    // Near and far clip distances are measured along the viewing axis, as for camera rays.
+    const float depth = dist * cos_axis;
+    if (depth < cam_.near_clip || depth > cam_.far_clip) return false;
+    // The film position: for a thin lens the ray meets the focal plane where the pixel's pinhole
+    // ray does.
+    Vec3 through = c.lens + dir;
+    if (cam_.lens_radius > 0) through = c.lens + dir * (cam_.focal_distance / cos_axis);
+    const Vec3 v = through - eye_;
+    const float z = dot(v, forward_);
+    if (!(z > 0)) return false;
+    const float sx = dot(v, right_) / z, sy = dot(v, up_) / z;
+    c.fx = (sx / half_w_ + 1.0f) * 0.5f * float(width_);
+    c.fy = (1.0f - sy / half_h_) * 0.5f * float(height_);
+    if (!(c.fx >= 0 && c.fx < float(width_) && c.fy >= 0 && c.fy < float(height_))) return false;
+    c.wi = -dir;
+    c.distance = dist;
+    c.pdf_dir = direction_pdf(dir);
+    return c.pdf_dir > 0;
+}
+
 bool CameraModel::project(Vec3 p, float& fx, float& fy) const {
     const Vec3 d = p - eye_;
     const float z = dot(d, forward_);

@@ -6,11 +6,12 @@
 #include "integrators/photon_map.h"
 #include "integrators/ppm.h"
 #include "integrators/sppm.h"
+#include "integrators/vcm.h"
 #include "integrators/whitted.h"
 
 namespace phos::integrators {
 
-std::vector<std::string> integrator_names() { return {"whitted", "path", "photonmap", "ppm", "sppm"}; }
+std::vector<std::string> integrator_names() { return {"whitted", "path", "photonmap", "ppm", "sppm", "bdpt", "vcm"}; }
 
 std::vector<std::string> integrator_layers(const std::string& name) {
     if (name == "whitted") return {"direct", "specular"};
@@ -33,6 +34,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const Integ
     if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map, config.budget);
     if (name == "ppm") return std::make_unique<PpmIntegrator>(config.progressive, config.budget);
     if (name == "sppm") return std::make_unique<SppmIntegrator>(config.progressive, config.budget);
+    if (name == "bdpt") return std::make_unique<VcmIntegrator>(true, config.progressive, config.budget);
+    if (name == "vcm") return std::make_unique<VcmIntegrator>(false, config.progressive, config.budget);
     throw InputError("unknown integrator '" + name + "'");
 }
 

@@ -18,17 +18,24 @@ const options::Table& progressive_options() {
             return o;
         };
         prog(b.number("alpha", &ProgressiveOptions::alpha, "A", options::Range{0, 1, true, false},
-                      "fraction of new photons kept per iteration (radius reduction)"));
+                      "fraction of new photons kept per iteration (radius reduction)"),
+             "ppm sppm vcm");
         prog(b.number("photons-per-iter", &ProgressiveOptions::photons_per_iter, "N",
                       between(1, 4294967296.0), "photons traced per iteration"))
             .pbrt = "photonsperiteration";
         b.last().pbrt_unset = "-1";
         auto& r = prog(b.number("radius", &ProgressiveOptions::radius, "R", at_least(0),
-                                "initial gather radius in scene units (0 = automatic)"));
+                                "initial gather radius in scene units (0 = automatic)"),
+                       "ppm sppm vcm");
         r.pbrt = "radius";
         r.default_text = "automatic (--radius-pixels, --radius-photons)";
         prog(b.number("radius-pixels", &ProgressiveOptions::radius_pixels, "P", positive(),
-                      "automatic initial radius in pixel footprints at the hit distance"));
+                      "automatic initial radius in pixel footprints at the hit distance (vcm: at the "
+                      "distance from the camera to the scene's centre)"),
+             "ppm sppm vcm");
+        prog(b.choice("vcm-mode", &ProgressiveOptions::vcm_mode, {"bpt", "ppm", "vcm"},
+                      "the strategies vcm uses: connections only (bpt), merging only (ppm), both (vcm)"),
+             "vcm");
         prog(b.number(
                  "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
                  "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "

@@ -37,6 +37,12 @@ float AreaLight::pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const {
     return sampler_.pdf(ref, wi, p_light, n_light);
 }
 
+void AreaLight::pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const {
+    pdf_pos = sampler_.area() > 0 ? 1 / sampler_.area() : 0;
+    const float c = dot(n, w);
+    pdf_dir = two_sided_ ? 0.5f * std::fabs(c) / kPi : std::max(c, 0.0f) / kPi;
+}
+
 LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
     LightLeSample s;
     const ShapeSample ss = sampler_.sample_area(u_pos);

@@ -16,6 +16,7 @@ public:
     // Uniform by area, then cosine-weighted on the emitting side (a random side when two-sided):
     // weight = L pi A (x2 when two-sided) for every sample.
     LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return false; }
 

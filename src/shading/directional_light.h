@@ -15,6 +15,10 @@ public:
     float pdf_Li(Vec3, Vec3, Vec3, Vec3) const override { return 0; }
     Rgb Le(Vec3, Vec3) const override { return Rgb(0.0f); }
     LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    void pdf_Le(Vec3, Vec3, float& pdf_pos, float& pdf_dir) const override {
+        pdf_pos = sphere_.radius > 0 ? 1 / (kPi * sphere_.radius * sphere_.radius) : 0;
+        pdf_dir = 1;
+    }
     Rgb power() const override { return irradiance_ * (kPi * sphere_.radius * sphere_.radius); }
     bool is_delta() const override { return true; }
 

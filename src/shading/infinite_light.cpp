@@ -130,6 +130,12 @@ LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u) const {
 
 float InfiniteLight::pdf_Li(Vec3, Vec3 wi, Vec3, Vec3) const { return pdf_direction(wi); }
 
+void InfiniteLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
+    const float R = sphere_.radius;
+    pdf_pos = R > 0 ? 1 / (kPi * R * R) : 0;
+    pdf_dir = pdf_direction(-w);  // light travelling along w comes from the sky direction -w
+}
+
 LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
     LightLeSample s;
     const Vec3 w = normalize(sample_direction(u_dir));

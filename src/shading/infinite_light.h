@@ -30,6 +30,7 @@ public:
     // Direction as for sample_Li, origin uniform on a disk of the scene radius R perpendicular to it
     // outside the scene; power = pi R^2 * integral of L over the sphere.
     LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return false; }
     bool is_infinite() const override { return true; }

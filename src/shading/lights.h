@@ -61,6 +61,12 @@ public:
     // Delta lights: 0.
     virtual Rgb Le(Vec3 n, Vec3 wo) const = 0;
     virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const = 0;
+    // The densities sample_Le has of emitting from a point with normal `n` in unit direction `w`
+    // (the direction light travels): pdf_pos (area measure, 1 for point and spot lights; for
+    // directional and infinite lights that of the disk photons start from) and pdf_dir (solid
+    // angle; 1 for directional lights). For an area light `n` is its emitting surface normal; an
+    // infinite light ignores it. Bidirectional methods weigh their strategies with these.
+    virtual void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const = 0;
     virtual Rgb power() const = 0;
     virtual bool is_delta() const = 0;
     virtual bool is_infinite() const { return false; }

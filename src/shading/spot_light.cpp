@@ -83,8 +83,24 @@ LightLiSample SpotLight::sample_Li(Vec3 ref, Vec2) const {
     return s;
 }
 
+float SpotLight::direction_pdf(float z) const {
+    if (z < cos_cutoff_) return 0;
+    if (smooth_) {
+        const float total = (1 - cos_start_) + 0.5f * (cos_start_ - cos_cutoff_);
+        return total > 0 ? falloff(z) / (2 * kPi * total) : 0;
+    }
+    if (exponent_ == 0) return warp::uniform_cone_pdf(cos_cutoff_);
+    const float n1 = exponent_ + 1;
+    return n1 * std::pow(std::max(z, 0.0f), exponent_) / (2 * kPi * (1 - std::pow(cos_cutoff_, n1)));
+}
+
+void SpotLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
+    pdf_pos = 1;
+    pdf_dir = direction_pdf(dot(w, frame_.n));
+}
+
 LightLeSample SpotLight::sample_Le(Vec2, Vec2 u) const {
-    float z = 1, pdf = 0;
+    float z = 1;
     const float phi = 2 * kPi * u.y;
     if (smooth_) {
         // Mixture of the flat core (cos in [cs, 1], falloff 1) and the smoothstep ring, each picked
@@ -101,15 +117,12 @@ LightLeSample SpotLight::sample_Le(Vec2, Vec2 u) const {
             z = cos_cutoff_ + invert_smooth_cdf(v) * (cos_start_ - cos_cutoff_);
         }
         z = std::clamp(z, cos_cutoff_, 1.0f);
-        pdf = falloff(z) / (2 * kPi * total);
     } else if (exponent_ == 0) {
         z = std::clamp(1 - u.x * (1 - cos_cutoff_), cos_cutoff_, 1.0f);
-        pdf = warp::uniform_cone_pdf(cos_cutoff_);
     } else {
         z = std::max(warp::truncated_power_cosine(u, exponent_, cos_cutoff_).z, cos_cutoff_);
-        const float n1 = exponent_ + 1;
-        pdf = n1 * std::pow(z, exponent_) / (2 * kPi * (1 - std::pow(cos_cutoff_, n1)));
     }
+    const float pdf = direction_pdf(z);
     const float r = std::sqrt(std::max(0.0f, 1 - z * z));
     const Vec3 w = frame_.to_world({r * std::cos(phi), r * std::sin(phi), z});
     LightLeSample s;

@@ -16,12 +16,15 @@ public:
     // Directions are drawn exactly in proportion to the angular fall-off, so every sample carries
     // the same weight (= power()).
     LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return true; }
 
     // Angular fall-off in [0, 1] for cos(angle to the axis).
     float falloff(float cos_theta) const;
     float cos_cutoff() const { return cos_cutoff_; }
+    // Solid-angle density of sample_Le's directions at cos(angle to the axis) = z.
+    float direction_pdf(float z) const;
     Vec3 axis() const { return frame_.n; }
 
 private:

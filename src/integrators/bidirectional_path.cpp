@@ -1,0 +1,159 @@
+// Light subpaths and vertex evaluation for the bidirectional integrators (see bidirectional_path.h).
+#include "integrators/bidirectional_path.h"
+
+#include <cmath>
+
+#include "shading/surface_walk.h"
+
+namespace phos::integrators::vcm {
+
+Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode) {
+    Scattering s;
+    if (v.in_medium) {
+        const shading::PhaseFunction& phase = P.media[v.medium].phase();
+        const float p = phase.eval(v.wo, wi);
+        s.f = Rgb(p);
+        s.pdf_dir = p;
+        s.pdf_rev = phase.eval(wi, v.wo);
+        return s;
+    }
+    const shading::Bsdf& b = *v.bsdf;
+    s.f = b.eval(v.wo, wi, mode);
+    s.cos = std::fabs(dot(b.frame().n, wi));
+    s.pdf_dir = b.pdf(v.wo, wi);
+    s.pdf_rev = b.pdf(wi, v.wo);
+    return s;
+}
+
+namespace {
+
+// The medium a ray from vertex `v` towards `dir` starts in.
+int medium_towards(const Vertex& v, Vec3 dir) {
+    return v.in_medium ? v.medium : shading::SurfaceWalk::medium_after(v.hit, dir, v.medium);
+}
+
+}  // namespace
+
+Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler) {
+    if (!a.in_medium && !b.in_medium) {
+        const accel::Ray ray = accel::spawn_ray_between(a.hit, b.hit);
+        return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir),
+                                             sampler);
+    }
+    if (a.in_medium && !b.in_medium) return transmittance_to(P, b, a.p, sampler);
+    return transmittance_to(P, a, b.p, sampler);
+}
+
+Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler) {
+    accel::Ray ray;
+    if (a.in_medium) {
+        ray = accel::Ray{a.p, target - a.p, 0.0f, 1 - 1e-4f};
+    } else {
+        ray = accel::spawn_ray_to(a.hit, target);
+    }
+    return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir), sampler);
+}
+
+bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
+    if (length > 3) {
+        const float start = beta0.max();
+        const float p = std::clamp(start > 0 ? beta.max() / start : 0.0f, 0.05f, 1.0f);
+        if (sampler.next() >= p) return false;
+        beta *= 1.0f / p;
+    }
+    return beta.is_finite() && !beta.is_black();
+}
+
+bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f, bool merge,
+                      std::vector<Vertex>& out, RayCounts& rays) {
+    if (P.lights.size() == 0) return false;
+    float pmf = 0;
+    const size_t li = P.lights.choose(sampler.next(), pmf);
+    const Vec2 u_pos = sampler.next2(), u_dir = sampler.next2();
+    if (!(pmf > 0)) return false;
+    const shading::Light& light = P.lights[li];
+    const shading::LightLeSample e = light.sample_Le(u_pos, u_dir);
+    if (e.weight.is_black() || !e.weight.is_finite() || !(e.pdf_pos > 0) || !(e.pdf_dir > 0)) return false;
+    const scene::Light::Kind kind = P.scene.lights[li].kind;
+    const bool at_infinity = light.is_infinite() || kind == scene::Light::Kind::Directional;
+    const bool area = kind == scene::Light::Kind::Area;
+    // The density of choosing the start by direct light sampling, in the measure MIS compares it
+    // in: area for lights in the scene (1 for point and spot lights), solid angle at infinity.
+    const float direct_pdf = pmf * (at_infinity ? e.pdf_dir : e.pdf_pos);
+    const float emit_pdf = pmf * e.pdf_pos * e.pdf_dir;
+    const float cos_light = area ? std::fabs(dot(e.n, e.ray.dir)) : 1.0f;
+    SubpathMis mis = start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(), at_infinity, f);
+    Rgb beta = e.weight * (1.0f / pmf);
+    const Rgb beta0 = beta;
+    accel::Ray ray = e.ray;
+    const shading::MediaSet* media = P.active_media();
+    shading::SurfaceWalk walk(P.accel, media, P.scene.lights[li].medium);
+    Vec3 from = e.ray.origin;
+    for (int segments = 1;; ++segments) {
+        accel::SurfaceHit hit;
+        Rgb emitted(0.0f);  // light paths ignore media's own emission (only camera paths see it)
+        const auto event = media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        ++rays.photon;
+        if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
+            break;
+        Vertex v;
+        v.length = segments;
+        v.beta = beta;
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            v.p = walk.medium_point();
+            v.wo = walk.medium_wo();
+            v.in_medium = true;
+            v.medium = walk.medium();
+        } else {
+            v.p = hit.p;
+            v.wo = -normalize(ray.dir);
+            v.hit = hit;
+            v.medium = walk.medium();
+            v.bsdf.emplace(P.bsdf(hit));
+        }
+        const float cos_in = v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, v.wo));
+        // The first segment from a light at infinity has no distance to convert (its start is a
+        // direction).
+        arrive(mis, length(v.p - from), cos_in, !(segments == 1 && at_infinity));
+        v.mis = mis;
+        const bool scatters_smoothly = v.in_medium || v.bsdf->has_non_specular();
+        v.mergeable = merge && !v.in_medium && scatters_smoothly;
+        if (scatters_smoothly) out.push_back(v);
+        if (segments >= max_segments) break;
+
+        // Scatter: the phase function or the BSDF (importance transport).
+        Vec3 wi;
+        float pdf = 0, pdf_rev = 0, cos_out = 1;
+        bool delta = false;
+        if (v.in_medium) {
+            const shading::PhaseFunction& phase = P.media[v.medium].phase();
+            pdf = phase.sample(v.wo, sampler.next2(), wi);
+            pdf_rev = phase.eval(wi, v.wo);
+        } else {
+            const float u_lobe = sampler.next();
+            const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), shading::TransportMode::Importance);
+            if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
+            wi = bs->wi;
+            beta *= bs->weight;
+            delta = bs->is_specular();
+            pdf = bs->pdf;
+            if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
+            cos_out = std::fabs(dot(v.bsdf->frame().n, wi));
+        }
+        if (delta)
+            scatter_delta(mis, cos_out);
+        else
+            scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, f);
+        if (!survives(segments, beta, beta0, sampler)) break;
+        from = v.p;
+        if (v.in_medium) {
+            ray = accel::Ray{v.p, wi};
+        } else {
+            ray = accel::spawn_ray(hit, wi);
+            walk.leave(hit, wi);
+        }
+    }
+    return true;
+}
+
+}  // namespace phos::integrators::vcm

@@ -1,0 +1,56 @@
+// The vertices of bidirectional methods (bdpt, vcm) and the light subpath walk they share: a
+// vertex on a surface (its BSDF) or in a medium (its phase function), with the throughput that
+// reached it and the recursive MIS state of its subpath (vcm_mis.h).
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/stats.h"
+#include "integrators/prepared.h"
+#include "integrators/vcm_mis.h"
+#include "shading/bsdf.h"
+
+namespace phos::integrators::vcm {
+
+struct Vertex {
+    Vec3 p;
+    Vec3 wo;                            // unit, towards the previous vertex of its subpath
+    Rgb beta;                           // throughput of the subpath up to (not including) this vertex
+    std::optional<shading::Bsdf> bsdf;  // surface vertices
+    accel::SurfaceHit hit;              // surface vertices
+    int medium = -1;  // a medium vertex: its medium; a surface vertex: the medium the path came in
+    bool in_medium = false;
+    bool mergeable = false;  // merging may happen here (a surface with a non-delta lobe, merging on)
+    int length = 0;          // segments from the subpath's start (the light or the camera)
+    SubpathMis mis;
+};
+
+// What a vertex's scattering function does for a direction `wi` (unit, away from the vertex),
+// given its wo: the value f (BSDF, or phase function in a medium), |cos| with the shading normal
+// (1 in a medium), and the solid-angle pdfs of sampling wi from wo (dir) and wo from wi (rev).
+struct Scattering {
+    Rgb f;
+    float cos = 1, pdf_dir = 0, pdf_rev = 0;
+};
+Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode);
+
+// Transmittance between two vertices (0 if blocked): media crossed included.
+Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler);
+// Transmittance from vertex `a` to a point `target` that is not on a surface a ray can hit (the
+// lens, a point light), or to a sampled light point (short of it).
+Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler);
+
+// Russian roulette on a subpath after three segments: survival in proportion to the throughput
+// relative to its start (`beta0`), at least 5 %; survivors are reweighted.
+bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler);
+
+// The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk of
+// at most `max_segments` segments. Appends the vertices connections and merging can use (those
+// with a non-delta lobe, and medium vertices) to `out`, with `merge` saying whether surface
+// vertices are mergeable. Returns false when no light emits.
+bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f, bool merge,
+                      std::vector<Vertex>& out, RayCounts& rays);
+
+}  // namespace phos::integrators::vcm

@@ -1,0 +1,452 @@
+// The bdpt / vcm engine (see vcm.h). Per iteration: the light pass (vcm: every pixel's light
+// subpath, stored and indexed for merging; bdpt traces each one beside its camera subpath), then
+// the camera pass, tile by tile. Each pixel's value is the mean over iterations of its camera
+// subpath's estimate plus the light-tracing splats that landed on it; both are added as 2^-30
+// fixed-point integers, so the sums do not depend on the order threads (or ranks) add them.
+#include "integrators/vcm.h"
+
+#include <tbb/parallel_for.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+
+#include "core/byte_buffer.h"
+#include "core/log.h"
+#include "dist/ranks.h"
+#include "film/tiles.h"
+#include "integrators/bidirectional_path.h"
+#include "integrators/progressive_budget.h"
+#include "integrators/vertex_grid.h"
+#include "shading/surface_walk.h"
+
+namespace phos::integrators {
+namespace {
+
+using vcm::Scattering;
+using vcm::SubpathMis;
+using vcm::Vertex;
+
+constexpr double kFixedScale = 1073741824.0;  // 2^30: the sums' fixed point
+
+// The image's per-pixel sums over iterations (r, g, b), in fixed point: any order of adding gives
+// the same bits. Rounding to 2^-30 per contribution is far below a float's resolution of the
+// pixel values phos writes.
+class FixedFilm {
+public:
+    explicit FixedFilm(size_t pixels) : sums_(pixels * 3) {}
+    void add(size_t pixel, Rgb v) {
+        if (!v.is_finite()) {
+            rejected_.fetch_add(1, std::memory_order_relaxed);
+            return;
+        }
+        for (int c = 0; c < 3; ++c) {
+            const double x = std::clamp(double(v[c]) * kFixedScale, -4.6e18, 4.6e18);
+            const auto q = int64_t(std::llround(x));
+            if (q != 0) sums_[pixel * 3 + size_t(c)].fetch_add(q, std::memory_order_relaxed);
+        }
+    }
+    Rgb mean(size_t pixel, double iterations) const {
+        const double s = iterations > 0 ? 1 / (kFixedScale * iterations) : 0;
+        Rgb r;
+        for (int c = 0; c < 3; ++c) r[c] = float(double(sums_[pixel * 3 + size_t(c)].load()) * s);
+        return r;
+    }
+    std::vector<int64_t> values() const {
+        std::vector<int64_t> v(sums_.size());
+        for (size_t i = 0; i < v.size(); ++i) v[i] = sums_[i].load();
+        return v;
+    }
+    void set(const std::vector<int64_t>& v) {
+        for (size_t i = 0; i < v.size() && i < sums_.size(); ++i) sums_[i].store(v[i]);
+    }
+    uint64_t rejected() const { return rejected_.load(); }
+
+private:
+    std::vector<std::atomic<int64_t>> sums_;
+    std::atomic<uint64_t> rejected_{0};
+};
+
+// The strategies of one iteration and their constants.
+struct Iteration {
+    bool connect = true, merge = false, ppm = false;
+    float radius = 0;
+    vcm::MisFactors factors;
+    float merge_norm = 0;  // 1 / (pi r^2 N_light)
+};
+
+// Everything a camera subpath needs to evaluate its strategies.
+struct Context {
+    const Prepared& P;
+    const Iteration& it;
+    FixedFilm& film;
+    const std::vector<Vertex>* light_path;  // this pixel's light subpath (connections)
+    const std::vector<Vertex>* all_light;   // the iteration's light vertices (merging)
+    const VertexGrid* grid;
+    RayCounts& rays;
+};
+
+// Light tracing (t = 1): light vertex `v` seen by the camera, splatted onto the film.
+void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
+    CameraModel::Connection c;
+    if (!C.P.camera.connect(v.p, sampler.next2(), c)) return;
+    const Scattering s = vcm::evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
+    if (s.f.is_black()) return;
+    const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
+    const float w = 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
+    ++C.rays.shadow;
+    const Rgb T = vcm::transmittance_to(C.P, v, c.lens, sampler);
+    if (T.is_black()) return;
+    const Rgb value = v.beta * s.f * T * (w * camera_pdf_a);
+    const size_t pixel = size_t(int(c.fy)) * size_t(C.P.options.width) + size_t(int(c.fx));
+    C.film.add(pixel, value);
+}
+
+// Direct light sampling at camera vertex `v` (s = 1).
+Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
+    const Prepared& P = C.P;
+    const float u_light = sampler.next();
+    const Vec2 u = sampler.next2();
+    if (P.lights.size() == 0) return Rgb(0.0f);
+    float pmf = 0;
+    const size_t li = P.lights.choose(u_light, pmf);
+    if (!(pmf > 0)) return Rgb(0.0f);
+    const shading::Light& light = P.lights[li];
+    const shading::LightLiSample ls = light.sample_Li(v.p, u);
+    if (!(ls.pdf > 0) || ls.L.is_black()) return Rgb(0.0f);
+    const Scattering s = vcm::evaluate(P, v, ls.wi, shading::TransportMode::Radiance);
+    if (s.f.is_black()) return Rgb(0.0f);
+    const bool at_infinity = !(ls.distance < kInf);
+    const bool area = P.scene.lights[li].kind == scene::Light::Kind::Area;
+    float pdf_pos = 0, pdf_dir = 0;
+    light.pdf_Le(ls.n_light, -ls.wi, pdf_pos, pdf_dir);
+    const float cos_light = area ? std::fabs(dot(ls.n_light, ls.wi)) : 1.0f;
+    const float d2 = at_infinity ? 1.0f : ls.distance * ls.distance;
+    // The densities MIS compares (trace_light_path's start): area measure in the scene, solid
+    // angle at infinity; BSDF sampling competes with area and infinite lights only.
+    const float direct_pdf_a = pmf * (at_infinity ? pdf_dir : pdf_pos);
+    const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
+    const float w =
+        vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
+                                 direct_pdf_w, v.mergeable, s.cos / d2, C.it.factors);
+    ++C.rays.shadow;
+    const Rgb T = vcm::transmittance_to(P, v, ls.p_light, sampler);
+    if (T.is_black()) return Rgb(0.0f);
+    return s.f * ls.L * T * (w * s.cos / (pmf * ls.pdf));
+}
+
+// Connections of camera vertex `v` (depth d) with every vertex of its light subpath (s, t >= 2).
+Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
+    Rgb sum(0.0f);
+    for (const Vertex& l : *C.light_path) {
+        if (l.length + v.length > C.P.options.max_depth) continue;
+        Vec3 d = l.p - v.p;
+        const float dist2 = dot(d, d);
+        if (!(dist2 > 0)) continue;
+        const float dist = std::sqrt(dist2);
+        d = d / dist;
+        const Scattering sc = vcm::evaluate(C.P, v, d, shading::TransportMode::Radiance);
+        const Scattering sl = vcm::evaluate(C.P, l, -d, shading::TransportMode::Importance);
+        if (sc.f.is_black() || sl.f.is_black()) continue;
+        const float camera_pdf_a = sc.pdf_dir * sl.cos / dist2;  // v's BSDF reaching l
+        const float light_pdf_a = sl.pdf_dir * sc.cos / dist2;   // l's BSDF reaching v
+        const float w =
+            1 / (vcm::connect_side(l.mis, camera_pdf_a, sl.pdf_rev, l.mergeable, C.it.factors) + 1 +
+                 vcm::connect_side(v.mis, light_pdf_a, sc.pdf_rev, v.mergeable, C.it.factors));
+        ++C.rays.shadow;
+        const Rgb T = vcm::transmittance_between(C.P, v, l, sampler);
+        if (T.is_black()) continue;
+        sum += sc.f * sl.f * l.beta * T * (w * sc.cos * sl.cos / dist2);
+    }
+    return sum;
+}
+
+// Merging camera vertex `v` with the light vertices within the radius (vertex merging).
+Rgb merge(const Context& C, const Vertex& v) {
+    Rgb sum(0.0f);
+    const int max_depth = C.P.options.max_depth;
+    C.grid->query(v.p, [&](uint32_t i, float) {
+        const Vertex& l = (*C.all_light)[i];
+        if (l.in_medium || l.length + v.length - 1 > max_depth) return;
+        const Scattering s = vcm::evaluate(C.P, v, l.wo, shading::TransportMode::Radiance);
+        if (s.f.is_black()) return;
+        const float w = C.it.ppm ? 1.0f : vcm::merge_weight(v.mis, l.mis, s.pdf_dir, s.pdf_rev, C.it.factors);
+        sum += s.f * l.beta * w;
+    });
+    return sum * C.it.merge_norm;
+}
+
+// The emitter the camera subpath hit (s = 0): area light `li` at a point with normal n, seen along wo.
+float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3 n, Vec3 wo,
+                     bool at_infinity) {
+    float pdf_pos = 0, pdf_dir = 0;
+    C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
+    const float pmf = C.P.lights.pmf(li);
+    const float direct_pdf_a = pmf * (at_infinity ? pdf_dir : pdf_pos);
+    return vcm::emitter_hit_weight(camera, direct_pdf_a, pmf * pdf_pos * pdf_dir);
+}
+
+// One camera subpath through film position (fx, fy) with every strategy of the iteration; returns
+// its estimate for the pixel (light tracing adds to other pixels itself).
+Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
+    const Prepared& P = C.P;
+    const scene::Scene& scene = P.scene;
+    const accel::Ray first = P.camera.generate_ray(fx, fy, sampler.next2());
+    ++C.rays.camera;
+    accel::Ray ray = first;
+    const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
+    SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
+    Rgb L(0.0f), beta(1.0f);
+    bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
+    const shading::MediaSet* media = P.active_media();
+    shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
+    Vec3 from = first.origin;
+    for (int depth = 1;; ++depth) {
+        accel::SurfaceHit hit;
+        Rgb emitted(0.0f);
+        const auto event = media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        L += emitted;  // media's own emission: only camera subpaths find it
+        if (event == shading::SurfaceWalk::Event::Escaped) {
+            const Vec3 dir = normalize(ray.dir);
+            if (specular_chain || P.options.background_light) L += beta * scene.background;
+            if (C.it.ppm && !specular_chain) break;
+            for (size_t i : P.lights.infinite_lights()) {
+                const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
+                if (Le.is_black()) continue;
+                const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true);
+                L += beta * Le * w;
+            }
+            break;
+        }
+        if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
+            break;
+        Vertex v;
+        v.length = depth;
+        v.beta = beta;
+        v.medium = walk.medium();
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            v.p = walk.medium_point();
+            v.wo = walk.medium_wo();
+            v.in_medium = true;
+        } else {
+            v.p = hit.p;
+            v.wo = -normalize(ray.dir);
+            v.hit = hit;
+            v.bsdf.emplace(P.bsdf(hit));
+        }
+        const float cos_in = v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, v.wo));
+        vcm::arrive(mis, length(v.p - from), cos_in, true);
+        v.mis = mis;
+        if (!v.in_medium) {
+            // s = 0: the surface's own emission, and the .scn glow on the camera's specular chain.
+            const Rgb Le = P.emitted(hit, v.wo);
+            if (!Le.is_black() && (!C.it.ppm || specular_chain)) {
+                const float w = depth == 1 || C.it.ppm
+                                    ? 1.0f
+                                    : emitter_weight(C, mis, size_t(hit.area_light), hit.ng, v.wo, false);
+                L += beta * Le * w;
+            }
+            if (specular_chain) {
+                const scene::Material& mat = scene.materials[size_t(hit.material)];
+                L += beta * mat.emission;
+                if (P.options.ambient) L += beta * mat.ambient * scene.ambient;
+            }
+        }
+        if (depth > P.options.max_depth) break;
+        const bool smooth = v.in_medium || v.bsdf->has_non_specular();
+        v.mergeable = C.it.merge && !v.in_medium && smooth;
+        if (smooth) {
+            if (C.it.connect) {
+                L += beta * direct_light(C, v, sampler);
+                if (C.light_path) L += beta * connect_light_path(C, v, sampler);
+            }
+            if (v.mergeable) {
+                L += beta * merge(C, v);
+                if (C.it.ppm) break;  // ppm: the first non-delta camera vertex gathers everything
+            }
+        }
+
+        // Continue the camera subpath (radiance transport).
+        Vec3 wi;
+        float pdf = 0, pdf_rev = 0, cos_out = 1;
+        bool delta = false;
+        if (v.in_medium) {
+            const shading::PhaseFunction& phase = P.media[v.medium].phase();
+            pdf = phase.sample(v.wo, sampler.next2(), wi);
+            pdf_rev = phase.eval(wi, v.wo);
+        } else {
+            const float u_lobe = sampler.next();
+            const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2());
+            if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
+            wi = bs->wi;
+            beta *= bs->weight;
+            delta = bs->is_specular();
+            pdf = bs->pdf;
+            if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
+            cos_out = std::fabs(dot(v.bsdf->frame().n, wi));
+        }
+        if (delta)
+            vcm::scatter_delta(mis, cos_out);
+        else
+            vcm::scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, C.it.factors);
+        specular_chain = specular_chain && delta;
+        ++C.rays.bounce;
+        if (!vcm::survives(depth, beta, Rgb(1.0f), sampler)) break;
+        from = v.p;
+        if (v.in_medium) {
+            ray = accel::Ray{v.p, wi};
+        } else {
+            ray = accel::spawn_ray(hit, wi);
+            walk.leave(hit, wi);
+        }
+    }
+    return L;
+}
+
+// The merging radius of the first iteration: --radius, else --radius-pixels pixel footprints at
+// the distance from the camera to the scene's centre.
+float base_radius(const Prepared& P, const ProgressiveOptions& o) {
+    if (o.radius > 0) return o.radius;
+    const accel::Bounds b = P.accel.bounds();
+    const float d = b.empty() ? 1.0f : length(b.center() - P.camera.eye());
+    const float r = o.radius_pixels * P.camera.pixel_footprint().at(d);
+    return r > 0 ? r : 1e-3f * (b.empty() ? 1.0f : length(b.extent()));
+}
+
+}  // namespace
+
+void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+    const RenderOptions& ro = P.options;
+    const std::string name = bdpt_ ? "bdpt" : "vcm";
+    const size_t pixels = size_t(ro.width) * size_t(ro.height);
+    ProgressiveState state = start_state(ro, budget_, name, 0, "iterations", uint64_t(std::max(1, ro.spp)));
+    FixedFilm sums(pixels);      // this rank's part of the image sums (all of it without MPI)
+    std::vector<int64_t> total;  // under MPI: every rank's sums added up
+    if (!state.payload.empty()) {
+        ByteReader r(state.payload, "checkpoint '" + budget_.resume_path + "': " + name + " sums");
+        const std::vector<int64_t> v = r.get_vector<int64_t>();
+        if (v.size() != pixels * 3 || !r.at_end()) r.fail("size does not match the image");
+        if (dist::root()) sums.set(v);
+        if (dist::distributed()) total = v;
+    }
+
+    const std::string mode = bdpt_ ? "bpt" : opt_.vcm_mode;
+    Iteration it;
+    it.connect = mode != "ppm";
+    it.merge = mode != "bpt";
+    it.ppm = mode == "ppm";
+    const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
+    const int max_depth = std::max(1, ro.max_depth);
+    const auto tiles = film::make_tiles(ro.width, ro.height);
+    std::vector<Vertex> light_vertices;
+    std::vector<Vec3> light_points;
+    std::vector<uint32_t> path_start;  // light path i's vertices: [path_start[i], path_start[i + 1])
+    VertexGrid grid;
+
+    const auto resolve_film = [&] {
+        const double n = double(state.iterations);
+        for (int y = 0; y < ro.height; ++y)
+            for (int x = 0; x < ro.width; ++x) {
+                const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
+                Rgb v;
+                if (total.empty()) {
+                    v = sums.mean(i, n);
+                } else {
+                    const double s = n > 0 ? 1 / (kFixedScale * n) : 0;
+                    for (int c = 0; c < 3; ++c) v[c] = float(double(total[i * 3 + size_t(c)]) * s);
+                }
+                film.set_pixel(x, y, v);
+            }
+    };
+    RenderBudget budget = budget_;
+    budget.on_checkpoint = [&](const ProgressiveState& s) {
+        if (!budget_.on_checkpoint) return;
+        ProgressiveState saved = s;
+        ByteWriter w(saved.payload);
+        w.put_vector(total.empty() ? sums.values() : total);
+        budget_.on_checkpoint(saved);
+    };
+
+    ProgressiveBudget loop(ro, budget, state, film, progress);
+    while (loop.next()) {
+        const uint64_t iteration = state.iterations;
+        if (it.merge) {
+            // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2).
+            it.radius = r0 * float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
+            const float eta = kPi * it.radius * it.radius * float(pixels);
+            it.factors = vcm::MisFactors::of(it.connect, true, eta);
+            it.merge_norm = 1 / eta;
+        } else {
+            it.factors = vcm::MisFactors::of(true, false, 0);
+        }
+        // Light pass (vcm): every pixel's light subpath, in batches concatenated in order.
+        if (!bdpt_) {
+            constexpr size_t kBatch = 4096;
+            const size_t batches = (pixels + kBatch - 1) / kBatch;
+            std::vector<std::vector<Vertex>> out(batches);
+            std::vector<std::vector<uint32_t>> counts(batches);
+            tbb::parallel_for(size_t(0), batches, [&](size_t b) {
+                RayCounts rays;
+                for (size_t i = b * kBatch; i < std::min(pixels, (b + 1) * kBatch); ++i) {
+                    Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
+                    const size_t before = out[b].size();
+                    vcm::trace_light_path(P, sampler, max_depth, it.factors, it.merge, out[b], rays);
+                    counts[b].push_back(uint32_t(out[b].size() - before));
+                }
+                P.stats.add_rays(rays);
+            });
+            light_vertices.clear();
+            path_start.assign(1, 0);
+            for (size_t b = 0; b < batches; ++b) {
+                for (uint32_t c : counts[b]) path_start.push_back(path_start.back() + c);
+                light_vertices.insert(light_vertices.end(), std::make_move_iterator(out[b].begin()),
+                                      std::make_move_iterator(out[b].end()));
+            }
+            light_points.resize(light_vertices.size());
+            for (size_t i = 0; i < light_vertices.size(); ++i) light_points[i] = light_vertices[i].p;
+            if (it.merge) grid.build(light_points, it.radius);
+        }
+        // Camera pass, tile by tile: each pixel's camera subpath with its light subpath.
+        tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+            if (!dist::owns(t)) return;
+            const film::Tile& tile = tiles[t];
+            RayCounts rays;
+            std::vector<Vertex> own;  // bdpt: the pixel's light subpath
+            std::vector<Vertex> path;
+            for (int y = tile.y0; y < tile.y1; ++y)
+                for (int x = tile.x0; x < tile.x1; ++x) {
+                    const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
+                    const std::vector<Vertex>* light = nullptr;
+                    if (bdpt_) {
+                        own.clear();
+                        Sampler ls(ro.seed, 0x6c69676874ULL, i, iteration);
+                        vcm::trace_light_path(P, ls, max_depth, it.factors, false, own, rays);
+                        light = &own;
+                    } else if (it.connect) {
+                        path.assign(light_vertices.begin() + path_start[i],
+                                    light_vertices.begin() + path_start[i + 1]);
+                        light = &path;
+                    }
+                    Context C{P, it, sums, light, &light_vertices, &grid, rays};
+                    Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
+                    if (it.connect && light)
+                        for (const Vertex& v : *light) connect_to_camera(C, v, sampler);
+                    const Vec2 jitter = sampler.next2();
+                    sums.add(i, camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler));
+                }
+            P.stats.add_rays(rays);
+        });
+        if (dist::distributed()) {
+            total = sums.values();
+            dist::sum(total.data(), total.size());
+        }
+        loop.after_iteration(resolve_film);
+    }
+    resolve_film();
+    loop.finish();
+    P.stats.add_dropped_samples(sums.rejected());
+    P.stats.add_value(name, std::to_string(state.iterations) + " iterations" +
+                                (it.merge ? ", final radius " + std::to_string(it.radius) : ""));
+}
+
+}  // namespace phos::integrators

@@ -1,0 +1,34 @@
+// The light-vertex hash grid (see vertex_grid.h): a counting sort of the points by bucket.
+#include "integrators/vertex_grid.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace phos::integrators {
+
+void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
+    points_ = &points;
+    radius2_ = radius * radius;
+    inv_cell_ = 1 / (2 * radius);
+    order_.clear();
+    start_.clear();
+    if (points.empty() || !(radius > 0)) return;
+    lo_ = points[0];
+    for (const Vec3& p : points) lo_ = Vec3(std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z));
+    uint64_t size = 1;
+    while (size < points.size()) size <<= 1;
+    mask_ = size - 1;
+    start_.assign(size + 1, 0);
+    std::vector<uint32_t> key(points.size());
+    for (size_t i = 0; i < points.size(); ++i) {
+        const Vec3& p = points[i];
+        key[i] = bucket(cell(p.x, lo_.x), cell(p.y, lo_.y), cell(p.z, lo_.z));
+        ++start_[key[i] + 1];
+    }
+    for (size_t b = 0; b < size; ++b) start_[b + 1] += start_[b];
+    order_.resize(points.size());
+    std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
+    for (size_t i = 0; i < points.size(); ++i) order_[fill[key[i]]++] = uint32_t(i);
+}
+
+}  // namespace phos::integrators

@@ -1,0 +1,66 @@
+// A hashed uniform grid over the light vertices of one VCM iteration, for vertex merging: every
+// vertex within radius r of a query point, in the order the vertices were stored (so sums over
+// them are the same for any thread count). Cells are 2r wide, so a query visits at most the 8
+// cells around its point (Georgiev et al. 2012's hash grid, as in SmallVCM), each bucket once.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/vec.h"
+
+namespace phos::integrators {
+
+class VertexGrid {
+public:
+    // Indexes `points` (kept by reference until the next build) for queries of radius `radius`.
+    void build(const std::vector<Vec3>& points, float radius);
+
+    // Calls visit(index, distance^2) for every point within the radius of `p`, by bucket then index.
+    template <class Visit>
+    void query(Vec3 p, Visit&& visit) const;
+
+private:
+    uint32_t bucket(int64_t x, int64_t y, int64_t z) const {
+        const uint64_t h = uint64_t(x) * 73856093ull ^ uint64_t(y) * 19349663ull ^ uint64_t(z) * 83492791ull;
+        return uint32_t(h & mask_);
+    }
+    int64_t cell(float v, float lo) const { return int64_t(std::floor((v - lo) * inv_cell_)); }
+
+    const std::vector<Vec3>* points_ = nullptr;
+    float radius2_ = 0, inv_cell_ = 0;
+    Vec3 lo_;
+    uint64_t mask_ = 0;
+    std::vector<uint32_t> start_;  // bucket b holds order_[start_[b] .. start_[b + 1])
+    std::vector<uint32_t> order_;
+};
+
+template <class Visit>
+void VertexGrid::query(Vec3 p, Visit&& visit) const {
+    if (!points_ || order_.empty()) return;
+    // The cell holding p and, per axis, the neighbour on the side of p's half of its cell.
+    const float fx = (p.x - lo_.x) * inv_cell_, fy = (p.y - lo_.y) * inv_cell_,
+                fz = (p.z - lo_.z) * inv_cell_;
+    const int64_t cx = int64_t(std::floor(fx)), cy = int64_t(std::floor(fy)), cz = int64_t(std::floor(fz));
+    const int64_t nx = fx - float(cx) < 0.5f ? cx - 1 : cx + 1;
+    const int64_t ny = fy - float(cy) < 0.5f ? cy - 1 : cy + 1;
+    const int64_t nz = fz - float(cz) < 0.5f ? cz - 1 : cz + 1;
+    uint32_t buckets[8];
+    int n = 0;
+    for (int i = 0; i < 8; ++i) {
+        const uint32_t b = bucket(i & 1 ? nx : cx, i & 2 ? ny : cy, i & 4 ? nz : cz);
+        bool seen = false;
+        for (int j = 0; j < n; ++j) seen |= buckets[j] == b;
+        if (!seen) buckets[n++] = b;
+    }
+    const std::vector<Vec3>& pts = *points_;
+    for (int i = 0; i < n; ++i)
+        for (uint32_t k = start_[buckets[i]]; k < start_[buckets[i] + 1]; ++k) {
+            const uint32_t v = order_[k];
+            const Vec3 d = pts[v] - p;
+            const float d2 = dot(d, d);
+            if (d2 <= radius2_) visit(v, d2);
+        }
+}
+
+}  // namespace phos::integrators
