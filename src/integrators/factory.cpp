@@ -11,7 +11,13 @@
 
 namespace phos::integrators {
 
-std::vector<std::string> integrator_names() { return {"whitted", "path", "photonmap", "ppm", "sppm", "bdpt", "vcm"}; }
+std::vector<std::string> integrator_names() {
+    return {"whitted", "path", "photonmap", "ppm", "sppm", "bdpt", "vcm"};
+}
+
+bool counts_iterations(const std::string& name) {
+    return name == "ppm" || name == "sppm" || name == "bdpt" || name == "vcm";
+}
 
 std::vector<std::string> integrator_layers(const std::string& name) {
     if (name == "whitted") return {"direct", "specular"};

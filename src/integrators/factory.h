@@ -21,6 +21,9 @@ struct IntegratorConfig {
 };
 
 std::vector<std::string> integrator_names();
+// True for the integrators whose budget is a count of iterations over the whole image (ppm, sppm,
+// bdpt, vcm: --iterations and --spp mean the same) rather than samples per pixel taken in passes.
+bool counts_iterations(const std::string& name);
 // The component layers integrator `name` records with RenderOptions::layers (they sum to the image).
 std::vector<std::string> integrator_layers(const std::string& name);
 // Throws InputError for an unknown name or options outside their tables' ranges (the message

@@ -33,8 +33,9 @@ const options::Table& progressive_options() {
                       "automatic initial radius in pixel footprints at the hit distance (vcm: at the "
                       "distance from the camera to the scene's centre)"),
              "ppm sppm vcm");
-        prog(b.choice("vcm-mode", &ProgressiveOptions::vcm_mode, {"bpt", "ppm", "vcm"},
-                      "the strategies vcm uses: connections only (bpt), merging only (ppm), both (vcm)"),
+        prog(b.choice("vcm-mode", &ProgressiveOptions::vcm_mode, {"bpt", "ppm", "vcm", "lt"},
+                      "the strategies vcm uses: connections only (bpt), merging only (ppm), both (vcm), "
+                      "light tracing alone (lt)"),
              "vcm");
         prog(b.number(
                  "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
@@ -50,7 +51,8 @@ const options::Table& progressive_options() {
                       "hit points per pixel"),
              "ppm");
         auto& it = prog(b.number("iterations", &ProgressiveOptions::iterations, "N", between(0, 1 << 30),
-                                 "number of iterations (the same as --spp; 0 = not given)"));
+                                 "number of iterations (the same as --spp; 0 = not given)"),
+                        "ppm sppm bdpt vcm");
         it.effect = Effect::Budget;
         it.pbrt = "iterations";
         it.default_text = "--spp";

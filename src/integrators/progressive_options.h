@@ -21,7 +21,7 @@ struct ProgressiveOptions {
     int direct_samples = 0;              // light samples per visible point per eye pass; 0 = the
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
-    std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm)
+    std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.

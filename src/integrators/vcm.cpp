@@ -70,6 +70,7 @@ private:
 // The strategies of one iteration and their constants.
 struct Iteration {
     bool connect = true, merge = false, ppm = false;
+    bool lt = false;  // light tracing alone (with the emitters the camera sees directly)
     float radius = 0;
     vcm::MisFactors factors;
     float merge_norm = 0;  // 1 / (pi r^2 N_light)
@@ -93,7 +94,9 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     const Scattering s = vcm::evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
     if (s.f.is_black()) return;
     const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
-    const float w = 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
+    const float w =
+        C.it.lt ? 1.0f
+                : 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(C.P, v, c.lens, sampler);
     if (T.is_black()) return;
@@ -252,7 +255,7 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
                 if (P.options.ambient) L += beta * mat.ambient * scene.ambient;
             }
         }
-        if (depth > P.options.max_depth) break;
+        if (depth > P.options.max_depth || C.it.lt) break;
         const bool smooth = v.in_medium || v.bsdf->has_non_specular();
         v.mergeable = C.it.merge && !v.in_medium && smooth;
         if (smooth) {
@@ -332,8 +335,9 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
 
     const std::string mode = bdpt_ ? "bpt" : opt_.vcm_mode;
     Iteration it;
-    it.connect = mode != "ppm";
-    it.merge = mode != "bpt";
+    it.lt = mode == "lt";
+    it.connect = mode == "bpt" || mode == "vcm";
+    it.merge = mode == "ppm" || mode == "vcm";
     it.ppm = mode == "ppm";
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
     const int max_depth = std::max(1, ro.max_depth);
@@ -422,14 +426,14 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                         Sampler ls(ro.seed, 0x6c69676874ULL, i, iteration);
                         vcm::trace_light_path(P, ls, max_depth, it.factors, false, own, rays);
                         light = &own;
-                    } else if (it.connect) {
+                    } else if (it.connect || it.lt) {
                         path.assign(light_vertices.begin() + path_start[i],
                                     light_vertices.begin() + path_start[i + 1]);
                         light = &path;
                     }
                     Context C{P, it, sums, light, &light_vertices, &grid, rays};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
-                    if (it.connect && light)
+                    if ((it.connect || it.lt) && light)
                         for (const Vertex& v : *light) connect_to_camera(C, v, sampler);
                     const Vec2 jitter = sampler.next2();
                     sums.add(i, camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler));

@@ -112,11 +112,11 @@ TEST(Options, PbrtParameterErrorsAndWarningsAreLocated) {
 
 TEST(Options, SubstitutedIntegratorWarnsOnlyWhenNotChosen) {
     TempDir dir;
-    const std::string scene = dir.write("b.pbrt", pbrt_scene("Integrator \"bdpt\" \"integer maxdepth\" 4"));
+    const std::string scene = dir.write("b.pbrt", pbrt_scene("Integrator \"mlt\" \"integer maxdepth\" 4"));
     auto r = run_phos("render " + scene + " --spp 1 -o " + dir.file("a.png"));
     EXPECT_EQ(r.exit_code, 0);
     EXPECT_EQ(count(r.output, "warning"), 1u) << r.output;
-    EXPECT_NE(r.output.find("b.pbrt:4:1: Integrator \"bdpt\" is not available in phos; using path"),
+    EXPECT_NE(r.output.find("b.pbrt:4:1: Integrator \"mlt\" is not available in phos; using bdpt"),
               std::string::npos)
         << r.output;
     r = run_phos("render " + scene + " --spp 1 --integrator path -o " + dir.file("b.png"));

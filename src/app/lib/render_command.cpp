@@ -143,7 +143,7 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
         src.size = file_or_default;
     }
 
-    const bool progressive = cmd.run.integrator == "ppm" || cmd.run.integrator == "sppm";
+    const bool progressive = integrators::counts_iterations(cmd.run.integrator);
     if (cmd.was_given("spp") || cmd.was_given("aa")) {
         src.spp = "command line";
     } else if (progressive && cmd.was_given("iterations")) {
@@ -421,7 +421,7 @@ int run_render(const RenderCommand& command) {
     check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
     if (!cmd.run.trace_json.empty() && dist::root()) check_writable(cmd.run.trace_json, "--trace-json");
     const std::string& integrator_name = cmd.run.integrator;
-    const bool progressive = integrator_name == "ppm" || integrator_name == "sppm";
+    const bool progressive = integrators::counts_iterations(integrator_name);
     if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
         throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
     setup_budget(cmd, output, progressive);

@@ -232,8 +232,13 @@ void SceneBuilder::integrator(const std::string& type, const ParamList& params, 
         scene_.settings.integrator_parameters.push_back(std::move(ip));
     }
     params.mark_all_used();
-    if (type == "sppm" || type == "path") {
+    if (type == "sppm" || type == "path" || type == "bdpt") {
         scene_.settings.integrator = type;
+    } else if (type == "mlt") {
+        // Metropolis light transport explores bdpt's path space: bdpt renders the same image.
+        scene_.settings.integrator = "bdpt";
+        scene_.settings.unavailable_integrator = type;
+        scene_.settings.integrator_location = loc.str();
     } else if (type == "volpath") {
         scene_.settings.integrator = "path";  // phos's path tracer is its volumetric path tracer too
     } else {

@@ -20,7 +20,7 @@ scene::Scene load_bench(const std::string& name) {
     const int before = log::warning_count();
     scene::Scene s = load_pbrt(kScenes + name + ".pbrt");
     // The bench files are plain pbrt-v4 that phos supports fully: the loader warns about nothing
-    // (a bdpt integrator is recorded and reported by `phos render`, unless --integrator chooses).
+    // (the bdpt integrator one of them asks for is phos's own bdpt).
     EXPECT_EQ(log::warning_count() - before, 0) << name;
     return s;
 }
@@ -92,7 +92,7 @@ TEST(PbrtBench, CornellDiffuse) {
 TEST(PbrtBench, CornellGlassMirror) {
     const scene::Scene s = load_bench("cornell-glass-mirror");
     check_camera(s, {0, 0.5f, 1.9f}, {0, 0.5f, 0}, 38.0f);
-    check_settings(s, 256, "path");  // bdpt -> path with a warning
+    check_settings(s, 256, "bdpt");  // the file asks for bdpt
     check_cornell_light(s);
     const auto sp = spheres(s);
     ASSERT_EQ(sp.size(), 2u);
@@ -120,7 +120,7 @@ TEST(PbrtBench, CornellGlassMirror) {
 TEST(PbrtBench, CausticPoint) {
     const scene::Scene s = load_bench("caustic-point");
     check_camera(s, {0.6f, 3.0f, 3.2f}, {-0.45f, 0.25f, 0}, 36.0f);
-    check_settings(s, 1024, "path");
+    check_settings(s, 1024, "bdpt");  // the file asks for bdpt
     ASSERT_EQ(s.lights.size(), 1u);
     EXPECT_EQ(s.lights[0].kind, Light::Kind::Point);
     EXPECT_EQ(s.lights[0].color, Rgb(100.0f));

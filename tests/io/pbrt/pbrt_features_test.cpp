@@ -136,7 +136,7 @@ TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
         "LightSource \"goniometric\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
         "2\nWorldEnd\n");
     EXPECT_EQ(l.warnings, 5);  // the mlt integrator is reported by `phos render` (it may be overridden)
-    EXPECT_EQ(l.scene.settings.integrator, "path");
+    EXPECT_EQ(l.scene.settings.integrator, "bdpt");  // mlt explores bdpt's paths: bdpt, with a warning
     EXPECT_EQ(l.scene.settings.unavailable_integrator, "mlt");
     EXPECT_EQ(l.scene.settings.integrator_location.substr(l.scene.settings.integrator_location.size() - 4),
               ":2:1");
