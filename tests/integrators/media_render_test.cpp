@@ -133,6 +133,22 @@ TEST(MediaRender, FurnaceBoxPathConvergesToTheClosedForm) {
     }
 }
 
+TEST(MediaRender, FurnaceBoxBidirectionalConvergeToTheClosedForm) {
+    // bdpt and vcm: vertices in the fog, connections through it (transmittance), light tracing
+    // from fog and walls onto the film; vcm merges on the walls only (docs/bidirectional.md).
+    // Tolerance as for path, plus 1 % for vcm's merging kernel (consistent, not unbiased).
+    const scene::Scene s = fog_furnace_box(0.5f, 1.0f, Rgb(0.0f), Rgb(2.0f), 0.5f);
+    RenderSetup setup;
+    setup.spp = 32;
+    for (const char* name : {"bdpt", "vcm"}) {
+        const MeanAndError m = image_mean(render(name, s, setup));
+        std::printf("[ measured ] furnace box, %s 16x16x32: %.4f +- %.4f (expected 2)\n", name, m.mean,
+                    m.std_error);
+        EXPECT_NEAR(m.mean, 2.0, 5 * m.std_error + 0.005 + (std::string(name) == "vcm" ? 0.02 : 0.0)) << name;
+        EXPECT_LT(m.std_error, 0.03) << name << ": the test has power";
+    }
+}
+
 TEST(MediaRender, FurnaceBoxAbsorptionDarkens) {
     // Half of sigma_t absorbs. Bounds: the image is below the non-absorbing 2 by far more than its
     // noise, and above what the walls alone give through the fog without any in-scattering or
@@ -362,6 +378,30 @@ TEST(MediaRender, PhotonMethodsAgreeWithPathInAFogBoxWithAPointLight) {
     expect_photon_methods_agree_with_path("fog box, point light", fog_box(false, false), 256);
 }
 
+// bdpt (unbiased: 5 combined standard errors over the seeds, plus 0.5 % for float accumulation)
+// and vcm (its merging is consistent: 3 % as for the photon methods) against path.
+void expect_bidirectional_agree_with_path(const char* label, const scene::Scene& s, int path_spp) {
+    const MeanAndError path = mean_over_seeds("path", s, path_spp, 6);
+    IntegratorConfig config;
+    config.progressive.radius = 0.04f;  // as photon_budgets(): at 16 x 16 pixels the automatic one is wide
+    for (const char* name : {"bdpt", "vcm"}) {
+        const MeanAndError m = mean_over_seeds(name, s, 64, 6, config);
+        std::printf("[ measured ] %s: path %.4f +- %.4f, %s %.6f +- %.4f (%+.2f %%)\n", label, path.mean,
+                    path.std_error, name, m.mean, m.std_error, 100 * (m.mean / path.mean - 1));
+        EXPECT_LT(m.std_error, 0.02 * path.mean) << label << ", " << name << ": the test has power";
+        const double bias = std::string(name) == "vcm" ? 0.03 : 0.005;
+        EXPECT_NEAR(m.mean, path.mean, bias * path.mean + 5 * std::hypot(m.std_error, path.std_error))
+            << label << ", " << name;
+    }
+}
+
+TEST(MediaRender, BidirectionalAgreeWithPathInFog) {
+    // path converged further than for the photon methods (its heavy tails near the point light and
+    // through the glass would otherwise dominate the comparison).
+    expect_bidirectional_agree_with_path("fog box, point light", fog_box(false, false), 1024);
+    expect_bidirectional_agree_with_path("glass sphere in fog, area light", fog_box(true, true), 256);
+}
+
 TEST(MediaRender, PhotonMethodsAgreeWithPathForAGlassSphereInFog) {
     // An area light (path tracing reaches its caustics by BSDF sampling) above a glass sphere in
     // fog: volume and surface caustics, refraction between clear glass and fog.
@@ -405,7 +445,7 @@ TEST(MediaRender, BitIdenticalAtOneAndTwoThreads) {
     setup.size = 12;
     setup.spp = 2;
     setup.max_depth = 16;
-    for (const char* name : {"path", "photonmap", "ppm", "sppm"}) {
+    for (const char* name : {"path", "photonmap", "ppm", "sppm", "bdpt", "vcm"}) {
         Image a, b;
         tbb::task_arena(1).execute([&] { a = render(name, s, setup, config); });
         tbb::task_arena(2).execute([&] { b = render(name, s, setup, config); });

@@ -1,0 +1,206 @@
+// The recursive MIS weights of bdpt and vcm (integrators/vcm_mis.h) against their definition: for
+// one explicit path, every strategy that can make it is replayed through the same recursion the
+// integrator runs (light subpath from the light, camera subpath from the camera, then the
+// connection, the emitter hit, direct light sampling, light tracing or the merge), and the weights
+// of all of them must add up to 1 (Veach 1997, eq. 9.3's condition for an unbiased combination).
+// Paths have 1 to 5 inner vertices, each on a Lambertian surface or in an isotropic medium, lit
+// by an area or a point light; merging is on (vcm) or off (bpt). A wrong term in any update, a
+// missing strategy or one counted twice moves the sum away from 1.
+#include "integrators/vcm_mis.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "core/rng.h"
+#include "core/vec.h"
+
+namespace phos::integrators::vcm {
+namespace {
+
+constexpr float kPi_ = 3.14159265358979f;
+
+struct PathVertex {
+    Vec3 p;
+    Vec3 n;  // unit normal (surfaces); unused in media
+    bool medium = false;
+};
+
+struct TestPath {
+    std::vector<PathVertex> x;  // x[0] on the light, x[k] the camera
+    bool point_light = false;
+    float light_area = 0.3f;         // area light: pdf_pos = 1 / area
+    Vec3 camera_forward;             // pinhole: direction pdf 1 / (A cos^3)
+    float camera_plane_area = 0.8f;  // A
+};
+
+float cos_at(const PathVertex& v, Vec3 dir) { return v.medium ? 1.0f : std::fabs(dot(v.n, dir)); }
+// Scattering pdf at inner vertex v for direction `out` (Lambert: cos / pi; medium: 1 / 4 pi).
+float pdf_at(const PathVertex& v, Vec3 out) { return v.medium ? 1 / (4 * kPi_) : cos_at(v, out) / kPi_; }
+Vec3 dir(const PathVertex& a, const PathVertex& b) { return normalize(b.p - a.p); }
+float dist(const PathVertex& a, const PathVertex& b) { return length(b.p - a.p); }
+
+struct Light {
+    float direct_pdf_a, emit_pdf_pos;
+    bool delta;
+};
+
+// The light's emission density from x0 towards `to` (position x direction).
+float emit_pdf(const TestPath& t, Vec3 to) {
+    if (t.point_light) return 1 / (4 * kPi_);
+    return (1 / t.light_area) * std::max(0.0f, dot(t.x[0].n, to)) / kPi_;
+}
+float direct_pdf_a(const TestPath& t) { return t.point_light ? 1.0f : 1 / t.light_area; }
+float camera_pdf(const TestPath& t, Vec3 d) {
+    const float c = dot(d, t.camera_forward);
+    return 1 / (t.camera_plane_area * c * c * c);
+}
+
+// The light subpath's state at x[i] (arrived, before scattering at x[i]), i >= 1.
+SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge) {
+    const Vec3 d01 = dir(t.x[0], t.x[1]);
+    SubpathMis m = start_light(direct_pdf_a(t), emit_pdf(t, d01), t.point_light ? 1.0f : dot(t.x[0].n, d01),
+                               t.point_light, false, f);
+    for (int j = 1; j <= i; ++j) {
+        arrive(m, dist(t.x[j - 1], t.x[j]), cos_at(t.x[j], dir(t.x[j], t.x[j - 1])), true);
+        if (j == i) break;
+        const Vec3 out = dir(t.x[j], t.x[j + 1]), back = dir(t.x[j], t.x[j - 1]);
+        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back), merge && !t.x[j].medium,
+                f);
+    }
+    return m;
+}
+
+// The camera subpath's state at x[i] (arrived), i <= k - 1; i == 0 reaches the light.
+SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, bool merge) {
+    const int k = int(t.x.size()) - 1;
+    SubpathMis m = start_camera(camera_pdf(t, dir(t.x[k], t.x[k - 1])));
+    for (int j = k - 1; j >= i; --j) {
+        arrive(m, dist(t.x[j + 1], t.x[j]),
+               j == 0 ? (t.point_light ? 1.0f : dot(t.x[0].n, dir(t.x[0], t.x[1])))
+                      : cos_at(t.x[j], dir(t.x[j], t.x[j + 1])),
+               true);
+        if (j == i) break;
+        const Vec3 out = dir(t.x[j], t.x[j - 1]), back = dir(t.x[j], t.x[j + 1]);
+        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back), merge && !t.x[j].medium,
+                f);
+    }
+    return m;
+}
+
+// Sum of the weights of every strategy that makes path t.
+double weight_sum(const TestPath& t, bool merge, float eta) {
+    const MisFactors f = MisFactors::of(true, merge, eta);
+    const int k = int(t.x.size()) - 1;  // x[k] is the camera
+    const auto mergeable = [&](int i) { return merge && !t.x[size_t(i)].medium; };
+    double sum = 0;
+    // s = 0: the camera subpath hits the light (impossible for a point light).
+    if (!t.point_light) {
+        const SubpathMis c = camera_state(t, 0, f, merge);
+        sum += emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])));
+    }
+    // s = 1: direct light sampling at x[1] from the camera side.
+    {
+        const SubpathMis c = camera_state(t, 1, f, merge);
+        const Vec3 to_light = dir(t.x[1], t.x[0]), back = dir(t.x[1], t.x[2]);
+        const float d = dist(t.x[0], t.x[1]);
+        const float cos_light = t.point_light ? 1.0f : dot(t.x[0].n, -to_light);
+        const float direct_w = t.point_light ? 0.0f : direct_pdf_a(t) * d * d / cos_light;
+        sum += direct_light_weight(c, pdf_at(t.x[1], to_light), pdf_at(t.x[1], back), direct_pdf_a(t),
+                                   emit_pdf(t, -to_light), direct_w, mergeable(1),
+                                   cos_at(t.x[1], to_light) / (d * d), f);
+    }
+    // Inner connections: light subpath to x[s-1], camera subpath to x[s], s = 2 .. k - 1.
+    for (int s = 2; s <= k - 1; ++s) {
+        const SubpathMis l = light_state(t, s - 1, f, merge), c = camera_state(t, s, f, merge);
+        const PathVertex &a = t.x[size_t(s - 1)], &b = t.x[size_t(s)];
+        const Vec3 ab = dir(a, b);
+        const float d2 = dist(a, b) * dist(a, b);
+        const float camera_pdf_a = pdf_at(b, -ab) * cos_at(a, ab) / d2;  // b's BSDF reaching a
+        const float light_pdf_a = pdf_at(a, ab) * cos_at(b, ab) / d2;    // a's BSDF reaching b
+        const float w_l =
+            connect_side(l, camera_pdf_a, pdf_at(a, dir(a, t.x[size_t(s - 2)])), mergeable(s - 1), f);
+        const float w_c =
+            connect_side(c, light_pdf_a, pdf_at(b, dir(b, t.x[size_t(s + 1)])), mergeable(s), f);
+        sum += 1 / (w_l + 1 + w_c);
+    }
+    // t = 1: light tracing from x[k-1] onto the camera.
+    {
+        const SubpathMis l = light_state(t, k - 1, f, merge);
+        const PathVertex& a = t.x[size_t(k - 1)];
+        const Vec3 to_cam = dir(a, t.x[size_t(k)]);
+        const float d = dist(a, t.x[size_t(k)]);
+        const float camera_pdf_a = camera_pdf(t, -to_cam) * cos_at(a, to_cam) / (d * d);
+        const float rev = pdf_at(a, dir(a, t.x[size_t(k - 2)]));
+        sum += 1 / (1 + connect_side(l, camera_pdf_a, rev, mergeable(k - 1), f));
+    }
+    // Merges at every inner vertex where merging is possible.
+    if (merge)
+        for (int i = 1; i <= k - 1; ++i) {
+            if (!mergeable(i)) continue;
+            const SubpathMis l = light_state(t, i, f, merge), c = camera_state(t, i, f, merge);
+            const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
+            const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
+            sum += merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev),
+                                pdf_at(t.x[size_t(i)], to_cam_prev), f);
+        }
+    return sum;
+}
+
+// A random path with `inner` inner vertices: points in a box, surface normals facing both
+// neighbours (so every cosine is positive), some vertices in a medium.
+TestPath random_path(uint64_t seed, int inner, bool point_light, bool media) {
+    Sampler rng(seed, 0x6d6973ULL, uint64_t(inner), uint64_t(point_light) * 2 + uint64_t(media));
+    TestPath t;
+    t.point_light = point_light;
+    for (int i = 0; i < inner + 2; ++i) {
+        PathVertex v;
+        v.p = Vec3(rng.next(), rng.next(), rng.next()) * 2.0f - Vec3(1.0f);
+        v.p.z += 3.0f * float(i) / float(inner + 1);  // spread along z: no two points coincide
+        v.medium = media && i > 0 && i <= inner && rng.next() < 0.5f;
+        t.x.push_back(v);
+    }
+    for (size_t i = 0; i < t.x.size(); ++i) {
+        Vec3 sum(0.0f);
+        if (i > 0) sum += dir(t.x[i], t.x[i - 1]);
+        if (i + 1 < t.x.size()) sum += dir(t.x[i], t.x[i + 1]);
+        t.x[i].n = normalize(sum);
+    }
+    t.camera_forward = dir(t.x.back(), t.x[t.x.size() - 2]);
+    return t;
+}
+
+TEST(VcmMis, WeightsOfAllStrategiesSumToOne) {
+    int checked = 0;
+    for (int inner = 1; inner <= 5; ++inner)
+        for (int point = 0; point < 2; ++point)
+            for (int media = 0; media < 2; ++media)
+                for (uint64_t seed = 0; seed < 20; ++seed) {
+                    const TestPath t = random_path(seed, inner, point != 0, media != 0);
+                    // bpt: connections only; vcm with a small and a large merging area.
+                    EXPECT_NEAR(weight_sum(t, false, 0.0f), 1.0, 2e-4)
+                        << "bpt, inner " << inner << " point " << point << " media " << media << " seed "
+                        << seed;
+                    for (float eta : {1e-3f, 0.5f, 40.0f})
+                        EXPECT_NEAR(weight_sum(t, true, eta), 1.0, 2e-4)
+                            << "vcm eta " << eta << ", inner " << inner << " point " << point << " media "
+                            << media << " seed " << seed;
+                    ++checked;
+                }
+    EXPECT_EQ(checked, 400);
+}
+
+// The weights are not trivially 1: on a path where light tracing and the emitter hit compete,
+// neither takes everything (power heuristic, not a winner-takes-all choice).
+TEST(VcmMis, StrategiesShareThePath) {
+    const TestPath t = random_path(3, 1, false, false);
+    const MisFactors f = MisFactors::of(true, false, 0);
+    const SubpathMis c = camera_state(t, 0, f, false);
+    const float w0 = emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])));
+    EXPECT_GT(w0, 0.001f);
+    EXPECT_LT(w0, 0.999f);
+}
+
+}  // namespace
+}  // namespace phos::integrators::vcm
