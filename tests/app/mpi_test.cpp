@@ -52,7 +52,9 @@ TEST(Mpi, RanksGiveTheSingleProcessImageByteForByte) {
                           {"whitted", "--spp 2"},
                           {"photonmap", "--spp 2 --global 20000 --caustic 20000 --layers"},
                           {"ppm", "--iterations 3 --photons-per-iter 20000"},
-                          {"sppm", "--iterations 4 --photons-per-iter 20000"}};
+                          {"sppm", "--iterations 4 --photons-per-iter 20000"},
+                          {"bdpt", "--spp 3"},
+                          {"vcm", "--spp 3"}};
     TempDir dir;
     for (const Case& c : cases) {
         const std::string opts =
@@ -88,7 +90,8 @@ TEST(Mpi, RanksGiveTheSingleProcessImageByteForByte) {
 TEST(Mpi, CheckpointsMoveBetweenRankCounts) {
     REQUIRE_MPI();
     TempDir dir;
-    for (const Case& c : {Case{"path", "--spp"}, Case{"sppm", "--photons-per-iter 20000 --iterations"}}) {
+    for (const Case& c : {Case{"path", "--spp"}, Case{"sppm", "--photons-per-iter 20000 --iterations"},
+                          Case{"vcm", "--spp"}}) {
         const std::string base =
             "render " + kScene + kSmall + "--integrator " + c.integrator + " " + c.budget;
         const std::string whole = dir.file(std::string(c.integrator) + "-whole.pfm");

@@ -103,6 +103,31 @@ TEST(Resume, BadCheckpointsAreRefusedWithExit2) {
     EXPECT_EQ(ok.exit_code, 0) << ok.output;
 }
 
+TEST(Resume, BidirectionalResumeToTheSameImage) {
+    // bdpt and vcm keep their image as fixed-point sums (light tracing included) in the checkpoint:
+    // 3 iterations, then resumed to 7, give the bytes of 7 straight; a checkpoint of one cannot
+    // resume the other.
+    TempDir dir;
+    for (const std::string integrator : {"bdpt", "vcm"}) {
+        const std::string args = " --integrator " + integrator + " --width 40 --height 32 --seed 5 -q";
+        const std::string whole = dir.file(integrator + "-whole.pfm"), ck = dir.file(integrator + ".ckpt");
+        ASSERT_EQ(run_phos("render " + kScene + args + " --spp 7 -o " + whole).exit_code, 0);
+        ASSERT_EQ(
+            run_phos("render " + kScene + args + " --spp 3 --checkpoint " + ck + " -o " + dir.file("a.pfm"))
+                .exit_code,
+            0);
+        const auto r =
+            run_phos("render " + kScene + args + " --spp 7 --resume " + ck + " -o " + dir.file("b.pfm"));
+        ASSERT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_EQ(read_bytes(whole), read_bytes(dir.file("b.pfm"))) << integrator;
+        const std::string other = integrator == "bdpt" ? "vcm" : "bdpt";
+        const auto refused =
+            run_phos("render " + kScene + " --integrator " + other +
+                     " --width 40 --height 32 --seed 5 --spp 7 --resume " + ck + " -o " + dir.file("c.pfm"));
+        EXPECT_EQ(refused.exit_code, 2) << refused.output;
+    }
+}
+
 TEST(Resume, TimeBudgetAndPreviews) {
     TempDir dir;
     const std::string out = dir.file("p.pfm");
