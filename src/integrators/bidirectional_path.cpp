@@ -89,6 +89,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.scene.lights[li].medium);
     Vec3 from = e.ray.origin;
+    bool delta_chain = true;
     for (int segments = 1;; ++segments) {
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);  // light paths ignore media's own emission (only camera paths see it)
@@ -99,6 +100,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
         Vertex v;
         v.length = segments;
         v.beta = beta;
+        v.delta_chain = delta_chain;
         if (event == shading::SurfaceWalk::Event::Medium) {
             v.p = walk.medium_point();
             v.wo = walk.medium_wo();
@@ -144,6 +146,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
             scatter_delta(mis, cos_out);
         else
             scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, f);
+        delta_chain = delta_chain && delta;
         if (!survives(segments, beta, beta0, sampler)) break;
         from = v.p;
         if (v.in_medium) {

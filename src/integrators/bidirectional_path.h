@@ -24,6 +24,9 @@ struct Vertex {
     bool in_medium = false;
     bool mergeable = false;  // merging may happen here (a surface with a non-delta lobe, merging on)
     int length = 0;          // segments from the subpath's start (the light or the camera)
+    // Light subpaths: every vertex between the light and this one scattered through a delta lobe
+    // (true for the first vertex): for --layers, light arriving here is direct or caustic.
+    bool delta_chain = true;
     SubpathMis mis;
 };
 

@@ -21,7 +21,8 @@ bool counts_iterations(const std::string& name) {
 
 std::vector<std::string> integrator_layers(const std::string& name) {
     if (name == "whitted") return {"direct", "specular"};
-    if (name == "path" || name == "photonmap") return {"direct", "caustic", "indirect", "specular"};
+    if (name == "path" || name == "photonmap" || name == "bdpt" || name == "vcm")
+        return {"direct", "caustic", "indirect", "specular"};
     if (name == "ppm" || name == "sppm") return {"direct", "indirect"};
     return {};
 }

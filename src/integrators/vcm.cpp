@@ -29,13 +29,28 @@ using vcm::Vertex;
 
 constexpr double kFixedScale = 1073741824.0;  // 2^30: the sums' fixed point
 
+// The component a contribution belongs to with --layers (pixel_loop.h's RadianceParts, in
+// integrator_layers order): what reached the camera after a delta bounce at its first vertex x1
+// (specular), else light reaching x1 straight from the light (direct, x1's own emission too),
+// through delta bounces only (caustic), or through a diffuse or glossy vertex (indirect).
+enum Part { kDirect, kCaustic, kIndirect, kSpecular, kParts };
+const char* const kPartNames[kParts] = {"direct", "caustic", "indirect", "specular"};
+
+// Light arriving at light vertex `l`, seen at the camera's first vertex x1 = l.
+Part part_at_first_vertex(const Vertex& l) {
+    return l.length == 1 ? kDirect : l.delta_chain ? kCaustic : kIndirect;
+}
+
 // The image's per-pixel sums over iterations (r, g, b), in fixed point: any order of adding gives
 // the same bits. Rounding to 2^-30 per contribution is far below a float's resolution of the
-// pixel values phos writes.
+// pixel values phos writes. Plane 0 is the image; with layers, planes 1.. are the Parts.
 class FixedFilm {
 public:
-    explicit FixedFilm(size_t pixels) : sums_(pixels * 3) {}
-    void add(size_t pixel, Rgb v) {
+    FixedFilm(size_t pixels, bool layers) : pixels_(pixels), planes_(layers ? 1 + kParts : 1) {
+        sums_ = std::vector<std::atomic<int64_t>>(pixels * 3 * planes_);
+    }
+    bool layers() const { return planes_ > 1; }
+    void add(size_t pixel, Rgb v, Part part) {
         if (!v.is_finite()) {
             rejected_.fetch_add(1, std::memory_order_relaxed);
             return;
@@ -43,15 +58,15 @@ public:
         for (int c = 0; c < 3; ++c) {
             const double x = std::clamp(double(v[c]) * kFixedScale, -4.6e18, 4.6e18);
             const auto q = int64_t(std::llround(x));
-            if (q != 0) sums_[pixel * 3 + size_t(c)].fetch_add(q, std::memory_order_relaxed);
+            if (q == 0) continue;
+            sums_[pixel * 3 + size_t(c)].fetch_add(q, std::memory_order_relaxed);
+            if (planes_ > 1)
+                sums_[((1 + size_t(part)) * pixels_ + pixel) * 3 + size_t(c)].fetch_add(
+                    q, std::memory_order_relaxed);
         }
     }
-    Rgb mean(size_t pixel, double iterations) const {
-        const double s = iterations > 0 ? 1 / (kFixedScale * iterations) : 0;
-        Rgb r;
-        for (int c = 0; c < 3; ++c) r[c] = float(double(sums_[pixel * 3 + size_t(c)].load()) * s);
-        return r;
-    }
+    size_t planes() const { return planes_; }
+    size_t pixels() const { return pixels_; }
     std::vector<int64_t> values() const {
         std::vector<int64_t> v(sums_.size());
         for (size_t i = 0; i < v.size(); ++i) v[i] = sums_[i].load();
@@ -63,6 +78,7 @@ public:
     uint64_t rejected() const { return rejected_.load(); }
 
 private:
+    size_t pixels_, planes_;
     std::vector<std::atomic<int64_t>> sums_;
     std::atomic<uint64_t> rejected_{0};
 };
@@ -85,6 +101,7 @@ struct Context {
     const std::vector<Vertex>* all_light;   // the iteration's light vertices (merging)
     const VertexGrid* grid;
     RayCounts& rays;
+    Rgb* parts;  // the camera subpath's estimate per Part
 };
 
 // Light tracing (t = 1): light vertex `v` seen by the camera, splatted onto the film.
@@ -102,7 +119,7 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     if (T.is_black()) return;
     const Rgb value = v.beta * s.f * T * (w * camera_pdf_a);
     const size_t pixel = size_t(int(c.fy)) * size_t(C.P.options.width) + size_t(int(c.fx));
-    C.film.add(pixel, value);
+    C.film.add(pixel, value, part_at_first_vertex(v));
 }
 
 // Direct light sampling at camera vertex `v` (s = 1).
@@ -164,9 +181,9 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
     return sum;
 }
 
-// Merging camera vertex `v` with the light vertices within the radius (vertex merging).
-Rgb merge(const Context& C, const Vertex& v) {
-    Rgb sum(0.0f);
+// Merging camera vertex `v` with the light vertices within the radius (vertex merging): the sum
+// per Part of the light vertex (meaningful when v is the camera's first vertex).
+void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
     const int max_depth = C.P.options.max_depth;
     C.grid->query(v.p, [&](uint32_t i, float) {
         const Vertex& l = (*C.all_light)[i];
@@ -174,9 +191,8 @@ Rgb merge(const Context& C, const Vertex& v) {
         const Scattering s = vcm::evaluate(C.P, v, l.wo, shading::TransportMode::Radiance);
         if (s.f.is_black()) return;
         const float w = C.it.ppm ? 1.0f : vcm::merge_weight(v.mis, l.mis, s.pdf_dir, s.pdf_rev, C.it.factors);
-        sum += s.f * l.beta * w;
+        sum[part_at_first_vertex(l)] += s.f * l.beta * (w * C.it.merge_norm);
     });
-    return sum * C.it.merge_norm;
 }
 
 // The emitter the camera subpath hit (s = 0): area light `li` at a point with normal n, seen along wo.
@@ -189,9 +205,9 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
     return vcm::emitter_hit_weight(camera, direct_pdf_a, pmf * pdf_pos * pdf_dir);
 }
 
-// One camera subpath through film position (fx, fy) with every strategy of the iteration; returns
-// its estimate for the pixel (light tracing adds to other pixels itself).
-Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
+// One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its
+// estimate for the pixel to C.parts (light tracing adds to other pixels itself).
+void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
     const Prepared& P = C.P;
     const scene::Scene& scene = P.scene;
     const accel::Ray first = P.camera.generate_ray(fx, fy, sampler.next2());
@@ -199,8 +215,22 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
     accel::Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
     SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
-    Rgb L(0.0f), beta(1.0f);
+    Rgb beta(1.0f);
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
+    // For --layers: whether x1 (the first vertex) was a delta bounce, and whether every vertex
+    // after x1 so far was.
+    bool x1_delta = false, delta_after_x1 = true;
+    // The Part of light found (emission) or sampled at the vertex reached at `depth`.
+    const auto found_part = [&](int depth) {
+        if (depth == 1) return kDirect;
+        if (x1_delta) return kSpecular;
+        if (depth == 2) return kDirect;
+        return delta_after_x1 ? kCaustic : kIndirect;
+    };
+    const auto sampled_part = [&](int depth) {
+        return depth == 1 ? kDirect : x1_delta ? kSpecular : kIndirect;
+    };
+    Rgb* const parts = C.parts;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     Vec3 from = first.origin;
@@ -208,16 +238,17 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);
         const auto event = media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
-        L += emitted;  // media's own emission: only camera subpaths find it
+        parts[found_part(depth)] += emitted;  // media's own emission: only camera subpaths find it
         if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
-            if (specular_chain || P.options.background_light) L += beta * scene.background;
+            if (specular_chain || P.options.background_light)
+                parts[found_part(depth)] += beta * scene.background;
             if (C.it.ppm && !specular_chain) break;
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
                 const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true);
-                L += beta * Le * w;
+                parts[found_part(depth)] += beta * Le * w;
             }
             break;
         }
@@ -247,12 +278,12 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
                 const float w = depth == 1 || C.it.ppm
                                     ? 1.0f
                                     : emitter_weight(C, mis, size_t(hit.area_light), hit.ng, v.wo, false);
-                L += beta * Le * w;
+                parts[found_part(depth)] += beta * Le * w;
             }
             if (specular_chain) {
                 const scene::Material& mat = scene.materials[size_t(hit.material)];
-                L += beta * mat.emission;
-                if (P.options.ambient) L += beta * mat.ambient * scene.ambient;
+                parts[found_part(depth)] += beta * mat.emission;
+                if (P.options.ambient) parts[found_part(depth)] += beta * mat.ambient * scene.ambient;
             }
         }
         if (depth > P.options.max_depth || C.it.lt) break;
@@ -260,11 +291,15 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         v.mergeable = C.it.merge && !v.in_medium && smooth;
         if (smooth) {
             if (C.it.connect) {
-                L += beta * direct_light(C, v, sampler);
-                if (C.light_path) L += beta * connect_light_path(C, v, sampler);
+                parts[sampled_part(depth)] += beta * direct_light(C, v, sampler);
+                if (C.light_path)
+                    parts[x1_delta ? kSpecular : kIndirect] += beta * connect_light_path(C, v, sampler);
             }
             if (v.mergeable) {
-                L += beta * merge(C, v);
+                Rgb merged[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
+                merge(C, v, merged);
+                for (int k = 0; k < kParts; ++k)
+                    parts[depth == 1 ? k : x1_delta ? kSpecular : kIndirect] += beta * merged[k];
                 if (C.it.ppm) break;  // ppm: the first non-delta camera vertex gathers everything
             }
         }
@@ -293,6 +328,10 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         else
             vcm::scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, C.it.factors);
         specular_chain = specular_chain && delta;
+        if (depth == 1)
+            x1_delta = delta;
+        else
+            delta_after_x1 = delta_after_x1 && delta;
         ++C.rays.bounce;
         if (!vcm::survives(depth, beta, Rgb(1.0f), sampler)) break;
         from = v.p;
@@ -303,7 +342,6 @@ Rgb camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
             walk.leave(hit, wi);
         }
     }
-    return L;
 }
 
 // The merging radius of the first iteration: --radius, else --radius-pixels pixel footprints at
@@ -323,12 +361,12 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const std::string name = bdpt_ ? "bdpt" : "vcm";
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
     ProgressiveState state = start_state(ro, budget_, name, 0, "iterations", uint64_t(std::max(1, ro.spp)));
-    FixedFilm sums(pixels);      // this rank's part of the image sums (all of it without MPI)
-    std::vector<int64_t> total;  // under MPI: every rank's sums added up
+    FixedFilm sums(pixels, ro.layers);  // this rank's image sums (all of them without MPI)
+    std::vector<int64_t> total;         // under MPI: every rank's sums added up
     if (!state.payload.empty()) {
         ByteReader r(state.payload, "checkpoint '" + budget_.resume_path + "': " + name + " sums");
         const std::vector<int64_t> v = r.get_vector<int64_t>();
-        if (v.size() != pixels * 3 || !r.at_end()) r.fail("size does not match the image");
+        if (v.size() != pixels * 3 * sums.planes() || !r.at_end()) r.fail("size does not match the image");
         if (dist::root()) sums.set(v);
         if (dist::distributed()) total = v;
     }
@@ -347,19 +385,23 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     std::vector<uint32_t> path_start;  // light path i's vertices: [path_start[i], path_start[i + 1])
     VertexGrid grid;
 
+    // Pixel = sum / iterations, for the image and each layer.
     const auto resolve_film = [&] {
-        const double n = double(state.iterations);
+        const std::vector<int64_t> local = total.empty() ? sums.values() : std::vector<int64_t>{};
+        const std::vector<int64_t>& v = total.empty() ? local : total;
+        const double scale = state.iterations > 0 ? 1 / (kFixedScale * double(state.iterations)) : 0;
+        const auto mean = [&](size_t plane, size_t i) {
+            Rgb r;
+            for (int c = 0; c < 3; ++c) r[c] = float(double(v[(plane * pixels + i) * 3 + size_t(c)]) * scale);
+            return r;
+        };
         for (int y = 0; y < ro.height; ++y)
             for (int x = 0; x < ro.width; ++x) {
                 const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
-                Rgb v;
-                if (total.empty()) {
-                    v = sums.mean(i, n);
-                } else {
-                    const double s = n > 0 ? 1 / (kFixedScale * n) : 0;
-                    for (int c = 0; c < 3; ++c) v[c] = float(double(total[i * 3 + size_t(c)]) * s);
-                }
-                film.set_pixel(x, y, v);
+                film.set_pixel(x, y, mean(0, i));
+                if (sums.layers())
+                    for (int k = 0; k < kParts; ++k)
+                        film.layer(kPartNames[k]).set(x, y, mean(1 + size_t(k), i));
             }
     };
     RenderBudget budget = budget_;
@@ -431,12 +473,14 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                                     light_vertices.begin() + path_start[i + 1]);
                         light = &path;
                     }
-                    Context C{P, it, sums, light, &light_vertices, &grid, rays};
+                    Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
+                    Context C{P, it, sums, light, &light_vertices, &grid, rays, parts};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
                     if ((it.connect || it.lt) && light)
                         for (const Vertex& v : *light) connect_to_camera(C, v, sampler);
                     const Vec2 jitter = sampler.next2();
-                    sums.add(i, camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler));
+                    camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler);
+                    for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
                 }
             P.stats.add_rays(rays);
         });

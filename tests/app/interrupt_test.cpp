@@ -281,7 +281,7 @@ TEST(Budget, TimeBoundsEveryIntegrator) {
     const auto bad =
         run_phos("render " + kCornell + " --integrator path --iterations 4 -o " + dir.file("x.pfm"));
     EXPECT_EQ(bad.exit_code, 2) << bad.output;
-    EXPECT_NE(bad.output.find("--iterations is for the ppm/sppm integrators"), std::string::npos)
+    EXPECT_NE(bad.output.find("--iterations is for the ppm/sppm/bdpt/vcm integrators"), std::string::npos)
         << bad.output;
 }
 

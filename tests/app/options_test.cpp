@@ -167,14 +167,15 @@ TEST(Options, OptionsForAnotherIntegratorWarnOrAreRefused) {
     const std::string scene = dir.write("s.pbrt", pbrt_scene("Integrator \"path\""));
     auto r = run_phos("render " + scene + " --spp 1 --alpha 0.5 -o " + dir.file("a.pfm"));
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_NE(r.output.find("warning: --alpha has no effect on the path integrator (ppm/sppm only)"),
+    EXPECT_NE(r.output.find("warning: --alpha has no effect on the path integrator (ppm/sppm/vcm only)"),
               std::string::npos)
         << r.output;
     // Budgets that do not apply would silently not bound the work: refused.
     r = run_phos("render " + scene + " --iterations 4 -o " + dir.file("b.pfm"));
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_NE(r.output.find("--iterations is for the ppm/sppm integrators (this render uses path; --spp and "
-                            "--time bound any render)"),
+    EXPECT_NE(r.output.find(
+                  "--iterations is for the ppm/sppm/bdpt/vcm integrators (this render uses path; --spp and "
+                  "--time bound any render)"),
               std::string::npos)
         << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("b.pfm")));

@@ -1,4 +1,4 @@
-// --layers for path, whitted and photonmap: the component layers sum to the image, the image is
+// --layers for path, whitted, photonmap, bdpt and vcm: the component layers sum to the image, the image is
 // the same bytes with or without them, and each component holds what its definition says
 // (pixel_loop.h, RadianceParts): checked on closed boxes with and without mirrors and glass.
 #include <gtest/gtest.h>
@@ -180,6 +180,25 @@ TEST(Layers, ComponentsMeanTheSameInEveryIntegrator) {
         EXPECT_NEAR(mean(pm.layers.at(n)), p, (n[0] == 'c' ? 0.3 : 0.12) * p) << n;
     }
     EXPECT_NEAR(mean(pm.image), mean(path.image), 0.03 * mean(path.image));
+}
+
+TEST(Layers, BidirectionalComponentsMatchPath) {
+    // bdpt and vcm classify each strategy's contribution by the path it completes (light tracing
+    // and merging by the light vertex's history): the same split as path's. Both unbiased here
+    // except vcm's merging, so 5 % bounds on direct, indirect and specular (a component landing
+    // in the wrong layer moves one of them by far more) and 15 % on the small caustic layer
+    // (1.5 % of the image, noisy at these sample counts).
+    const scene::Scene s = box(true);
+    const Result path = render("path", s, true, 256);
+    for (const char* name : {"bdpt", "vcm"}) {
+        const Result r = render(name, s, true, 64);
+        expect_sums_to_image(name, r, render(name, s, false, 64), kFour);
+        for (const char* n : {"direct", "caustic", "indirect", "specular"}) {
+            const double p = mean(path.layers.at(n)), b = mean(r.layers.at(n));
+            std::printf("%s %s: %.4f (path %.4f)\n", name, n, b, p);
+            EXPECT_NEAR(b, p, (n[0] == 'c' ? 0.15 : 0.05) * p) << name << " " << n;
+        }
+    }
 }
 
 TEST(Layers, PhotonMapWithoutLightsDoesNotBlameTheEmissionCap) {
