@@ -274,6 +274,14 @@ TEST(TracePixel, PixelOutsideTheImageExits2WithNoOutput) {
                             " -o " + dir.file("o.pfm"));
     EXPECT_EQ(r.exit_code, 2) << r.output;
     EXPECT_FALSE(std::filesystem::exists(dir.file("o.pfm")));
+    // bdpt and vcm record no traces: refused before any work rather than an empty trace.
+    for (const char* integrator : {"bdpt", "vcm"}) {
+        const auto b = run_phos("render " + kScene + kArgs + " --integrator " + integrator +
+                                " --spp 1 --trace-pixel 3 3 -o " + dir.file("o.pfm"));
+        EXPECT_EQ(b.exit_code, 2) << b.output;
+        EXPECT_NE(b.output.find("does not record pixel traces"), std::string::npos) << b.output;
+        EXPECT_FALSE(std::filesystem::exists(dir.file("o.pfm")));
+    }
 }
 
 }  // namespace

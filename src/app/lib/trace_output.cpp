@@ -214,6 +214,10 @@ void check_trace_options(const RunOptions& run, int width, int height) {
         if (!run.trace_json.empty()) throw InputError("--trace-json: give the pixel with --trace-pixel X Y");
         return;
     }
+    if (run.integrator == "bdpt" || run.integrator == "vcm")
+        throw InputError(
+            "--trace-pixel: the " + run.integrator +
+            " integrator does not record pixel traces (path, whitted, photonmap, ppm and sppm do)");
     if (run.trace_x >= width || run.trace_y >= height)
         throw InputError("--trace-pixel: (" + std::to_string(run.trace_x) + ", " +
                          std::to_string(run.trace_y) + ") is outside the " + std::to_string(width) + "x" +
