@@ -83,6 +83,15 @@ private:
     std::atomic<uint64_t> rejected_{0};
 };
 
+// What merging needs of a light vertex on a surface, packed (the grid visits many per query).
+struct MergeVertex {
+    Vec3 wo;
+    Rgb beta;
+    SubpathMis mis;
+    int length;
+    Part part;  // part_at_first_vertex
+};
+
 // The strategies of one iteration and their constants.
 struct Iteration {
     bool connect = true, merge = false, ppm = false;
@@ -97,8 +106,8 @@ struct Context {
     const Prepared& P;
     const Iteration& it;
     FixedFilm& film;
-    const std::vector<Vertex>* light_path;  // this pixel's light subpath (connections)
-    const std::vector<Vertex>* all_light;   // the iteration's light vertices (merging)
+    const std::vector<Vertex>* light_path;           // this pixel's light subpath (connections)
+    const std::vector<MergeVertex>* merge_vertices;  // the iteration's light vertices on surfaces
     const VertexGrid* grid;
     RayCounts& rays;
     Rgb* parts;  // the camera subpath's estimate per Part
@@ -184,14 +193,34 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
 // Merging camera vertex `v` with the light vertices within the radius (vertex merging): the sum
 // per Part of the light vertex (meaningful when v is the camera's first vertex).
 void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
-    const int max_depth = C.P.options.max_depth;
+    const int max_length = C.P.options.max_depth + 1 - v.length;
+    const std::vector<MergeVertex>& lights = *C.merge_vertices;
+    const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
+        const float w = C.it.ppm ? 1.0f : vcm::merge_weight(v.mis, l.mis, pdf_dir, pdf_rev, C.it.factors);
+        sum[l.part] += f * l.beta * (w * C.it.merge_norm);
+    };
+    const shading::Bsdf& b = *v.bsdf;
+    if (b.is_lambertian()) {
+        // Bsdf::eval and pdf of a lone Lambert lobe, written out: reflection on wo's side of ng
+        // and of the shading normal, f = kd / pi, pdf = cos / pi.
+        const Vec3 ng = b.geometric_normal(), ns = b.frame().n;
+        const float side = dot(v.wo, ng) > 0 ? 1.0f : -1.0f;
+        const float cos_o = dot(v.wo, ns) * side;
+        const float pdf_rev = cos_o > 0 ? cos_o * kInvPi : 0.0f;
+        const Rgb f = b.diffuse_albedo() * kInvPi;
+        C.grid->query(v.p, [&](uint32_t i, float) {
+            const MergeVertex& l = lights[i];
+            const float cos_i = dot(l.wo, ns) * side;
+            if (l.length > max_length || !(dot(l.wo, ng) * side > 0) || !(cos_i > 0)) return;
+            add(l, f, cos_i * kInvPi, pdf_rev);
+        });
+        return;
+    }
     C.grid->query(v.p, [&](uint32_t i, float) {
-        const Vertex& l = (*C.all_light)[i];
-        if (l.in_medium || l.length + v.length - 1 > max_depth) return;
+        const MergeVertex& l = lights[i];
+        if (l.length > max_length) return;
         const Scattering s = vcm::evaluate(C.P, v, l.wo, shading::TransportMode::Radiance);
-        if (s.f.is_black()) return;
-        const float w = C.it.ppm ? 1.0f : vcm::merge_weight(v.mis, l.mis, s.pdf_dir, s.pdf_rev, C.it.factors);
-        sum[part_at_first_vertex(l)] += s.f * l.beta * (w * C.it.merge_norm);
+        if (!s.f.is_black()) add(l, s.f, s.pdf_dir, s.pdf_rev);
     });
 }
 
@@ -381,7 +410,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<Vertex> light_vertices;
-    std::vector<Vec3> light_points;
+    std::vector<Vec3> merge_points;  // the light vertices on surfaces, for the grid
+    std::vector<MergeVertex> merge_vertices;
     std::vector<uint32_t> path_start;  // light path i's vertices: [path_start[i], path_start[i + 1])
     VertexGrid grid;
 
@@ -448,9 +478,21 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 light_vertices.insert(light_vertices.end(), std::make_move_iterator(out[b].begin()),
                                       std::make_move_iterator(out[b].end()));
             }
-            light_points.resize(light_vertices.size());
-            for (size_t i = 0; i < light_vertices.size(); ++i) light_points[i] = light_vertices[i].p;
-            if (it.merge) grid.build(light_points, it.radius);
+            merge_points.clear();
+            merge_vertices.clear();
+            if (it.merge) {
+                std::vector<uint32_t> on_surface;
+                for (uint32_t i = 0; i < light_vertices.size(); ++i)
+                    if (!light_vertices[i].in_medium) {  // merging happens on surfaces only
+                        merge_points.push_back(light_vertices[i].p);
+                        on_surface.push_back(i);
+                    }
+                grid.build(merge_points, it.radius);
+                for (uint32_t k : grid.order()) {  // in the grid's order: a bucket's vertices side by side
+                    const Vertex& v = light_vertices[on_surface[k]];
+                    merge_vertices.push_back({v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v)});
+                }
+            }
         }
         // Camera pass, tile by tile: each pixel's camera subpath with its light subpath.
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
@@ -474,7 +516,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                         light = &path;
                     }
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
-                    Context C{P, it, sums, light, &light_vertices, &grid, rays, parts};
+                    Context C{P, it, sums, light, &merge_vertices, &grid, rays, parts};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
                     if ((it.connect || it.lt) && light)
                         for (const Vertex& v : *light) connect_to_camera(C, v, sampler);

@@ -7,11 +7,11 @@
 namespace phos::integrators {
 
 void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
-    points_ = &points;
     radius2_ = radius * radius;
     inv_cell_ = 1 / (2 * radius);
     order_.clear();
     start_.clear();
+    sorted_.clear();
     if (points.empty() || !(radius > 0)) return;
     lo_ = points[0];
     for (const Vec3& p : points) lo_ = Vec3(std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z));
@@ -29,6 +29,8 @@ void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
     order_.resize(points.size());
     std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
     for (size_t i = 0; i < points.size(); ++i) order_[fill[key[i]]++] = uint32_t(i);
+    sorted_.resize(points.size());
+    for (size_t k = 0; k < points.size(); ++k) sorted_[k] = points[order_[k]];
 }
 
 }  // namespace phos::integrators

@@ -1,7 +1,9 @@
 // A hashed uniform grid over the light vertices of one VCM iteration, for vertex merging: every
-// vertex within radius r of a query point, in the order the vertices were stored (so sums over
-// them are the same for any thread count). Cells are 2r wide, so a query visits at most the 8
-// cells around its point (Georgiev et al. 2012's hash grid, as in SmallVCM), each bucket once.
+// vertex within radius r of a query point, bucket by bucket and in the order the vertices were
+// given within a bucket (so sums over them are the same for any thread count). Cells are 2r wide,
+// so a query visits at most the 8 cells around its point (Georgiev et al. 2012's hash grid, as in
+// SmallVCM), each bucket once. The points are kept sorted by bucket, so a bucket's candidates lie
+// side by side in memory; callers keep their per-vertex data in the same order (order()).
 #pragma once
 
 #include <cstdint>
@@ -13,10 +15,13 @@ namespace phos::integrators {
 
 class VertexGrid {
 public:
-    // Indexes `points` (kept by reference until the next build) for queries of radius `radius`.
+    // Indexes `points` for queries of radius `radius`.
     void build(const std::vector<Vec3>& points, float radius);
+    // The sorted order: slot k holds points[order()[k]].
+    const std::vector<uint32_t>& order() const { return order_; }
 
-    // Calls visit(index, distance^2) for every point within the radius of `p`, by bucket then index.
+    // Calls visit(slot, distance^2) for every point within the radius of `p` (slot: its place in
+    // order()), by bucket then index.
     template <class Visit>
     void query(Vec3 p, Visit&& visit) const;
 
@@ -27,7 +32,7 @@ private:
     }
     int64_t cell(float v, float lo) const { return int64_t(std::floor((v - lo) * inv_cell_)); }
 
-    const std::vector<Vec3>* points_ = nullptr;
+    std::vector<Vec3> sorted_;  // the points in order()
     float radius2_ = 0, inv_cell_ = 0;
     Vec3 lo_;
     uint64_t mask_ = 0;
@@ -37,7 +42,7 @@ private:
 
 template <class Visit>
 void VertexGrid::query(Vec3 p, Visit&& visit) const {
-    if (!points_ || order_.empty()) return;
+    if (order_.empty()) return;
     // The cell holding p and, per axis, the neighbour on the side of p's half of its cell.
     const float fx = (p.x - lo_.x) * inv_cell_, fy = (p.y - lo_.y) * inv_cell_,
                 fz = (p.z - lo_.z) * inv_cell_;
@@ -53,13 +58,11 @@ void VertexGrid::query(Vec3 p, Visit&& visit) const {
         for (int j = 0; j < n; ++j) seen |= buckets[j] == b;
         if (!seen) buckets[n++] = b;
     }
-    const std::vector<Vec3>& pts = *points_;
     for (int i = 0; i < n; ++i)
         for (uint32_t k = start_[buckets[i]]; k < start_[buckets[i] + 1]; ++k) {
-            const uint32_t v = order_[k];
-            const Vec3 d = pts[v] - p;
+            const Vec3 d = sorted_[k] - p;
             const float d2 = dot(d, d);
-            if (d2 <= radius2_) visit(v, d2);
+            if (d2 <= radius2_) visit(k, d2);
         }
 }
 
