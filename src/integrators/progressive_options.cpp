@@ -37,6 +37,10 @@ const options::Table& progressive_options() {
                       "the strategies vcm uses: connections only (bpt), merging only (ppm), both (vcm), "
                       "light tracing alone (lt)"),
              "vcm");
+        prog(b.number("vcm-light-paths", &ProgressiveOptions::vcm_light_paths, "K", between(1, 64),
+                      "light subpaths per pixel per iteration (light tracing and merging use them all; "
+                      "connections pair each camera subpath with one)"),
+             "vcm");
         prog(b.number(
                  "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
                  "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <span>
 
 #include "core/byte_buffer.h"
 #include "core/log.h"
@@ -97,6 +98,9 @@ struct Iteration {
     bool connect = true, merge = false, ppm = false;
     bool lt = false;  // light tracing alone (with the emitters the camera sees directly)
     float radius = 0;
+    // Light subpaths per camera subpath (vcm: --vcm-light-paths; bdpt 1): light tracing and
+    // merging use them all, connections pair camera subpath i with light subpath i.
+    float light_ratio = 1;
     vcm::MisFactors factors;
     float merge_norm = 0;  // 1 / (pi r^2 N_light)
 };
@@ -106,7 +110,7 @@ struct Context {
     const Prepared& P;
     const Iteration& it;
     FixedFilm& film;
-    const std::vector<Vertex>* light_path;           // this pixel's light subpath (connections)
+    std::span<const Vertex> light_path;              // this pixel's light subpath (connections)
     const std::vector<MergeVertex>* merge_vertices;  // the iteration's light vertices on surfaces
     const VertexGrid* grid;
     RayCounts& rays;
@@ -119,7 +123,9 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     if (!C.P.camera.connect(v.p, sampler.next2(), c)) return;
     const Scattering s = vcm::evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
     if (s.f.is_black()) return;
-    const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
+    // The camera's density of choosing this point per light subpath (the camera subpaths are
+    // light_ratio times fewer).
+    const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance * C.it.light_ratio);
     const float w =
         C.it.lt ? 1.0f
                 : 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
@@ -167,7 +173,7 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
 // Connections of camera vertex `v` (depth d) with every vertex of its light subpath (s, t >= 2).
 Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
     Rgb sum(0.0f);
-    for (const Vertex& l : *C.light_path) {
+    for (const Vertex& l : C.light_path) {
         if (l.length + v.length > C.P.options.max_depth) continue;
         Vec3 d = l.p - v.p;
         const float dist2 = dot(d, d);
@@ -243,7 +249,7 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
     ++C.rays.camera;
     accel::Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
-    SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
+    SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf / C.it.light_ratio) : SubpathMis{};
     Rgb beta(1.0f);
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
     // For --layers: whether x1 (the first vertex) was a delta bounce, and whether every vertex
@@ -321,7 +327,7 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         if (smooth) {
             if (C.it.connect) {
                 parts[sampled_part(depth)] += beta * direct_light(C, v, sampler);
-                if (C.light_path)
+                if (!C.light_path.empty())
                     parts[x1_delta ? kSpecular : kIndirect] += beta * connect_light_path(C, v, sampler);
             }
             if (v.mergeable) {
@@ -407,6 +413,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.merge = mode == "ppm" || mode == "vcm";
     it.ppm = mode == "ppm";
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
+    it.light_ratio = bdpt_ ? 1.0f : float(opt_.vcm_light_paths);
+    const size_t light_paths = pixels * size_t(it.light_ratio);
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<Vertex> light_vertices;
@@ -449,21 +457,21 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         if (it.merge) {
             // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2).
             it.radius = r0 * float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
-            const float eta = kPi * it.radius * it.radius * float(pixels);
+            const float eta = kPi * it.radius * it.radius * float(light_paths);
             it.factors = vcm::MisFactors::of(it.connect, true, eta);
             it.merge_norm = 1 / eta;
         } else {
             it.factors = vcm::MisFactors::of(true, false, 0);
         }
-        // Light pass (vcm): every pixel's light subpath, in batches concatenated in order.
+        // Light pass (vcm): the iteration's light subpaths, in batches concatenated in order.
         if (!bdpt_) {
             constexpr size_t kBatch = 4096;
-            const size_t batches = (pixels + kBatch - 1) / kBatch;
+            const size_t batches = (light_paths + kBatch - 1) / kBatch;
             std::vector<std::vector<Vertex>> out(batches);
             std::vector<std::vector<uint32_t>> counts(batches);
             tbb::parallel_for(size_t(0), batches, [&](size_t b) {
                 RayCounts rays;
-                for (size_t i = b * kBatch; i < std::min(pixels, (b + 1) * kBatch); ++i) {
+                for (size_t i = b * kBatch; i < std::min(light_paths, (b + 1) * kBatch); ++i) {
                     Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
                     const size_t before = out[b].size();
                     vcm::trace_light_path(P, sampler, max_depth, it.factors, it.merge, out[b], rays);
@@ -500,26 +508,30 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             const film::Tile& tile = tiles[t];
             RayCounts rays;
             std::vector<Vertex> own;  // bdpt: the pixel's light subpath
-            std::vector<Vertex> path;
+            const auto subpath = [&](size_t j) {
+                return std::span<const Vertex>(light_vertices.data() + path_start[j],
+                                               path_start[j + 1] - path_start[j]);
+            };
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
                     const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
-                    const std::vector<Vertex>* light = nullptr;
+                    std::span<const Vertex> light;
                     if (bdpt_) {
                         own.clear();
                         Sampler ls(ro.seed, 0x6c69676874ULL, i, iteration);
                         vcm::trace_light_path(P, ls, max_depth, it.factors, false, own, rays);
-                        light = &own;
+                        light = own;
                     } else if (it.connect || it.lt) {
-                        path.assign(light_vertices.begin() + path_start[i],
-                                    light_vertices.begin() + path_start[i + 1]);
-                        light = &path;
+                        light = subpath(i);
                     }
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
                     Context C{P, it, sums, light, &merge_vertices, &grid, rays, parts};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
-                    if ((it.connect || it.lt) && light)
-                        for (const Vertex& v : *light) connect_to_camera(C, v, sampler);
+                    // Light tracing: this pixel's light subpath and its extra ones (i + k pixels).
+                    if (it.connect || it.lt)
+                        for (size_t j = i; j < light_paths; j += pixels)
+                            for (const Vertex& v : j == i ? light : subpath(j))
+                                connect_to_camera(C, v, sampler);
                     const Vec2 jitter = sampler.next2();
                     camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler);
                     for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
