@@ -64,8 +64,8 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
     return beta.is_finite() && !beta.is_black();
 }
 
-bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f, bool merge,
-                      std::vector<Vertex>& out, RayCounts& rays) {
+bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
+                      int merge_from, std::vector<Vertex>& out, RayCounts& rays) {
     if (P.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = P.lights.choose(sampler.next(), pmf);
@@ -119,7 +119,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
         arrive(mis, length(v.p - from), cos_in, !(segments == 1 && at_infinity));
         v.mis = mis;
         const bool scatters_smoothly = v.in_medium || v.bsdf->has_non_specular();
-        v.mergeable = merge && !v.in_medium && scatters_smoothly;
+        v.mergeable = merge_from > 0 && segments >= merge_from && !v.in_medium && scatters_smoothly;
         if (scatters_smoothly) out.push_back(v);
         if (segments >= max_segments) break;
 

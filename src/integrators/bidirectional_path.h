@@ -51,9 +51,9 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler);
 
 // The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk of
 // at most `max_segments` segments. Appends the vertices connections and merging can use (those
-// with a non-delta lobe, and medium vertices) to `out`, with `merge` saying whether surface
-// vertices are mergeable. Returns false when no light emits.
-bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f, bool merge,
-                      std::vector<Vertex>& out, RayCounts& rays);
+// with a non-delta lobe, and medium vertices) to `out`; surface vertices at least
+// `merge_from` segments from the light are mergeable (0: none). Returns false when no light emits.
+bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
+                      int merge_from, std::vector<Vertex>& out, RayCounts& rays);
 
 }  // namespace phos::integrators::vcm

@@ -97,6 +97,9 @@ struct MergeVertex {
 struct Iteration {
     bool connect = true, merge = false, ppm = false;
     bool lt = false;  // light tracing alone (with the emitters the camera sees directly)
+    // Merging at the vertex next to the light (direct light): ppm only, where nothing else finds
+    // it; vcm leaves direct light to light sampling, emitter hits and light tracing (vcm_mis.h).
+    bool merge_direct = false;
     float radius = 0;
     // Light subpaths per camera subpath (vcm: --vcm-light-paths; bdpt 1): light tracing and
     // merging use them all, connections pair camera subpath i with light subpath i.
@@ -163,7 +166,7 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
     const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
     const float w =
         vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
-                                 direct_pdf_w, v.mergeable, s.cos / d2, C.it.factors);
+                                 direct_pdf_w, v.mergeable && C.it.merge_direct, s.cos / d2, C.it.factors);
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(P, v, ls.p_light, sampler);
     if (T.is_black()) return Rgb(0.0f);
@@ -237,7 +240,7 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
     C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
     const float direct_pdf_a = pmf * (at_infinity ? pdf_dir : pdf_pos);
-    return vcm::emitter_hit_weight(camera, direct_pdf_a, pmf * pdf_pos * pdf_dir);
+    return vcm::emitter_hit_weight(camera, direct_pdf_a, pmf * pdf_pos * pdf_dir, C.it.merge_direct);
 }
 
 // One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its
@@ -412,6 +415,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.connect = mode == "bpt" || mode == "vcm";
     it.merge = mode == "ppm" || mode == "vcm";
     it.ppm = mode == "ppm";
+    it.merge_direct = it.ppm;
+    const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
     it.light_ratio = bdpt_ ? 1.0f : float(opt_.vcm_light_paths);
     const size_t light_paths = pixels * size_t(it.light_ratio);
@@ -474,7 +479,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 for (size_t i = b * kBatch; i < std::min(light_paths, (b + 1) * kBatch); ++i) {
                     Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
                     const size_t before = out[b].size();
-                    vcm::trace_light_path(P, sampler, max_depth, it.factors, it.merge, out[b], rays);
+                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, out[b], rays);
                     counts[b].push_back(uint32_t(out[b].size() - before));
                 }
                 P.stats.add_rays(rays);
@@ -491,7 +496,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             if (it.merge) {
                 std::vector<uint32_t> on_surface;
                 for (uint32_t i = 0; i < light_vertices.size(); ++i)
-                    if (!light_vertices[i].in_medium) {  // merging happens on surfaces only
+                    if (light_vertices[i].mergeable) {  // surfaces only; see merge_direct
                         merge_points.push_back(light_vertices[i].p);
                         on_surface.push_back(i);
                     }
@@ -519,7 +524,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     if (bdpt_) {
                         own.clear();
                         Sampler ls(ro.seed, 0x6c69676874ULL, i, iteration);
-                        vcm::trace_light_path(P, ls, max_depth, it.factors, false, own, rays);
+                        vcm::trace_light_path(P, ls, max_depth, it.factors, 0, own, rays);
                         light = own;
                     } else if (it.connect || it.lt) {
                         light = subpath(i);

@@ -22,6 +22,13 @@
 // where eta_i = eta and m_i = 1 when merging is possible at vertex i (a surface with a non-delta
 // BSDF, merging enabled), else 0: merging at i is then not a strategy and drops out of every sum.
 // Each (p)^2-style factor below is mis(p) = p^2; terms that switch a technique off use factor 0.
+//
+// vcm does not merge at the vertex next to the light (direct light is left to light sampling, the
+// emitter hit and light tracing, as SPPM leaves it to light sampling): on the light side that
+// vertex is y1 (not mergeable), on the camera side it is the last vertex before an emitter hit,
+// whose merging term dVC_last (the eta_i term of the last scatter, carried like dVC) the emitter
+// hit's weight leaves out, and the vertex that samples a light (direct_light_weight, mergeable
+// false).
 #pragma once
 
 namespace phos::integrators::vcm {
@@ -40,6 +47,7 @@ struct MisFactors {
 
 struct SubpathMis {
     float dVCM = 0, dVC = 0, dVM = 0;
+    float dVC_last = 0;  // the part of dVC that is merging at the last scattering vertex
 };
 
 // A light subpath leaving its light: direct_pdf_a is the density of choosing that point by
@@ -55,7 +63,7 @@ inline SubpathMis start_light(float direct_pdf_a, float emit_pdf, float cos_ligh
 }
 
 // A camera subpath leaving the camera in a direction of density camera_pdf_dir.
-inline SubpathMis start_camera(float camera_pdf_dir) { return {mis(1 / camera_pdf_dir), 0, 0}; }
+inline SubpathMis start_camera(float camera_pdf_dir) { return {mis(1 / camera_pdf_dir), 0, 0, 0}; }
 
 // The subpath reaches its next vertex after `distance`, arriving with |cos| `cos_in` there.
 inline void arrive(SubpathMis& m, float distance, float cos_in, bool scale_by_distance) {
@@ -64,17 +72,20 @@ inline void arrive(SubpathMis& m, float distance, float cos_in, bool scale_by_di
     m.dVCM *= c;
     m.dVC *= c;
     m.dVM *= c;
+    m.dVC_last *= c;
 }
 
 // The subpath scatters at a vertex into a direction sampled from a non-delta lobe.
 inline void scatter(SubpathMis& m, float cos_out, float pdf_dir, float pdf_rev, bool mergeable,
                     const MisFactors& f) {
     const float g = mis(cos_out / pdf_dir);
-    const float dvc = g * (m.dVC * mis(pdf_rev) + m.dVCM + (mergeable ? f.vm : 0.0f));
+    const float merge_here = g * (mergeable ? f.vm : 0.0f);
+    const float dvc = g * (m.dVC * mis(pdf_rev) + m.dVCM) + merge_here;
     const float dvm = g * (m.dVM * mis(pdf_rev) + m.dVCM * f.vc + (mergeable ? 1.0f : 0.0f));
     m.dVC = dvc;
     m.dVM = dvm;
     m.dVCM = mis(1 / pdf_dir);
+    m.dVC_last = merge_here;
 }
 
 // The subpath scatters through a delta lobe (mirror, smooth glass).
@@ -82,6 +93,7 @@ inline void scatter_delta(SubpathMis& m, float cos_out) {
     m.dVCM = 0;
     m.dVC *= mis(cos_out);
     m.dVM *= mis(cos_out);
+    m.dVC_last = 0;
 }
 
 // The weight of one side of a connection between a subpath's last vertex v (state m, reverse pdf
@@ -94,9 +106,12 @@ inline float connect_side(const SubpathMis& m, float pdf_a, float pdf_rev, bool 
 }
 
 // The camera subpath hits an emitter (the s = 0 strategy): direct_pdf_a and emit_pdf as in
-// start_light for the point and direction found (times the selection probability).
-inline float emitter_hit_weight(const SubpathMis& camera, float direct_pdf_a, float emit_pdf) {
-    const float w = mis(direct_pdf_a) * camera.dVCM + mis(emit_pdf) * camera.dVC;
+// start_light for the point and direction found (times the selection probability). With
+// `merge_next_to_light` false, merging at the vertex before the emitter is no strategy.
+inline float emitter_hit_weight(const SubpathMis& camera, float direct_pdf_a, float emit_pdf,
+                                bool merge_next_to_light = true) {
+    const float dvc = merge_next_to_light ? camera.dVC : camera.dVC - camera.dVC_last;
+    const float w = mis(direct_pdf_a) * camera.dVCM + mis(emit_pdf) * dvc;
     return 1 / (1 + w);
 }
 

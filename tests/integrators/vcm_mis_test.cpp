@@ -4,8 +4,9 @@
 // connection, the emitter hit, direct light sampling, light tracing or the merge), and the weights
 // of all of them must add up to 1 (Veach 1997, eq. 9.3's condition for an unbiased combination).
 // Paths have 1 to 5 inner vertices, each on a Lambertian surface or in an isotropic medium, lit
-// by an area or a point light; merging is on (vcm) or off (bpt). A wrong term in any update, a
-// missing strategy or one counted twice moves the sum away from 1.
+// by an area or a point light; merging is on (vcm, with and without merging next to the light) or
+// off (bpt). A wrong term in any update, a missing strategy or one counted twice moves the sum
+// away from 1.
 #include "integrators/vcm_mis.h"
 
 #include <gtest/gtest.h>
@@ -57,8 +58,9 @@ float camera_pdf(const TestPath& t, Vec3 d) {
     return 1 / (t.camera_plane_area * c * c * c);
 }
 
-// The light subpath's state at x[i] (arrived, before scattering at x[i]), i >= 1.
-SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge) {
+// The light subpath's state at x[i] (arrived, before scattering at x[i]), i >= 1. Merging at x[1]
+// (next to the light) only with `merge_direct`, as the integrator marks light vertices.
+SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge, bool merge_direct) {
     const Vec3 d01 = dir(t.x[0], t.x[1]);
     SubpathMis m = start_light(direct_pdf_a(t), emit_pdf(t, d01), t.point_light ? 1.0f : dot(t.x[0].n, d01),
                                t.point_light, false, f);
@@ -66,13 +68,15 @@ SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge
         arrive(m, dist(t.x[j - 1], t.x[j]), cos_at(t.x[j], dir(t.x[j], t.x[j - 1])), true);
         if (j == i) break;
         const Vec3 out = dir(t.x[j], t.x[j + 1]), back = dir(t.x[j], t.x[j - 1]);
-        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back), merge && !t.x[j].medium,
-                f);
+        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back),
+                merge && !t.x[j].medium && (merge_direct || j >= 2), f);
     }
     return m;
 }
 
-// The camera subpath's state at x[i] (arrived), i <= k - 1; i == 0 reaches the light.
+// The camera subpath's state at x[i] (arrived), i <= k - 1; i == 0 reaches the light. Like the
+// integrator, the camera subpath does not know which vertex is next to the light: every surface
+// vertex is mergeable when it scatters (the emitter hit's weight takes the last one out).
 SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, bool merge) {
     const int k = int(t.x.size()) - 1;
     SubpathMis m = start_camera(camera_pdf(t, dir(t.x[k], t.x[k - 1])));
@@ -90,15 +94,16 @@ SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, bool merg
 }
 
 // Sum of the weights of every strategy that makes path t.
-double weight_sum(const TestPath& t, bool merge, float eta) {
+double weight_sum(const TestPath& t, bool merge, float eta, bool merge_direct) {
     const MisFactors f = MisFactors::of(true, merge, eta);
     const int k = int(t.x.size()) - 1;  // x[k] is the camera
-    const auto mergeable = [&](int i) { return merge && !t.x[size_t(i)].medium; };
+    // Merging at x[i]: on surfaces, and next to the light (x[1]) only with merge_direct.
+    const auto mergeable = [&](int i) { return merge && !t.x[size_t(i)].medium && (merge_direct || i >= 2); };
     double sum = 0;
     // s = 0: the camera subpath hits the light (impossible for a point light).
     if (!t.point_light) {
         const SubpathMis c = camera_state(t, 0, f, merge);
-        sum += emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])));
+        sum += emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])), merge_direct);
     }
     // s = 1: direct light sampling at x[1] from the camera side.
     {
@@ -113,7 +118,7 @@ double weight_sum(const TestPath& t, bool merge, float eta) {
     }
     // Inner connections: light subpath to x[s-1], camera subpath to x[s], s = 2 .. k - 1.
     for (int s = 2; s <= k - 1; ++s) {
-        const SubpathMis l = light_state(t, s - 1, f, merge), c = camera_state(t, s, f, merge);
+        const SubpathMis l = light_state(t, s - 1, f, merge, merge_direct), c = camera_state(t, s, f, merge);
         const PathVertex &a = t.x[size_t(s - 1)], &b = t.x[size_t(s)];
         const Vec3 ab = dir(a, b);
         const float d2 = dist(a, b) * dist(a, b);
@@ -127,7 +132,7 @@ double weight_sum(const TestPath& t, bool merge, float eta) {
     }
     // t = 1: light tracing from x[k-1] onto the camera.
     {
-        const SubpathMis l = light_state(t, k - 1, f, merge);
+        const SubpathMis l = light_state(t, k - 1, f, merge, merge_direct);
         const PathVertex& a = t.x[size_t(k - 1)];
         const Vec3 to_cam = dir(a, t.x[size_t(k)]);
         const float d = dist(a, t.x[size_t(k)]);
@@ -137,9 +142,9 @@ double weight_sum(const TestPath& t, bool merge, float eta) {
     }
     // Merges at every inner vertex where merging is possible.
     if (merge)
-        for (int i = 1; i <= k - 1; ++i) {
+        for (int i = merge_direct ? 1 : 2; i <= k - 1; ++i) {
             if (!mergeable(i)) continue;
-            const SubpathMis l = light_state(t, i, f, merge), c = camera_state(t, i, f, merge);
+            const SubpathMis l = light_state(t, i, f, merge, merge_direct), c = camera_state(t, i, f, merge);
             const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
             const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
             sum += merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev),
@@ -179,13 +184,15 @@ TEST(VcmMis, WeightsOfAllStrategiesSumToOne) {
                 for (uint64_t seed = 0; seed < 20; ++seed) {
                     const TestPath t = random_path(seed, inner, point != 0, media != 0);
                     // bpt: connections only; vcm with a small and a large merging area.
-                    EXPECT_NEAR(weight_sum(t, false, 0.0f), 1.0, 2e-4)
+                    EXPECT_NEAR(weight_sum(t, false, 0.0f, false), 1.0, 2e-4)
                         << "bpt, inner " << inner << " point " << point << " media " << media << " seed "
                         << seed;
                     for (float eta : {1e-3f, 0.5f, 40.0f})
-                        EXPECT_NEAR(weight_sum(t, true, eta), 1.0, 2e-4)
-                            << "vcm eta " << eta << ", inner " << inner << " point " << point << " media "
-                            << media << " seed " << seed;
+                        for (bool direct : {false, true})
+                            EXPECT_NEAR(weight_sum(t, true, eta, direct), 1.0, 2e-4)
+                                << "vcm eta " << eta << (direct ? ", merging next to the light" : "")
+                                << ", inner " << inner << " point " << point << " media " << media << " seed "
+                                << seed;
                     ++checked;
                 }
     EXPECT_EQ(checked, 400);
