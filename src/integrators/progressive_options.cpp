@@ -38,8 +38,8 @@ const options::Table& progressive_options() {
                       "light tracing alone (lt)"),
              "vcm");
         prog(b.number("vcm-light-paths", &ProgressiveOptions::vcm_light_paths, "K", between(1, 64),
-                      "light subpaths per pixel per iteration (light tracing and merging use them all; "
-                      "connections pair each camera subpath with one)"),
+                      "light subpaths per pixel per iteration for merging (connections and light tracing "
+                      "use one)"),
              "vcm");
         prog(b.number(
                  "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),

@@ -22,7 +22,7 @@ struct ProgressiveOptions {
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
     std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
-    int vcm_light_paths = 1;             // vcm: light subpaths per pixel per iteration
+    int vcm_light_paths = 1;             // vcm: light subpaths per pixel per iteration for merging
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.

@@ -101,9 +101,6 @@ struct Iteration {
     // it; vcm leaves direct light to light sampling, emitter hits and light tracing (vcm_mis.h).
     bool merge_direct = false;
     float radius = 0;
-    // Light subpaths per camera subpath (vcm: --vcm-light-paths; bdpt 1): light tracing and
-    // merging use them all, connections pair camera subpath i with light subpath i.
-    float light_ratio = 1;
     vcm::MisFactors factors;
     float merge_norm = 0;  // 1 / (pi r^2 N_light)
 };
@@ -126,9 +123,7 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     if (!C.P.camera.connect(v.p, sampler.next2(), c)) return;
     const Scattering s = vcm::evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
     if (s.f.is_black()) return;
-    // The camera's density of choosing this point per light subpath (the camera subpaths are
-    // light_ratio times fewer).
-    const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance * C.it.light_ratio);
+    const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
     const float w =
         C.it.lt ? 1.0f
                 : 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
@@ -252,7 +247,7 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
     ++C.rays.camera;
     accel::Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
-    SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf / C.it.light_ratio) : SubpathMis{};
+    SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
     Rgb beta(1.0f);
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
     // For --layers: whether x1 (the first vertex) was a delta bounce, and whether every vertex
@@ -418,8 +413,9 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.merge_direct = it.ppm;
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
-    it.light_ratio = bdpt_ ? 1.0f : float(opt_.vcm_light_paths);
-    const size_t light_paths = pixels * size_t(it.light_ratio);
+    // Light subpaths per iteration: one per pixel for connections and light tracing, and with
+    // --vcm-light-paths K, K per pixel for merging (eta counts them all).
+    const size_t light_paths = pixels * size_t(bdpt_ || !it.merge ? 1 : opt_.vcm_light_paths);
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<Vertex> light_vertices;
@@ -532,11 +528,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
                     Context C{P, it, sums, light, &merge_vertices, &grid, rays, parts};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
-                    // Light tracing: this pixel's light subpath and its extra ones (i + k pixels).
-                    if (it.connect || it.lt)
-                        for (size_t j = i; j < light_paths; j += pixels)
-                            for (const Vertex& v : j == i ? light : subpath(j))
-                                connect_to_camera(C, v, sampler);
+                    if (it.connect || it.lt)  // light tracing
+                        for (const Vertex& v : light) connect_to_camera(C, v, sampler);
                     const Vec2 jitter = sampler.next2();
                     camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler);
                     for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
