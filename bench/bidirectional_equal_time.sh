@@ -40,13 +40,8 @@ for spec in "cornell-diffuse 15.0 - - - - -" "cornell-glass-mirror 16.0 168 200 
         # The work done: "N iterations" (ppm, sppm, bdpt, vcm) or the samples per pixel.
         work=$(echo "$log" | sed -n "s/.*$name: \([0-9]*\) iterations.*/\1 it/p" | head -1)
         [ -n "$work" ] || work=$(echo "$log" | sed -n 's/.*image: [0-9x]*, \([0-9.]*\) of.*/\1 spp/p; s/.*image: [0-9x]*, \([0-9.]*\) samples per pixel.*/\1 spp/p' | head -1)
-        if [ "$x0" = "-" ]; then
-            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm")
-            win="-"
-        else
-            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
-            win="$3 ($wref)"
-        fi
+        set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
+        win=$(bench_window_text "$3" "$wref")
         printf '| %-20s | %-28s | %6s | %6.2f | %9s | %8s | %6s | %-14s |\n' "$scene" "$opts" "$budget" "$wall" \
             "$work" "$1" "$2" "$win"
     done

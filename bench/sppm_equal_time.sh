@@ -49,13 +49,8 @@ for col in $columns; do
             --time "$budget" $extra -o "$out/$scene.pfm" -v 2>&1 | sed -n 's/.*sppm: \([0-9]*\) iterations.*/\1/p')
         end=$(date +%s.%N)
         wall=$(echo "$end - $start" | bc)
-        if [ "$x0" = "-" ]; then
-            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm")
-            win="-"
-        else
-            set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
-            win="$3 ($wref)"
-        fi
+        set -- $(bench_metrics "$phos" "$out/$scene.pfm" "$shared/ref/$scene.pfm" "$x0" "$x1" "$y0" "$y1")
+        win=$(bench_window_text "$3" "$wref")
         goal=$(echo "scale=6; $floor + ($pbrt - $floor) / 3" | bc | sed 's/^\./0./')
         printf '| %-20s | %6s | %6.2f | %5s | %8s | %6s | %-14s | %8s | %8s |\n' "$scene" "$budget" "$wall" \
             "$iters" "$1" "$2" "$win" "$pbrt" "$goal"

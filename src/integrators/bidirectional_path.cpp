@@ -54,6 +54,56 @@ Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& s
     return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir), sampler);
 }
 
+Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
+                    const accel::Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta) {
+    Vertex v;
+    v.length = length;
+    v.beta = beta;
+    v.medium = walk.medium();
+    if (event == shading::SurfaceWalk::Event::Medium) {
+        v.p = walk.medium_point();
+        v.wo = walk.medium_wo();
+        v.in_medium = true;
+    } else {
+        v.p = hit.p;
+        v.wo = -normalize(ray.dir);
+        v.hit = hit;
+        v.bsdf.emplace(P.bsdf(hit));
+    }
+    return v;
+}
+
+bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
+                   Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta) {
+    float pdf = 0, pdf_rev = 0;
+    delta = false;
+    if (v.in_medium) {
+        const shading::PhaseFunction& phase = P.media[v.medium].phase();
+        pdf = phase.sample(v.wo, sampler.next2(), wi);
+        pdf_rev = phase.eval(wi, v.wo);
+    } else {
+        const float u_lobe = sampler.next();
+        const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), mode);
+        if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) return false;
+        wi = bs->wi;
+        beta *= bs->weight;
+        delta = bs->is_specular();
+        pdf = bs->pdf;
+        if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
+    }
+    if (delta)
+        scatter_delta(mis, cos_at(v, wi));
+    else
+        scatter(mis, cos_at(v, wi), pdf, pdf_rev, v.mergeable, f);
+    return true;
+}
+
+accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk) {
+    if (v.in_medium) return accel::Ray{v.p, wi};
+    walk.leave(v.hit, wi);
+    return accel::spawn_ray(v.hit, wi);
+}
+
 bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
     if (length > 3) {
         const float start = beta0.max();
@@ -97,26 +147,11 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
         ++rays.photon;
         if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
             break;
-        Vertex v;
-        v.length = segments;
-        v.beta = beta;
+        Vertex v = reach_vertex(P, event, walk, ray, hit, segments, beta);
         v.delta_chain = delta_chain;
-        if (event == shading::SurfaceWalk::Event::Medium) {
-            v.p = walk.medium_point();
-            v.wo = walk.medium_wo();
-            v.in_medium = true;
-            v.medium = walk.medium();
-        } else {
-            v.p = hit.p;
-            v.wo = -normalize(ray.dir);
-            v.hit = hit;
-            v.medium = walk.medium();
-            v.bsdf.emplace(P.bsdf(hit));
-        }
-        const float cos_in = v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, v.wo));
         // The first segment from a light at infinity has no distance to convert (its start is a
         // direction).
-        arrive(mis, length(v.p - from), cos_in, !(segments == 1 && at_infinity));
+        arrive(mis, length(v.p - from), cos_at(v, v.wo), !(segments == 1 && at_infinity));
         v.mis = mis;
         const bool scatters_smoothly = v.in_medium || v.bsdf->has_non_specular();
         v.mergeable = merge_from > 0 && segments >= merge_from && !v.in_medium && scatters_smoothly;
@@ -125,36 +160,12 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
 
         // Scatter: the phase function or the BSDF (importance transport).
         Vec3 wi;
-        float pdf = 0, pdf_rev = 0, cos_out = 1;
         bool delta = false;
-        if (v.in_medium) {
-            const shading::PhaseFunction& phase = P.media[v.medium].phase();
-            pdf = phase.sample(v.wo, sampler.next2(), wi);
-            pdf_rev = phase.eval(wi, v.wo);
-        } else {
-            const float u_lobe = sampler.next();
-            const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), shading::TransportMode::Importance);
-            if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
-            wi = bs->wi;
-            beta *= bs->weight;
-            delta = bs->is_specular();
-            pdf = bs->pdf;
-            if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
-            cos_out = std::fabs(dot(v.bsdf->frame().n, wi));
-        }
-        if (delta)
-            scatter_delta(mis, cos_out);
-        else
-            scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, f);
+        if (!continue_from(P, v, shading::TransportMode::Importance, f, sampler, mis, beta, wi, delta)) break;
         delta_chain = delta_chain && delta;
         if (!survives(segments, beta, beta0, sampler)) break;
         from = v.p;
-        if (v.in_medium) {
-            ray = accel::Ray{v.p, wi};
-        } else {
-            ray = accel::spawn_ray(hit, wi);
-            walk.leave(hit, wi);
-        }
+        ray = leave_vertex(v, wi, walk);
     }
     return true;
 }

@@ -3,6 +3,7 @@
 // reached it and the recursive MIS state of its subpath (vcm_mis.h).
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "integrators/prepared.h"
 #include "integrators/vcm_mis.h"
 #include "shading/bsdf.h"
+#include "shading/surface_walk.h"
 
 namespace phos::integrators::vcm {
 
@@ -38,6 +40,22 @@ struct Scattering {
     float cos = 1, pdf_dir = 0, pdf_rev = 0;
 };
 Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode);
+
+// The vertex a subpath's walk reached with `event` (Surface or Medium) after `length` segments,
+// arriving with throughput `beta` (its MIS state is the caller's).
+Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
+                    const accel::Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta);
+// |cos| of unit direction w with v's shading normal (1 in a medium).
+inline float cos_at(const Vertex& v, Vec3 w) {
+    return v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, w));
+}
+// The subpath goes on from v: samples a direction (the BSDF in `mode`, the phase function in a
+// medium), multiplies beta by its weight and updates the MIS state `mis` (scatter or
+// scatter_delta); sets wi and whether the lobe was a delta. False when nothing was sampled.
+bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
+                   Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta);
+// The ray leaving v in direction wi; the walk follows the medium change at a surface.
+accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 
 // Transmittance between two vertices (0 if blocked): media crossed included.
 Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler);

@@ -287,22 +287,8 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         }
         if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
             break;
-        Vertex v;
-        v.length = depth;
-        v.beta = beta;
-        v.medium = walk.medium();
-        if (event == shading::SurfaceWalk::Event::Medium) {
-            v.p = walk.medium_point();
-            v.wo = walk.medium_wo();
-            v.in_medium = true;
-        } else {
-            v.p = hit.p;
-            v.wo = -normalize(ray.dir);
-            v.hit = hit;
-            v.bsdf.emplace(P.bsdf(hit));
-        }
-        const float cos_in = v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, v.wo));
-        vcm::arrive(mis, length(v.p - from), cos_in, true);
+        Vertex v = vcm::reach_vertex(P, event, walk, ray, hit, depth, beta);
+        vcm::arrive(mis, length(v.p - from), vcm::cos_at(v, v.wo), true);
         v.mis = mis;
         if (!v.in_medium) {
             // s = 0: the surface's own emission, and the .scn glow on the camera's specular chain.
@@ -339,27 +325,10 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
 
         // Continue the camera subpath (radiance transport).
         Vec3 wi;
-        float pdf = 0, pdf_rev = 0, cos_out = 1;
         bool delta = false;
-        if (v.in_medium) {
-            const shading::PhaseFunction& phase = P.media[v.medium].phase();
-            pdf = phase.sample(v.wo, sampler.next2(), wi);
-            pdf_rev = phase.eval(wi, v.wo);
-        } else {
-            const float u_lobe = sampler.next();
-            const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2());
-            if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
-            wi = bs->wi;
-            beta *= bs->weight;
-            delta = bs->is_specular();
-            pdf = bs->pdf;
-            if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
-            cos_out = std::fabs(dot(v.bsdf->frame().n, wi));
-        }
-        if (delta)
-            vcm::scatter_delta(mis, cos_out);
-        else
-            vcm::scatter(mis, cos_out, pdf, pdf_rev, v.mergeable, C.it.factors);
+        if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.it.factors, sampler, mis, beta, wi,
+                                delta))
+            break;
         specular_chain = specular_chain && delta;
         if (depth == 1)
             x1_delta = delta;
@@ -368,12 +337,7 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         ++C.rays.bounce;
         if (!vcm::survives(depth, beta, Rgb(1.0f), sampler)) break;
         from = v.p;
-        if (v.in_medium) {
-            ray = accel::Ray{v.p, wi};
-        } else {
-            ray = accel::spawn_ray(hit, wi);
-            walk.leave(hit, wi);
-        }
+        ray = vcm::leave_vertex(v, wi, walk);
     }
 }
 
