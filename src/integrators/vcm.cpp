@@ -7,6 +7,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstring>
@@ -85,12 +86,14 @@ private:
 };
 
 // What merging needs of a light vertex on a surface, packed (the grid visits many per query).
+// Plain data, so that ranks can exchange them (under MPI each traces its own pixels' subpaths).
 struct MergeVertex {
-    Vec3 wo;
+    Vec3 p, wo;
     Rgb beta;
     SubpathMis mis;
     int length;
-    Part part;  // part_at_first_vertex
+    Part part;      // part_at_first_vertex
+    uint32_t path;  // the light subpath it belongs to: the order every rank count agrees on
 };
 
 // The strategies of one iteration and their constants.
@@ -382,6 +385,12 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const size_t light_paths = pixels * size_t(bdpt_ || !it.merge ? 1 : opt_.vcm_light_paths);
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
+    std::vector<uint8_t> owned_pixel(pixels, 0);  // under MPI: the pixels of this rank's tiles
+    for (size_t t = 0; t < tiles.size(); ++t)
+        if (dist::owns(t))
+            for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
+                for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
+                    owned_pixel[size_t(y) * size_t(ro.width) + size_t(x)] = 1;
     std::vector<Vertex> light_vertices;
     std::vector<Vec3> merge_points;  // the light vertices on surfaces, for the grid
     std::vector<MergeVertex> merge_vertices;
@@ -428,7 +437,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         } else {
             it.factors = vcm::MisFactors::of(true, false, 0);
         }
-        // Light pass (vcm): the iteration's light subpaths, in batches concatenated in order.
+        // Light pass (vcm): the iteration's light subpaths, in batches concatenated in order; each
+        // rank traces those of its own pixels (light subpath j belongs to pixel j mod pixels).
         if (!bdpt_) {
             constexpr size_t kBatch = 4096;
             const size_t batches = (light_paths + kBatch - 1) / kBatch;
@@ -437,6 +447,10 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             tbb::parallel_for(size_t(0), batches, [&](size_t b) {
                 RayCounts rays;
                 for (size_t i = b * kBatch; i < std::min(light_paths, (b + 1) * kBatch); ++i) {
+                    if (!owned_pixel[i % pixels]) {
+                        counts[b].push_back(0);
+                        continue;
+                    }
                     Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
                     const size_t before = out[b].size();
                     vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, out[b], rays);
@@ -451,20 +465,29 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 light_vertices.insert(light_vertices.end(), std::make_move_iterator(out[b].begin()),
                                       std::make_move_iterator(out[b].end()));
             }
-            merge_points.clear();
-            merge_vertices.clear();
             if (it.merge) {
-                std::vector<uint32_t> on_surface;
-                for (uint32_t i = 0; i < light_vertices.size(); ++i)
-                    if (light_vertices[i].mergeable) {  // surfaces only; see merge_direct
-                        merge_points.push_back(light_vertices[i].p);
-                        on_surface.push_back(i);
+                // The mergeable vertices (surfaces only; see merge_direct) of every rank, in light
+                // subpath order, then indexed by the grid and stored in its order (a bucket's
+                // vertices side by side).
+                std::vector<MergeVertex> mine;
+                for (size_t j = 0; j + 1 < path_start.size(); ++j)
+                    for (uint32_t k = path_start[j]; k < path_start[j + 1]; ++k) {
+                        const Vertex& v = light_vertices[k];
+                        if (v.mergeable)
+                            mine.push_back(
+                                {v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v), uint32_t(j)});
                     }
-                grid.build(merge_points, it.radius);
-                for (uint32_t k : grid.order()) {  // in the grid's order: a bucket's vertices side by side
-                    const Vertex& v = light_vertices[on_surface[k]];
-                    merge_vertices.push_back({v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v)});
+                if (dist::distributed()) {
+                    mine = dist::all_gather(std::span<const MergeVertex>(mine));
+                    std::stable_sort(
+                        mine.begin(), mine.end(),
+                        [](const MergeVertex& a, const MergeVertex& b) { return a.path < b.path; });
                 }
+                merge_points.resize(mine.size());
+                for (size_t k = 0; k < mine.size(); ++k) merge_points[k] = mine[k].p;
+                grid.build(merge_points, it.radius);
+                merge_vertices.clear();
+                for (uint32_t k : grid.order()) merge_vertices.push_back(mine[k]);
             }
         }
         // Camera pass, tile by tile: each pixel's camera subpath with its light subpath.

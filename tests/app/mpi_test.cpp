@@ -54,7 +54,8 @@ TEST(Mpi, RanksGiveTheSingleProcessImageByteForByte) {
                           {"ppm", "--iterations 3 --photons-per-iter 20000"},
                           {"sppm", "--iterations 4 --photons-per-iter 20000"},
                           {"bdpt", "--spp 3"},
-                          {"vcm", "--spp 3"}};
+                          {"vcm", "--spp 3"},
+                          {"vcm", "--spp 2 --vcm-light-paths 2 --layers"}};
     TempDir dir;
     for (const Case& c : cases) {
         const std::string opts =
