@@ -16,13 +16,14 @@
 
 namespace phos::integrators::vcm {
 
-struct Vertex {
+// A vertex without its BSDF: what vcm keeps of an iteration's light subpaths (the BSDF, half the
+// size, is built again from `hit` when a camera subpath connects to it: with_bsdf).
+struct VertexCore {
     Vec3 p;
-    Vec3 wo;                            // unit, towards the previous vertex of its subpath
-    Rgb beta;                           // throughput of the subpath up to (not including) this vertex
-    std::optional<shading::Bsdf> bsdf;  // surface vertices
-    accel::SurfaceHit hit;              // surface vertices
-    int medium = -1;  // a medium vertex: its medium; a surface vertex: the medium the path came in
+    Vec3 wo;                // unit, towards the previous vertex of its subpath
+    Rgb beta;               // throughput of the subpath up to (not including) this vertex
+    accel::SurfaceHit hit;  // surface vertices
+    int medium = -1;        // a medium vertex: its medium; a surface vertex: the medium the path came in
     bool in_medium = false;
     bool mergeable = false;  // merging may happen here (a surface with a non-delta lobe, merging on)
     int length = 0;          // segments from the subpath's start (the light or the camera)
@@ -31,6 +32,18 @@ struct Vertex {
     bool delta_chain = true;
     SubpathMis mis;
 };
+
+struct Vertex : VertexCore {
+    std::optional<shading::Bsdf> bsdf;  // surface vertices
+};
+
+// The vertex `c` with its BSDF built again (the same as when it was traced).
+inline Vertex with_bsdf(const Prepared& P, const VertexCore& c) {
+    Vertex v;
+    static_cast<VertexCore&>(v) = c;
+    if (!c.in_medium) v.bsdf.emplace(P.bsdf(c.hit));
+    return v;
+}
 
 // What a vertex's scattering function does for a direction `wi` (unit, away from the vertex),
 // given its wo: the value f (BSDF, or phase function in a medium), |cos| with the shading normal

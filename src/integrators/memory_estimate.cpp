@@ -243,7 +243,7 @@ void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, st
     if (in.integrator == "vcm") {
         const double paths = pixels * std::max(1, in.progressive.vcm_light_paths);
         const double vertices = paths * kLightVerticesPerPath;
-        p.add("light vertices", pixels * kLightVerticesPerPath * sizeof(vcm::Vertex) + paths * 4);
+        p.add("light vertices", pixels * kLightVerticesPerPath * sizeof(vcm::VertexCore) + paths * 4);
         if (in.progressive.vcm_mode != "bpt" && in.progressive.vcm_mode != "lt")
             p.add("merging", vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint));
     }

@@ -39,7 +39,7 @@ enum Part { kDirect, kCaustic, kIndirect, kSpecular, kParts };
 const char* const kPartNames[kParts] = {"direct", "caustic", "indirect", "specular"};
 
 // Light arriving at light vertex `l`, seen at the camera's first vertex x1 = l.
-Part part_at_first_vertex(const Vertex& l) {
+Part part_at_first_vertex(const vcm::VertexCore& l) {
     return l.length == 1 ? kDirect : l.delta_chain ? kCaustic : kIndirect;
 }
 
@@ -391,8 +391,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
                 for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
                     owned_pixel[size_t(y) * size_t(ro.width) + size_t(x)] = 1;
-    std::vector<Vertex> light_vertices;
-    std::vector<Vec3> merge_points;  // the light vertices on surfaces, for the grid
+    std::vector<vcm::VertexCore> light_vertices;  // vcm: the iteration's light subpaths
+    std::vector<Vec3> merge_points;               // the light vertices on surfaces, for the grid
     std::vector<MergeVertex> merge_vertices;
     std::vector<uint32_t> path_start;  // light path i's vertices: [path_start[i], path_start[i + 1])
     VertexGrid grid;
@@ -442,19 +442,21 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         if (!bdpt_) {
             constexpr size_t kBatch = 4096;
             const size_t batches = (light_paths + kBatch - 1) / kBatch;
-            std::vector<std::vector<Vertex>> out(batches);
+            std::vector<std::vector<vcm::VertexCore>> out(batches);
             std::vector<std::vector<uint32_t>> counts(batches);
             tbb::parallel_for(size_t(0), batches, [&](size_t b) {
                 RayCounts rays;
+                std::vector<Vertex> traced;
                 for (size_t i = b * kBatch; i < std::min(light_paths, (b + 1) * kBatch); ++i) {
                     if (!owned_pixel[i % pixels]) {
                         counts[b].push_back(0);
                         continue;
                     }
                     Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
-                    const size_t before = out[b].size();
-                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, out[b], rays);
-                    counts[b].push_back(uint32_t(out[b].size() - before));
+                    traced.clear();
+                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, traced, rays);
+                    for (const Vertex& v : traced) out[b].push_back(v);  // without the BSDF
+                    counts[b].push_back(uint32_t(traced.size()));
                 }
                 P.stats.add_rays(rays);
             });
@@ -472,7 +474,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 std::vector<MergeVertex> mine;
                 for (size_t j = 0; j + 1 < path_start.size(); ++j)
                     for (uint32_t k = path_start[j]; k < path_start[j + 1]; ++k) {
-                        const Vertex& v = light_vertices[k];
+                        const vcm::VertexCore& v = light_vertices[k];
                         if (v.mergeable)
                             mine.push_back(
                                 {v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v), uint32_t(j)});
@@ -495,11 +497,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             if (!dist::owns(t)) return;
             const film::Tile& tile = tiles[t];
             RayCounts rays;
-            std::vector<Vertex> own;  // bdpt: the pixel's light subpath
-            const auto subpath = [&](size_t j) {
-                return std::span<const Vertex>(light_vertices.data() + path_start[j],
-                                               path_start[j + 1] - path_start[j]);
-            };
+            std::vector<Vertex> own;  // the pixel's light subpath, with its BSDFs
             for (int y = tile.y0; y < tile.y1; ++y)
                 for (int x = tile.x0; x < tile.x1; ++x) {
                     const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
@@ -510,7 +508,10 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                         vcm::trace_light_path(P, ls, max_depth, it.factors, 0, own, rays);
                         light = own;
                     } else if (it.connect || it.lt) {
-                        light = subpath(i);
+                        own.clear();
+                        for (uint32_t k = path_start[i]; k < path_start[i + 1]; ++k)
+                            own.push_back(vcm::with_bsdf(P, light_vertices[k]));
+                        light = own;
                     }
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
                     Context C{P, it, sums, light, &merge_vertices, &grid, rays, parts};
