@@ -126,7 +126,8 @@ TEST_P(KilledRender, ResumesToTheSameBytes) {
 INSTANTIATE_TEST_SUITE_P(
     EveryIntegrator, KilledRender,
     ::testing::Values(Case{"path", "--spp 96"}, Case{"whitted", "--spp 512"},
-                      Case{"photonmap", "--spp 24 --global 20000 --caustic 20000 --gather-rays 16"}),
+                      Case{"photonmap", "--spp 24 --global 20000 --caustic 20000 --gather-rays 16"},
+                      Case{"bdpt", "--spp 100"}, Case{"vcm", "--spp 60 --layers"}),
     [](const ::testing::TestParamInfo<Case>& info) { return std::string(info.param.integrator); });
 
 // A finished render extended through its checkpoint equals the longer render made at once; for
