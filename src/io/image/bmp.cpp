@@ -39,9 +39,13 @@ std::string bmp_truncation(std::FILE* f) {
     std::fseek(f, start, SEEK_SET);
     if (got < sizeof h || h[0] != 'B' || h[1] != 'M') return "";  // not a BMP, or too short for stb anyway
     // Only BITMAPINFOHEADER-or-later headers with uncompressed (BI_RGB) or bit-field pixels have a
-    // size we can predict; RLE data is left to stb.
+    // size we can predict; RLE data (1, 2) is left to stb, which refuses it. Other compression
+    // codes (JPEG, PNG, CMYK, or none at all) are refused here: stb reads them as uncompressed
+    // pixels without checking the size, row by row, however many rows the header claims.
     const uint32_t offset = get32(h + 10), header_size = get32(h + 14), compression = get32(h + 30);
-    if (header_size < 40 || (compression != 0 && compression != 3)) return "";
+    if (header_size < 40 || compression == 1 || compression == 2) return "";
+    if (compression != 0 && compression != 3)
+        return "unsupported BMP compression " + std::to_string(compression);
     const int64_t width = int32_t(get32(h + 18)), height = int32_t(get32(h + 22));
     const int64_t bpp = uint16_t(h[28] | h[29] << 8);
     if (width <= 0 || height == 0 || bpp <= 0 || bpp > 32) return "";

@@ -103,6 +103,23 @@ TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
     }
 }
 
+// A BMP whose compression field holds no known code (0xBB000000): stb read it as uncompressed
+// pixels, 3 wide and 14,417,922 rows (a negative height: top-down), skipping each row's padding
+// with a seek (the fuzzer's timeout, 2026-11-24); phos's size check left unknown codes to stb.
+// Unknown codes are now refused.
+TEST(ImageFuzz, BmpWithAnUnknownCompressionCodeIsRejected) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "424d00460000000000002e0000002800000003000000feff23ff01000800000000bb000800000000000000"
+        "000000000000000000000000000000fffffffffffffffffffffffdffffffffffffffffffffffffff000020");
+    try {
+        read_image(write(dir, "rows.bmp", found));
+        ADD_FAILURE() << "accepted an 86-byte BMP with compression code 0xBB000000";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("unsupported BMP compression"), std::string::npos) << e.what();
+    }
+}
+
 // stb_image loops forever on a run-length encoded Radiance HDR scanline that ends early (at the end
 // of the file it reads a "dump" count of 0 again and again): the fuzzer's input below, 8 pixels
 // wide, has a run for one component and then ends. Such files are now refused before decoding.
