@@ -35,8 +35,11 @@ std::string bmp_truncation(std::FILE* f);
 // can plausibly encode, before anything is allocated for them. The bound, kMaxPixelsPerByte, is
 // far above what any compression reaches on real images (a 1-bit PNG of one colour is about 8,000
 // pixels per byte), so only corrupt or hostile headers meet it.
+// Formats with a tighter bound pass their own: a TGA run-length packet encodes at most 128 pixels
+// in 2 bytes or more (kMaxTgaPixelsPerByte).
 constexpr unsigned long long kMaxPixelsPerByte = 1ull << 15;
+constexpr unsigned long long kMaxTgaPixelsPerByte = 64;
 void check_pixel_count(const std::string& path, long long width, long long height,
-                       unsigned long long file_bytes);
+                       unsigned long long file_bytes, unsigned long long max_per_byte = kMaxPixelsPerByte);
 
 }  // namespace phos::io::detail

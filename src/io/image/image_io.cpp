@@ -29,11 +29,11 @@ void throw_read_error(const std::string& path, const std::string& reason) {
 }
 
 void check_pixel_count(const std::string& path, long long width, long long height,
-                       unsigned long long file_bytes) {
+                       unsigned long long file_bytes, unsigned long long max_per_byte) {
     if (width <= 0 || height <= 0) return;  // the decoder reports those
     // Both factors are below 2^31 wherever this is called, so the product fits.
     const unsigned long long pixels = (unsigned long long)width * (unsigned long long)height;
-    if (pixels / kMaxPixelsPerByte > file_bytes)
+    if (pixels / max_per_byte > file_bytes)
         throw_read_error(path, "its header claims " + std::to_string(width) + " x " + std::to_string(height) +
                                    " pixels, implausibly many for a file of " + std::to_string(file_bytes) +
                                    " bytes (corrupt header?)");

@@ -120,6 +120,33 @@ TEST(ImageFuzz, BmpWithAnUnknownCompressionCodeIsRejected) {
     }
 }
 
+// A 98-byte run-length TGA claiming 512 x 6144 pixels: stb fills what the file lacks, so it
+// decoded 3.1 M pixels (the fuzzer's timeout, 2026-11-24, under load). Run-length packets encode
+// at most 128 pixels in 2 bytes, so TGA headers are now held to 64 pixels per byte; a valid file
+// at that limit (one grey value, every packet a full run) still reads.
+TEST(ImageFuzz, RunLengthTgaClaimingMorePixelsThanPacketsCanHoldIsRejected) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "00000a00000000000000000000020018186088888888888888888888888888888888888888888888888888888888888888"
+        "88888888888888888888888888888888888888888888888888888888888888888888888888888888888888888802020000");
+    try {
+        read_image(write(dir, "rle.tga", found));
+        ADD_FAILURE() << "accepted a 98-byte TGA claiming 512 x 6144 pixels";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("implausibly many"), std::string::npos) << e.what();
+    }
+    // 256 x 256 grey pixels of value 200 in 512 full run packets (0xFF = run of 128, then the value).
+    std::string tga(18, '\0');
+    tga[2] = 11;                                         // run-length grey
+    tga[12] = 0, tga[13] = 1, tga[14] = 0, tga[15] = 1;  // 256 x 256
+    tga[16] = 8;
+    for (int k = 0; k < 512; ++k) tga += std::string{char(0xFF), char(200)};
+    const Image img = read_image(write(dir, "dense.tga", tga), false);
+    ASSERT_EQ(img.width, 256);
+    ASSERT_EQ(img.height, 256);
+    EXPECT_NEAR(img.pixels[12345].g, 200.0f / 255.0f, 1e-6f);
+}
+
 // stb_image loops forever on a run-length encoded Radiance HDR scanline that ends early (at the end
 // of the file it reads a "dump" count of 0 again and again): the fuzzer's input below, 8 pixels
 // wide, has a run for one component and then ends. Such files are now refused before decoding.
