@@ -14,7 +14,6 @@
 #pragma GCC diagnostic pop
 
 #include <algorithm>
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -137,6 +136,18 @@ std::string hdr_rle_problem(std::FILE* f, int width, int height) {
     return "";
 }
 
+// Whether stb decodes the file (from its current position) as TGA: by content, whatever the
+// file's name, trying the formats in stb's own order (TGA's weak test comes last).
+bool decodes_as_tga(FILE* f) {
+    const long pos = std::ftell(f);
+    stbi__context s;
+    stbi__start_file(&s, f);
+    const bool tga = !stbi__png_test(&s) && !stbi__bmp_test(&s) && !stbi__jpeg_test(&s) &&
+                     !stbi__hdr_test(&s) && stbi__tga_test(&s);
+    std::fseek(f, pos, SEEK_SET);
+    return tga;
+}
+
 }  // namespace
 
 Image read_stb(const std::string& path, bool srgb) {
@@ -153,11 +164,9 @@ Image read_stb(const std::string& path, bool srgb) {
         const auto file_bytes = std::filesystem::file_size(path, ec);
         // TGA: stb fills the pixels a truncated run-length file lacks, however many its header
         // claims, so the bound is what run-length packets can encode.
-        std::string ext = std::filesystem::path(path).extension().string();
-        for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
         if (!ec)
             check_pixel_count(path, w, h, file_bytes,
-                              ext == ".tga" ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
+                              decodes_as_tga(f.get()) ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
         if (stbi_is_hdr_from_file(f.get()))
             if (const std::string reason = hdr_rle_problem(f.get(), w, h); !reason.empty())
                 throw_read_error(path, reason);
