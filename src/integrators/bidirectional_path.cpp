@@ -127,9 +127,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
     const scene::Light::Kind kind = P.scene.lights[li].kind;
     const bool at_infinity = light.is_infinite() || kind == scene::Light::Kind::Directional;
     const bool area = kind == scene::Light::Kind::Area;
-    // The density of choosing the start by direct light sampling, in the measure MIS compares it
-    // in: area for lights in the scene (1 for point and spot lights), solid angle at infinity.
-    const float direct_pdf = pmf * (at_infinity ? e.pdf_dir : e.pdf_pos);
+    const float direct_pdf = direct_density(pmf, e.pdf_pos, e.pdf_dir, at_infinity);
     const float emit_pdf = pmf * e.pdf_pos * e.pdf_dir;
     const float cos_light = area ? std::fabs(dot(e.n, e.ray.dir)) : 1.0f;
     SubpathMis mis = start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(), at_infinity, f);

@@ -115,13 +115,7 @@ bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
     // ray does.
     Vec3 through = c.lens + dir;
     if (cam_.lens_radius > 0) through = c.lens + dir * (cam_.focal_distance / cos_axis);
-    const Vec3 v = through - eye_;
-    const float z = dot(v, forward_);
-    if (!(z > 0)) return false;
-    const float sx = dot(v, right_) / z, sy = dot(v, up_) / z;
-    c.fx = (sx / half_w_ + 1.0f) * 0.5f * float(width_);
-    c.fy = (1.0f - sy / half_h_) * 0.5f * float(height_);
-    if (!(c.fx >= 0 && c.fx < float(width_) && c.fy >= 0 && c.fy < float(height_))) return false;
+    if (!project(through, c.fx, c.fy)) return false;
     c.wi = -dir;
     c.distance = dist;
     c.pdf_dir = direction_pdf(dir);

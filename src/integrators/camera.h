@@ -24,8 +24,8 @@ public:
 
     // Ray through film position (fx, fy) in pixels (0..width, 0..height), lens sample `u_lens`.
     accel::Ray generate_ray(float fx, float fy, Vec2 u_lens) const;
-    // Projects a world point to film coordinates; returns false if it is behind the camera or
-    // outside the image. Used by tests and debugging tools.
+    // Projects a world point to film coordinates through the pinhole at eye(); returns false if it
+    // is behind the camera or outside the image. Light tracing (connect), tests and debugging tools.
     bool project(Vec3 p, float& fx, float& fy) const;
     // The pixel footprint measured at the image centre (between the centres of two neighbouring
     // pixels' rays, lens centre): constant offset for orthographic views, slope for perspective.

@@ -10,11 +10,9 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstring>
 #include <span>
 
 #include "core/byte_buffer.h"
-#include "core/log.h"
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/bidirectional_path.h"
@@ -68,7 +66,6 @@ public:
         }
     }
     size_t planes() const { return planes_; }
-    size_t pixels() const { return pixels_; }
     std::vector<int64_t> values() const {
         std::vector<int64_t> v(sums_.size());
         for (size_t i = 0; i < v.size(); ++i) v[i] = sums_[i].load();
@@ -158,9 +155,8 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
     light.pdf_Le(ls.n_light, -ls.wi, pdf_pos, pdf_dir);
     const float cos_light = area ? std::fabs(dot(ls.n_light, ls.wi)) : 1.0f;
     const float d2 = at_infinity ? 1.0f : ls.distance * ls.distance;
-    // The densities MIS compares (trace_light_path's start): area measure in the scene, solid
-    // angle at infinity; BSDF sampling competes with area and infinite lights only.
-    const float direct_pdf_a = pmf * (at_infinity ? pdf_dir : pdf_pos);
+    // BSDF sampling competes with area and infinite lights only (vcm_mis.h: direct_density).
+    const float direct_pdf_a = vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
     const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
     const float w =
         vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
@@ -237,8 +233,8 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
     float pdf_pos = 0, pdf_dir = 0;
     C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
-    const float direct_pdf_a = pmf * (at_infinity ? pdf_dir : pdf_pos);
-    return vcm::emitter_hit_weight(camera, direct_pdf_a, pmf * pdf_pos * pdf_dir, C.it.merge_direct);
+    return vcm::emitter_hit_weight(camera, vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
+                                   pmf * pdf_pos * pdf_dir, C.it.merge_direct);
 }
 
 // One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its

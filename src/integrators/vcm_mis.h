@@ -50,6 +50,15 @@ struct SubpathMis {
     float dVC_last = 0;  // the part of dVC that is merging at the last scattering vertex
 };
 
+// The density MIS gives direct light sampling of a light point (the subpath's start, the emitter
+// hit, the light sample): its emission position density pdf_pos (area measure; 1 for point and
+// spot lights) for lights in the scene, its direction density pdf_dir (solid angle) for lights at
+// infinity, times the light's selection probability pmf. Whatever density sample_Li really drew the
+// point with, the same convention in every strategy keeps the weights a partition of unity.
+inline float direct_density(float pmf, float pdf_pos, float pdf_dir, bool at_infinity) {
+    return pmf * (at_infinity ? pdf_dir : pdf_pos);
+}
+
 // A light subpath leaving its light: direct_pdf_a is the density of choosing that point by
 // direct light sampling (area measure, solid angle for lights at infinity), emit_pdf that of
 // emitting this ray (position x direction), both times the light's selection probability.

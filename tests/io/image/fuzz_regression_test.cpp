@@ -28,6 +28,17 @@ std::string write(const TempDir& dir, const std::string& name, const std::string
     return path;
 }
 
+// Reading `path` must fail with InputError naming `reason`; `accepted` is the failure message
+// when it is read instead.
+void expect_refused(const std::string& path, const std::string& reason, const std::string& accepted) {
+    try {
+        read_image(path);
+        ADD_FAILURE() << accepted;
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find(reason), std::string::npos) << e.what();
+    }
+}
+
 // An 8x8 grey baseline JPEG whose DC table has the given 16 code counts (as hex) and one symbol,
 // and whose AC table has one code (as in fuzz/make_seeds.py).
 std::string tiny_jpeg(const std::string& dc_counts) {
@@ -51,12 +62,8 @@ TEST(ImageFuzz, JpegHuffmanTableWithTooManyCodesIsRejected) {
     // fuzzer's second input).
     for (const std::string& bytes :
          {found, tiny_jpeg("ffffffffffffffffffffffffffffffff"), "\xff\xff\xff" + found}) {
-        try {
-            read_image(write(dir, "bad.jpg", bytes));
-            ADD_FAILURE() << "accepted a JPEG with an impossible Huffman table";
-        } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("Huffman table"), std::string::npos) << e.what();
-        }
+        expect_refused(write(dir, "bad.jpg", bytes), "Huffman table",
+                       "accepted a JPEG with an impossible Huffman table");
     }
     // The same file with a proper table (one code) reads: an 8x8 mid-grey image.
     const Image ok = read_image(write(dir, "ok.jpg", tiny_jpeg("01000000000000000000000000000000")), false);
@@ -71,12 +78,8 @@ TEST(ImageFuzz, JpegHuffmanTableWithTooManyCodesIsRejected) {
 TEST(ImageFuzz, HugeHeaderOnATinyFileIsRejected) {
     TempDir dir;
     const std::string tga = from_hex("00000a00000000000000ffffffff010b1860830a141e");
-    try {
-        read_image(write(dir, "huge.tga", tga));
-        ADD_FAILURE() << "accepted a 22-byte TGA of 65535 x 2817 pixels";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("implausibly many"), std::string::npos) << e.what();
-    }
+    expect_refused(write(dir, "huge.tga", tga), "implausibly many",
+                   "accepted a 22-byte TGA of 65535 x 2817 pixels");
     // A real TGA of the same kind (one run of 4 pixels) still reads.
     const Image ok =
         read_image(write(dir, "ok.tga", from_hex("00000a0000000000000000000400010018208300ff00")), false);
@@ -95,12 +98,8 @@ TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
         "424d46000000464f524d41543d33322d6269745f726c655f7267010018000000000010000000130b0000130b00000000"
         "00424d460000000000000036000000280000000a00233f524742450a000002000000010018000000000010000000130b"
         "0000130b00000000000000000000ffff000000ff0000ffffff0000");
-    try {
-        read_image(write(dir, "huge.bmp", found));
-        ADD_FAILURE() << "accepted a 123-byte BMP whose header asks for more than 2^63 bytes";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("truncated BMP"), std::string::npos) << e.what();
-    }
+    expect_refused(write(dir, "huge.bmp", found), "truncated BMP",
+                   "accepted a 123-byte BMP whose header asks for more than 2^63 bytes");
 }
 
 // A BMP whose compression field holds no known code (0xBB000000): stb read it as uncompressed
@@ -112,12 +111,8 @@ TEST(ImageFuzz, BmpWithAnUnknownCompressionCodeIsRejected) {
     const std::string found = from_hex(
         "424d00460000000000002e0000002800000003000000feff23ff01000800000000bb000800000000000000"
         "000000000000000000000000000000fffffffffffffffffffffffdffffffffffffffffffffffffff000020");
-    try {
-        read_image(write(dir, "rows.bmp", found));
-        ADD_FAILURE() << "accepted an 86-byte BMP with compression code 0xBB000000";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("unsupported BMP compression"), std::string::npos) << e.what();
-    }
+    expect_refused(write(dir, "rows.bmp", found), "unsupported BMP compression",
+                   "accepted an 86-byte BMP with compression code 0xBB000000");
 }
 
 // A 98-byte run-length TGA claiming 512 x 6144 pixels: stb fills what the file lacks, so it
@@ -132,12 +127,8 @@ TEST(ImageFuzz, RunLengthTgaClaimingMorePixelsThanPacketsCanHoldIsRejected) {
     // stb recognises TGA by content: the bound holds whatever the name (the fuzzer's third input
     // was a TGA named .jpg).
     for (const char* name : {"rle.tga", "rle.jpg"}) {
-        try {
-            read_image(write(dir, name, found));
-            ADD_FAILURE() << name << ": accepted a 98-byte TGA claiming 512 x 6144 pixels";
-        } catch (const InputError& e) {
-            EXPECT_NE(std::string(e.what()).find("implausibly many"), std::string::npos) << e.what();
-        }
+        expect_refused(write(dir, name, found), "implausibly many",
+                       std::string(name) + ": accepted a 98-byte TGA claiming 512 x 6144 pixels");
     }
     // 256 x 256 grey pixels of value 200 in 512 full run packets (0xFF = run of 128, then the value).
     std::string tga(18, '\0');
@@ -158,12 +149,7 @@ TEST(ImageFuzz, TruncatedRunLengthHdrIsRejected) {
     TempDir dir;
     const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
     const std::string found = header + from_hex("020200088801010101010101");
-    try {
-        read_image(write(dir, "cut.hdr", found));
-        ADD_FAILURE() << "accepted a truncated run-length HDR";
-    } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("corrupt HDR"), std::string::npos) << e.what();
-    }
+    expect_refused(write(dir, "cut.hdr", found), "corrupt HDR", "accepted a truncated run-length HDR");
     // The whole scanline (a run of 8 for each component) reads.
     const Image ok = read_image(write(dir, "ok.hdr", header + from_hex("020200088864883288198880")), false);
     ASSERT_EQ(ok.width, 8);
