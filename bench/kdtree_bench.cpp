@@ -2,11 +2,20 @@
 // on 1 and 2 threads, nanoflann's serial build) and single-threaded query rate for "k nearest
 // within a max radius" (k = 50, 200) and a fixed-radius range query, at 1 M and 10 M photons.
 // The setup checks that both libraries return identical neighbour sets before timing anything.
+// BM_BuildPhosInPlace times the in-place build (build(std::vector&&), the array copied outside
+// the timing) at 10 M photons, and at 100 M too with PHOS_BENCH_BIG=1 (~6 GB of memory).
 //
 //   build/kdtree_bench                    (Google Benchmark flags apply, e.g. --benchmark_filter=Knn)
+//   PHOS_BENCH_BIG=1 build/kdtree_bench --benchmark_filter=Build
 // Rates are per CPU second of the querying thread (Google Benchmark's default), which keeps the
-// comparison meaningful on a shared machine; build times are wall-clock.
+// comparison meaningful on a shared machine; build times are wall-clock. Build counters:
+// photons/s (wall-clock), peak_RSS_MiB (getrusage ru_maxrss after the build; on Linux the
+// high-water mark is reset just before each build through /proc/self/clear_refs, so this is the
+// peak during the build, including the input and everything else alive) and extra_B/photon (that
+// peak minus the resident size just before the build, per photon: the build's own memory).
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
+#include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
 #include <algorithm>
@@ -14,6 +23,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <nanoflann.hpp>
@@ -92,10 +102,11 @@ private:
 
 // 85 % of the photons uniform on the surfaces, 15 % in a "caustic" on the floor whose density
 // grows towards its centre (radius 0.08, density ~ 1/r).
+// Each photon has its own random stream, so the set does not depend on the thread count.
 std::vector<Photon> make_photons(size_t n, uint64_t seed) {
     const SurfaceSampler surfaces;
     std::vector<Photon> photons(n);
-    for (size_t i = 0; i < n; ++i) {
+    tbb::parallel_for(size_t(0), n, [&](size_t i) {
         Sampler rng(seed, i);
         Vec3 p;
         if (rng.next() < 0.15f) {
@@ -106,8 +117,16 @@ std::vector<Photon> make_photons(size_t n, uint64_t seed) {
             p = surfaces.sample(rng);
         }
         photons[i] = Photon(p, Rgb(1e-6f), Vec3(0, 1, 0), Vec3(0, 1, 0));
-    }
+    });
     return photons;
+}
+
+// The photon sets, made once per size.
+const std::vector<Photon>& photon_set(size_t n) {
+    static std::map<size_t, std::unique_ptr<std::vector<Photon>>> cache;
+    auto& slot = cache[n];
+    if (!slot) slot = std::make_unique<std::vector<Photon>>(make_photons(n, 1));
+    return *slot;
 }
 
 // ---- nanoflann over a packed copy of the positions (its most favourable layout) ----
@@ -163,7 +182,7 @@ struct NanoRange {
 // ---- shared data, made once per size ----
 
 struct Dataset {
-    std::vector<Photon> photons;
+    const std::vector<Photon>* photons = nullptr;
     std::vector<float> xyz;
     PointCloud cloud;
     std::vector<Vec3> queries;
@@ -236,12 +255,13 @@ Dataset& dataset(size_t n) {
     slot = std::make_unique<Dataset>();
     Dataset& d = *slot;
     std::fprintf(stderr, "setup: %zu photons\n", n);
-    d.photons = make_photons(n, 1);
+    d.photons = &photon_set(n);
     d.xyz.resize(3 * n);
     for (size_t i = 0; i < n; ++i) {
-        d.xyz[3 * i] = d.photons[i].position.x;
-        d.xyz[3 * i + 1] = d.photons[i].position.y;
-        d.xyz[3 * i + 2] = d.photons[i].position.z;
+        const Vec3 p = (*d.photons)[i].position;
+        d.xyz[3 * i] = p.x;
+        d.xyz[3 * i + 1] = p.y;
+        d.xyz[3 * i + 2] = p.z;
     }
     d.cloud = {d.xyz.data(), n};
     const SurfaceSampler surfaces;
@@ -252,7 +272,7 @@ Dataset& dataset(size_t n) {
     KdTreeOptions options;
     options.leaf_size = kPhosLeaf;
     options.keep_input_index = true;
-    tbb::task_arena(2).execute([&] { d.phos = std::make_unique<PhotonKdTree>(d.photons, options); });
+    tbb::task_arena(2).execute([&] { d.phos = std::make_unique<PhotonKdTree>(*d.photons, options); });
     std::fprintf(stderr, "  phos build (2 threads): %.3f s\n", seconds_since(t0));
     t0 = std::chrono::steady_clock::now();
     d.nano =
@@ -266,19 +286,86 @@ Dataset& dataset(size_t n) {
     return d;
 }
 
+// ---- memory ----
+
+// Resets the process's peak resident size (Linux >= 4.0; elsewhere ru_maxrss stays the lifetime peak).
+void reset_peak_rss() { std::ofstream("/proc/self/clear_refs") << "5"; }
+
+double peak_rss_bytes() {
+    rusage u{};
+    getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_maxrss) * 1024.0;  // KiB on Linux
+}
+
+double current_rss_bytes() {
+    std::ifstream statm("/proc/self/statm");
+    double pages = 0, resident = 0;
+    statm >> pages >> resident;
+    return resident * 4096.0;
+}
+
+// Times `build` (wall-clock, manual time) and reports the build counters described at the top.
+template <class Prepare, class Build>
+void time_builds(benchmark::State& state, size_t n, Prepare&& prepare, Build&& build) {
+    double seconds = 0, peak = 0, extra = 0;
+    for (auto _ : state) {
+        state.PauseTiming();
+        prepare();
+        const double before = current_rss_bytes();
+        reset_peak_rss();
+        state.ResumeTiming();
+        const auto t0 = std::chrono::steady_clock::now();
+        build();
+        const double t = seconds_since(t0);
+        state.SetIterationTime(t);
+        seconds += t;
+        peak = std::max(peak, peak_rss_bytes());
+        extra = std::max(extra, peak_rss_bytes() - before);
+    }
+    state.counters["threads"] = double(state.range(1));
+    state.counters["photons/s"] = double(n) * double(state.iterations()) / seconds;
+    state.counters["peak_RSS_MiB"] = peak / (1024.0 * 1024.0);
+    state.counters["extra_B/photon"] = extra / double(n);
+}
+
 // ---- benchmarks ----
 
+// The build from a span (a copy of the caller's photons, then the in-place build).
 void BM_BuildPhos(benchmark::State& state) {
-    const Dataset& d = dataset(size_t(state.range(0)));
+    const size_t n = size_t(state.range(0));
+    const std::vector<Photon>& photons = photon_set(n);
     tbb::task_arena arena(int(state.range(1)));
     KdTreeOptions options;
     options.leaf_size = kPhosLeaf;
-    for (auto _ : state) {
-        PhotonKdTree tree;
-        arena.execute([&] { tree.build(d.photons, options); });
-        benchmark::DoNotOptimize(tree.photons().data());
-    }
-    state.counters["threads"] = double(state.range(1));
+    std::unique_ptr<PhotonKdTree> tree;
+    time_builds(
+        state, n, [&] { tree = std::make_unique<PhotonKdTree>(); },
+        [&] {
+            arena.execute([&] { tree->build(photons, options); });
+            benchmark::DoNotOptimize(tree->photons().data());
+        });
+}
+
+// The in-place build: the tree takes over a fresh copy of the photons (made untimed).
+void BM_BuildPhosInPlace(benchmark::State& state) {
+    const size_t n = size_t(state.range(0));
+    const std::vector<Photon>& photons = photon_set(n);
+    tbb::task_arena arena(int(state.range(1)));
+    KdTreeOptions options;
+    options.leaf_size = kPhosLeaf;
+    std::unique_ptr<PhotonKdTree> tree;
+    std::vector<Photon> copy;
+    time_builds(
+        state, n,
+        [&] {
+            tree.reset();
+            copy = photons;
+            tree = std::make_unique<PhotonKdTree>();
+        },
+        [&] {
+            arena.execute([&] { tree->build(std::move(copy), options); });
+            benchmark::DoNotOptimize(tree->photons().data());
+        });
 }
 
 void BM_BuildNanoflann(benchmark::State& state) {
@@ -361,7 +448,27 @@ void knn_args(benchmark::internal::Benchmark* b) {
     for (int64_t n : kSizes) b->Args({n, 50})->Args({n, 200});
 }
 
-BENCHMARK(BM_BuildPhos)->Apply(build_args)->Unit(benchmark::kMillisecond)->Iterations(3);
+void in_place_args(benchmark::internal::Benchmark* b) { b->Args({10'000'000, 1})->Args({10'000'000, 2}); }
+
+BENCHMARK(BM_BuildPhos)->Apply(build_args)->Unit(benchmark::kMillisecond)->Iterations(3)->UseManualTime();
+BENCHMARK(BM_BuildPhosInPlace)
+    ->Apply(in_place_args)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(3)
+    ->UseManualTime();
+// 100 M photons only with PHOS_BENCH_BIG=1 (registered at start-up, after the ones above).
+[[maybe_unused]] const bool kBigRegistered = [] {
+    const char* big = std::getenv("PHOS_BENCH_BIG");
+    if (big && std::atoi(big) != 0) {
+        benchmark::RegisterBenchmark("BM_BuildPhosInPlace", BM_BuildPhosInPlace)
+            ->Args({100'000'000, 1})
+            ->Args({100'000'000, 2})
+            ->Unit(benchmark::kMillisecond)
+            ->Iterations(2)
+            ->UseManualTime();
+    }
+    return true;
+}();
 BENCHMARK(BM_BuildNanoflann)->Apply(size_args)->Unit(benchmark::kMillisecond)->Iterations(3);
 BENCHMARK(BM_KnnPhos)->Apply(knn_args)->Unit(benchmark::kMicrosecond);
 BENCHMARK(BM_KnnNanoflann)->Apply(knn_args)->Unit(benchmark::kMicrosecond);

@@ -35,22 +35,21 @@ constexpr double kBvhBuildPerTriangle = 92;
 constexpr double kBvhPerTriangle = 56;
 constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's Embree geometry
 
-// Photon tracing (photon/tracer.cpp) keeps, per stored photon, the photon and its raw power until
-// the powers are normalised; a round's batches hold each photon again with its power and emission
-// index. A round emits up to 2^20 photons, sized by the map that still needs the most emissions,
-// and every map of the stream stores into it (the surplus is cut afterwards): with volume maps, a
-// round of 2^20 emissions fills the surface maps too. The allocator keeps the largest round's
-// freed batch memory for the rest of the run (measured: 1 M to 6 M photons on cornell-diffuse,
-// fog-caustic's volume maps).
-constexpr double kTracedPerPhoton = sizeof(Photon) + sizeof(Rgb);
-constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(Rgb) + sizeof(uint32_t);
+// Photon tracing (photon/tracer.cpp) writes each stored photon once into its map's final array
+// (power rescaled in place at the end); a round's batches hold the round's photons again with
+// their emission index. A round emits up to 2^20 photons, sized by the map that still needs the
+// most emissions, and every map of the stream stores into it (the surplus is cut afterwards):
+// with volume maps, a round of 2^20 emissions fills the surface maps too. The allocator keeps the
+// largest round's freed batch memory for the rest of the run (measured: 1 M to 6 M photons on
+// cornell-diffuse, fog-caustic's volume maps).
+constexpr double kTracedPerPhoton = sizeof(Photon);
+constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(uint32_t);
 // Stored photons per emitted one, for a round's size and when only --photons bounds a map (1.6
 // measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
 constexpr double kStoredPerEmitted = 1.6;
 constexpr double kRoundPhotons = kStoredPerEmitted * double(1 << 20);
-// The k-d tree build (photon/kdtree.cpp): a 16-byte key and an axis byte per photon, and the tree's
-// own copy, while the traced array still exists.
-constexpr double kKdBuildPerPhoton = 16 + 1 + sizeof(Photon);
+// The k-d tree build (photon/kdtree.cpp) permutes the traced array in place: nothing per photon
+// beyond it. The irradiance cache's points (one per stride photons) are built in place too.
 // Beam estimate of the volume maps: a 40-byte sphere per photon and the BVH's nodes (about one
 // 32-byte node per 4 photons with 16-sphere leaves).
 constexpr double kBeamPerPhoton = sizeof(photon::PhotonSphere) + sizeof(photon::BeamBvh::Node) / 4.0;
@@ -165,8 +164,8 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, con
         !o.photon_viz && o.indirect_light && o.fast_global ? stored_photons(o.indirect, o.photons) : 0,
         media && o.indirect_light ? stored_photons(o.volume, o.photons) : 0,
         media && o.caustics && delta ? stored_photons(o.volume_caustic, o.photons) : 0};
-    double total = 0, largest = 0;
-    for (double x : n) total += x, largest = std::max(largest, x);
+    double total = 0;
+    for (double x : n) total += x;
     const double volume = n[photon::kVolumeMap] + n[photon::kVolumeCausticMap];
     // The largest round: the main stream (global, indirect, volume maps; volume photons are rare,
     // so their rounds are full ones) or the caustic stream (caustic maps, through projection maps).
@@ -184,19 +183,19 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, con
 
     Phase build = common;
     build.name = "photon map build";
-    build.add("photon maps", sizeof(Photon) * total + kKdBuildPerPhoton * largest + retained);
+    build.add("photon maps", sizeof(Photon) * total + retained);
     phases.push_back(build);
 
     Phase render = common;
     render.name = "render";
     render.add("photon maps", sizeof(Photon) * total + retained);
     if (o.volume_estimate == VolumeEstimate::Beam) render.add("beam BVH", kBeamPerPhoton * volume);
-    // Cache points as photons (at their build peak: the k-d tree build's keys and copy), volume
-    // cache points with their moments.
+    // Cache points as photons (their k-d tree built in place), volume cache points with their
+    // moments.
     if (o.irradiance_cache && global && !o.photon_viz)
-        render.add("irradiance cache", (sizeof(Photon) + kKdBuildPerPhoton) * n[photon::kGlobalMap] / stride);
+        render.add("irradiance cache", sizeof(Photon) * n[photon::kGlobalMap] / stride);
     if (o.irradiance_cache && media && o.indirect_light)
-        render.add("irradiance cache", (sizeof(Photon) + kKdBuildPerPhoton + sizeof(photon::VolumeMoments)) *
+        render.add("irradiance cache", (sizeof(Photon) + sizeof(photon::VolumeMoments)) *
                                            n[photon::kVolumeMap] / stride);
     phases.push_back(render);
 }

@@ -131,7 +131,8 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     for (int m = 0; m < photon::kMapCount; ++m) {
         photon::KdTreeOptions ko;
         ko.keep_input_index = record_bounces;
-        maps.map[m].build(traced.photons[m], ko);
+        // In place: the traced array becomes the tree's (no second copy at the peak).
+        maps.map[m].build(std::move(traced.photons[m]), ko);
         maps.emitted[m] = traced.emitted[m];
         if (record_bounces) {  // into tree order
             maps.bounces[m].resize(maps.map[m].size());

@@ -1,9 +1,16 @@
 // A spatial hash grid over SPPM/PPM hit points with per-point radii, rebuilt every iteration:
-// cell size = the largest diameter, every point entered in each cell its sphere's box overlaps
-// (at most 8), entries laid out by counting sort (SmallVCM / pbrt-v4 style), so a photon looks at
-// a single cell. bench/hitpoint_lookup_bench.cpp compares it with a k-d tree.
+// every point is entered in each cell its sphere's box overlaps (at most 8 with the default cell
+// of one diameter), entries laid out by counting sort (SmallVCM / pbrt-v4 style), so a photon looks
+// at a single cell per level. Radii differ a lot in long renders (pixels that never receive a
+// photon keep their first radius while the others shrink), and one grid sized by the largest
+// radius makes every photon scan many far points: so points are split into radius classes by
+// powers of two (r in (R/2^(k+1), R/2^k], R the largest radius; the last class takes all smaller
+// ones), each class a grid with cells sized by its own largest radius. A photon visits one cell per
+// non-empty class. The set of points a query reports does not depend on the classes.
+// bench/hitpoint_lookup_bench.cpp compares it with a k-d tree.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -19,14 +26,16 @@ public:
     // Calls visit(index) for every point i with |p - positions[i]|² <= r2[i], each exactly once.
     template <class Visitor>
     void query(Vec3 p, Visitor&& visit) const {
-        if (entries_.empty()) return;
-        const Vec3 c = (p - lo_) * inv_cell_;
-        if (!(c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < dims_.x && c.y < dims_.y && c.z < dims_.z)) return;
-        const uint32_t h = bucket(int(c.x), int(c.y), int(c.z));
-        for (uint32_t e = start_[h], end = start_[h + 1]; e < end; ++e) {
-            const Entry& en = entries_[e];
-            const float dx = p.x - en.x, dy = p.y - en.y, dz = p.z - en.z;
-            if (dx * dx + dy * dy + dz * dz <= en.r2) visit(en.index);
+        for (const Level& l : levels_) {
+            const Vec3 c = (p - l.lo) * l.inv_cell;
+            if (!(c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < l.dims.x && c.y < l.dims.y && c.z < l.dims.z))
+                continue;
+            const uint32_t h = bucket(int(c.x), int(c.y), int(c.z), l.mask);
+            for (uint32_t e = l.start[h], end = l.start[h + 1]; e < end; ++e) {
+                const Entry& en = l.entries[e];
+                const float dx = p.x - en.x, dy = p.y - en.y, dz = p.z - en.z;
+                if (dx * dx + dy * dy + dz * dz <= en.r2) visit(en.index);
+            }
         }
     }
 
@@ -34,26 +43,42 @@ public:
     // cells mean fewer candidates per photon but more entries). Must be >= 0.5.
     void set_cell_factor(float f) { cell_factor_ = f; }
 
-    size_t entry_count() const { return entries_.size(); }
-    float cell_size() const { return inv_cell_ > 0 ? 1 / inv_cell_ : 0; }
+    // Classes of radii (at most kMaxLevels; the default) whose points get a grid of their own.
+    static constexpr int kMaxLevels = 8;
+    void set_max_levels(int n) { max_levels_ = std::clamp(n, 1, kMaxLevels); }
+
+    size_t entry_count() const {
+        size_t n = 0;
+        for (const Level& l : levels_) n += l.entries.size();
+        return n;
+    }
+    size_t level_count() const { return levels_.size(); }
+    // Cell edge of the coarsest level (the largest radius's class).
+    float cell_size() const { return levels_.empty() ? 0 : 1 / levels_.front().inv_cell; }
 
 private:
     struct Entry {
         float x, y, z, r2;
         uint32_t index;
     };
-    uint32_t bucket(int x, int y, int z) const {
+    struct Level {
+        Vec3 lo{0.0f};
+        float inv_cell = 0;
+        Vec3 dims{0.0f};  // cells per axis (as floats, for the bounds test)
+        uint32_t mask = 0;
+        std::vector<uint32_t> start;  // bucket b's entries are [start[b], start[b+1])
+        std::vector<Entry> entries;
+    };
+    static uint32_t bucket(int x, int y, int z, uint32_t mask) {
         const uint32_t h = (uint32_t(x) * 73856093u) ^ (uint32_t(y) * 19349663u) ^ (uint32_t(z) * 83492791u);
-        return h & mask_;
+        return h & mask;
     }
+    void build_level(Level& l, const std::vector<Vec3>& positions, const std::vector<float>& r2,
+                     const std::vector<uint32_t>& members) const;
 
-    Vec3 lo_{0.0f};
-    float inv_cell_ = 0;
     float cell_factor_ = 2;
-    Vec3 dims_{0.0f};  // cells per axis (as floats, for the bounds test)
-    uint32_t mask_ = 0;
-    std::vector<uint32_t> start_;  // bucket b's entries are [start_[b], start_[b+1])
-    std::vector<Entry> entries_;
+    int max_levels_ = kMaxLevels;
+    std::vector<Level> levels_;
 };
 
 }  // namespace phos::photon

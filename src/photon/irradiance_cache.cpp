@@ -5,6 +5,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "dist/ranks.h"
@@ -35,7 +36,7 @@ void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, u
         pts = dist::all_gather(std::span<const Photon>(pts.data() + lo, hi - lo));
         if (pts.size() != n) throw std::runtime_error("irradiance cache: ranks disagree on its size");
     }
-    points_.build(pts);
+    points_.build(std::move(pts));  // in place: no second copy of the points
 }
 
 bool IrradianceCache::lookup(const SurfaceQuery& q, float max_radius, float normal_cos,

@@ -1,14 +1,17 @@
-// Parallel, deterministic construction of the implicit photon k-d tree, the unfiltered kNN query
-// and the brute-force reference query.
+// Parallel, deterministic, in-place construction of the implicit photon k-d tree, the unfiltered kNN
+// query and the brute-force reference query.
 #include "photon/kdtree.h"
 
+#include <immintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
-#include <tbb/parallel_reduce.h>
 
 #include <bit>
+#include <cstddef>
+#include <cstring>
 #include <limits>
+#include <string>
 
 #include "core/error.h"
 
@@ -16,114 +19,525 @@ namespace phos::photon {
 
 namespace {
 
-// The build sorts these 16-byte keys rather than the 20-byte photons (less memory traffic, and the
-// key remembers where its photon came from); the photons are gathered once at the end.
-struct Key {
-    float p[3];
-    uint32_t index;
-};
-
 struct Box {
     float lo[3] = {kInf, kInf, kInf};
     float hi[3] = {-kInf, -kInf, -kInf};
-    void grow(const Key& k) {
-        for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], k.p[a]), hi[a] = std::max(hi[a], k.p[a]);
+    void grow(const Vec3& p) {
+        lo[0] = std::min(lo[0], p.x), hi[0] = std::max(hi[0], p.x);
+        lo[1] = std::min(lo[1], p.y), hi[1] = std::max(hi[1], p.y);
+        lo[2] = std::min(lo[2], p.z), hi[2] = std::max(hi[2], p.z);
     }
     void merge(const Box& o) {
         for (int a = 0; a < 3; ++a) lo[a] = std::min(lo[a], o.lo[a]), hi[a] = std::max(hi[a], o.hi[a]);
     }
+    // Split on the axis where the points (not the cell) spread most: photons lie on planes, and a
+    // tight box never picks an axis along which all points agree, so no level is wasted.
+    int widest_axis() const {
+        int axis = 0;
+        float extent = hi[0] - lo[0];
+        for (int a = 1; a < 3; ++a) {
+            if (hi[a] - lo[a] > extent) axis = a, extent = hi[a] - lo[a];
+        }
+        return axis;
+    }
 };
 
-// Ranges above this size split their work with oneTBB; min/max are exact, so the parallel
-// bounding box equals the serial one.
-constexpr uint32_t kParallelBox = 1u << 18;
-constexpr uint32_t kParallelSubtrees = 1u << 14;
-
-Box bounds(const Key* keys, uint32_t b, uint32_t e) {
-    if (e - b < kParallelBox) {
-        Box box;
-        for (uint32_t i = b; i < e; ++i) box.grow(keys[i]);
-        return box;
-    }
-    return tbb::parallel_reduce(
-        tbb::blocked_range<uint32_t>(b, e, 1u << 16), Box{},
-        [&](const tbb::blocked_range<uint32_t>& r, Box box) {
-            for (uint32_t i = r.begin(); i < r.end(); ++i) box.grow(keys[i]);
-            return box;
-        },
-        [](Box x, const Box& y) {
-            x.merge(y);
-            return x;
-        });
+// Coordinate `axis` of a photon's position, read at a computed offset (no branch on the axis in
+// the partition loops).
+static_assert(offsetof(Photon, position) == 0 && offsetof(Vec3, y) == 4 && offsetof(Vec3, z) == 8);
+inline float key(const Photon& p, int axis) {
+    float x;
+    std::memcpy(&x, reinterpret_cast<const char*>(&p) + sizeof(float) * size_t(axis), sizeof x);
+    return x;
 }
 
-float median3(float a, float b, float c) { return std::max(std::min(a, b), std::min(std::max(a, b), c)); }
+// Work decomposition. Everything parallel is cut into pieces whose bounds depend only on the range
+// being processed (never on the thread count), and every piece's result is a pure function of its
+// input, so the tree is identical at any thread count.
+constexpr uint32_t kChunk = 1u << 14;             // partition chunk: 320 KiB of photons, fits L2
+constexpr uint32_t kLarge = 1u << 18;             // ranges this big use the chunked selection
+constexpr uint32_t kParallelSubtrees = 1u << 14;  // ranges this big build their subtrees in parallel
+constexpr uint32_t kScan = 1u << 16;              // bounding boxes, checks: photons per piece
+constexpr uint32_t kPiece = 1u << 14;             // exchanges: element pairs per piece
+constexpr uint32_t kSampled = 1u << 13;           // serial selection: Floyd-Rivest steps above this
+constexpr uint32_t kSampleMax = 1u << 12;         // serial selection: largest sample
+constexpr uint32_t kTiny = 32;                    // serial selection: select_tiny at most
+constexpr int kMaxLargeSteps = 16;                // parallel selection: steps before going serial
 
-// Puts the element of rank k (by coordinate `axis`) of a[0, n) at a[k], smaller-or-equal ones
-// before it and greater-or-equal ones after, like std::nth_element but 2-4x faster here: a
-// quickselect with a ninther pivot and a branchless Lomuto partition (a swap per element, no
-// mispredicted branches). Runs of equal coordinates (photons on an axis-aligned wall, duplicates)
-// are peeled off by a second `<=` pass so they cannot make it quadratic, and an unlucky pivot
-// sequence falls back to introselect. Deterministic: a pure function of the input order.
-void select_kth(Key* a, uint32_t n, uint32_t k, int axis) {
+// The number of pieces of `size` elements that cover n, and the end of the one starting at
+// `start` in a range ending at e (no overflow near 2^32).
+inline uint32_t pieces_of(uint32_t n, uint32_t size) { return n / size + (n % size != 0); }
+inline uint32_t piece_end(uint32_t start, uint32_t e, uint32_t size) {
+    return start + std::min(e - start, size);
+}
+
+// Puts the element of rank k of the distinct keys a[0, n) at a[k], smaller ones before it and
+// larger ones after: quickselect with a median-of-3 pivot and a branchless Lomuto partition (for
+// the few dozen keys of select_tiny; O(n^2) at worst, no equal keys to worry about).
+inline void select_keys(uint64_t* a, uint32_t n, uint32_t k) {
+    const auto sort2 = [](uint64_t& x, uint64_t& y) {
+        const uint64_t u = std::min(x, y), v = std::max(x, y);
+        x = u, y = v;
+    };
     uint32_t lo = 0, hi = n;
-    const auto less = [axis](const Key& x, const Key& y) { return x.p[axis] < y.p[axis]; };
-    for (int budget = 2 * std::bit_width(n) + 8; hi - lo > 32; --budget) {
-        if (budget == 0) {
-            std::nth_element(a + lo, a + k, a + hi, less);
-            return;
+    while (hi - lo > 2) {
+        const uint32_t mid = lo + (hi - lo) / 2;
+        sort2(a[lo], a[mid]), sort2(a[mid], a[hi - 1]), sort2(a[lo], a[mid]);
+        const uint64_t pivot = a[mid];
+        a[mid] = a[hi - 1];
+        uint32_t s = lo;
+        for (uint32_t i = lo; i < hi - 1; ++i) {
+            const uint64_t t = a[i];
+            a[i] = a[s];
+            a[s] = t;
+            s += t < pivot;
         }
-        const uint32_t len = hi - lo, st = len / 8;
-        const auto v = [&](uint32_t i) { return a[lo + i].p[axis]; };
-        const float pivot = median3(median3(v(0), v(st), v(2 * st)), median3(v(3 * st), v(4 * st), v(5 * st)),
-                                    median3(v(6 * st), v(7 * st), v(len - 1)));
-        const auto partition = [&](auto below) {
-            uint32_t s = lo;
-            for (uint32_t i = lo; i < hi; ++i) {
-                const Key t = a[i];
-                const bool b = below(t.p[axis]);
-                a[i] = a[s];
-                a[s] = t;
-                s += b;
-            }
-            return s;
-        };
-        uint32_t s = partition([pivot](float x) { return x < pivot; });
-        if (s == lo) {  // the pivot is the minimum: split off everything equal to it
-            s = partition([pivot](float x) { return x <= pivot; });
-            if (k < s) return;
-            lo = s;
-        } else if (k < s) {
+        a[hi - 1] = a[s];
+        a[s] = pivot;
+        if (k == s) return;
+        if (k < s) {
             hi = s;
         } else {
-            lo = s;
+            lo = s + 1;
         }
     }
-    std::sort(a + lo, a + hi, less);
+    if (hi - lo == 2) sort2(a[lo], a[lo + 1]);
 }
 
-void build_range(Key* keys, uint8_t* axes, uint32_t b, uint32_t e, uint32_t leaf) {
-    while (e - b > leaf) {
-        // Split on the axis where the points (not the cell) spread most: photons lie on planes,
-        // and a tight box never picks an axis along which all points agree, so no level is wasted.
-        const Box box = bounds(keys, b, e);
-        int axis = 0;
-        float extent = box.hi[0] - box.lo[0];
-        for (int a = 1; a < 3; ++a) {
-            if (box.hi[a] - box.lo[a] > extent) axis = a, extent = box.hi[a] - box.lo[a];
+// Maps a float to an unsigned integer with the same order (-0 just below +0).
+inline uint32_t ordered_bits(float x) {
+    const uint32_t u = std::bit_cast<uint32_t>(x);
+    return u ^ (uint32_t(int32_t(u) >> 31) | 0x80000000u);
+}
+
+// 64-bit mix (splitmix64's finaliser): deterministic pseudo-random sample positions.
+inline uint64_t mix64(uint64_t z) {
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+// A list of disjoint position intervals, addressed by ordinal: element o of the list is the o-th
+// position when the intervals are concatenated in order.
+struct SegmentList {
+    std::vector<uint32_t> start;
+    std::vector<uint32_t> before{0};  // before[j]: positions in the intervals preceding interval j
+    void add(uint32_t b, uint32_t e) {
+        if (b >= e) return;
+        start.push_back(b);
+        before.push_back(before.back() + (e - b));
+    }
+    uint32_t size() const { return before.back(); }
+};
+
+// Walks a SegmentList from ordinal o: `pos` is the current position, `left` how many positions
+// remain in its interval.
+struct Cursor {
+    const SegmentList* list;
+    size_t j;
+    uint32_t pos, left;
+    Cursor(const SegmentList& l, uint32_t o) : list(&l) {
+        j = size_t(std::upper_bound(l.before.begin(), l.before.end(), o) - l.before.begin()) - 1;
+        pos = l.start[j] + (o - l.before[j]);
+        left = l.before[j + 1] - o;
+    }
+    void advance(uint32_t m) {
+        pos += m, left -= m;
+        if (left == 0 && j + 2 < list->before.size()) {
+            ++j;
+            pos = list->start[j];
+            left = list->before[j + 1] - list->before[j];
         }
-        const uint32_t m = b + (e - b) / 2;
-        select_kth(keys + b, e - b, m - b, axis);
-        axes[m] = uint8_t(axis);
-        if (e - b > kParallelSubtrees) {
-            tbb::parallel_invoke([=] { build_range(keys, axes, b, m, leaf); },
-                                 [=] { build_range(keys, axes, m + 1, e, leaf); });
+    }
+};
+
+// The photons, and with kIndex their input indices, permuted together.
+template <bool kIndex>
+struct Builder {
+    Photon* p;
+    uint32_t* idx;
+    uint32_t leaf;
+
+    void swap(uint32_t i, uint32_t j) const {
+        std::swap(p[i], p[j]);
+        if constexpr (kIndex) std::swap(idx[i], idx[j]);
+    }
+
+    // The position and the power word share one 16-byte SSE load (lane 3 is ignored).
+    Box bounds_serial(uint32_t b, uint32_t e) const {
+        __m128 lo0 = _mm_set1_ps(kInf), hi0 = _mm_set1_ps(-kInf), lo1 = lo0, hi1 = hi0;
+        uint32_t i = b;
+        for (; i + 1 < e; i += 2) {
+            const __m128 v0 = _mm_loadu_ps(&p[i].position.x), v1 = _mm_loadu_ps(&p[i + 1].position.x);
+            lo0 = _mm_min_ps(lo0, v0), hi0 = _mm_max_ps(hi0, v0);
+            lo1 = _mm_min_ps(lo1, v1), hi1 = _mm_max_ps(hi1, v1);
+        }
+        if (i < e) {
+            const __m128 v = _mm_loadu_ps(&p[i].position.x);
+            lo0 = _mm_min_ps(lo0, v), hi0 = _mm_max_ps(hi0, v);
+        }
+        alignas(16) float lo[4], hi[4];
+        _mm_store_ps(lo, _mm_min_ps(lo0, lo1));
+        _mm_store_ps(hi, _mm_max_ps(hi0, hi1));
+        Box box;
+        for (int a = 0; a < 3; ++a) box.lo[a] = lo[a], box.hi[a] = hi[a];
+        return box;
+    }
+
+    // Per-piece boxes merged in piece order: the same at any thread count.
+    Box bounds(uint32_t b, uint32_t e) const {
+        if (e - b <= kScan) return bounds_serial(b, e);
+        const uint32_t pieces = pieces_of(e - b, kScan);
+        std::vector<Box> part(pieces);
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, pieces),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              for (uint32_t c = r.begin(); c < r.end(); ++c)
+                                  part[c] = bounds_serial(b + c * kScan, piece_end(b + c * kScan, e, kScan));
+                          });
+        Box box;
+        for (const Box& x : part) box.merge(x);
+        return box;
+    }
+
+    // Moves the elements of [b, e) for which below(coordinate) holds to the front, keeping nothing
+    // else in order, and returns where they end. A branchless Lomuto partition: a swap per element
+    // and no mispredicted branches.
+    template <class Below>
+    uint32_t partition_lomuto(uint32_t b, uint32_t e, int axis, Below below) const {
+        uint32_t s = b;
+        for (uint32_t i = b; i < e; ++i) {
+            const Photon t = p[i];
+            const bool is_below = below(key(t, axis));
+            p[i] = p[s];
+            p[s] = t;
+            if constexpr (kIndex) {
+                const uint32_t u = idx[i];
+                idx[i] = idx[s];
+                idx[s] = u;
+            }
+            s += is_below;
+        }
+        return s;
+    }
+
+    // The same result contract, with far fewer moves: a block partition (Edelkamp & Weiss,
+    // "BlockQuicksort: avoiding branch mispredictions in quicksort", ESA 2016). A block of kBlock
+    // elements at each end is scanned without branches, recording the offsets of the elements on
+    // the wrong side; then only those are swapped in pairs. [b, l) is done (below), [r, e) too (not
+    // below); a block is dropped from the unprocessed middle once its wrong elements are all
+    // swapped; the last <= 2 kBlock elements take the Lomuto partition.
+    template <class Below>
+    uint32_t partition(uint32_t b, uint32_t e, int axis, Below below) const {
+        constexpr uint32_t kBlock = 64;
+        uint8_t wrong_l[kBlock], wrong_r[kBlock];
+        uint32_t l = b, r = e, nl = 0, nr = 0, sl = 0, sr = 0;
+        while (r - l > 2 * kBlock) {
+            if (nl == 0) {
+                sl = 0;
+                for (uint32_t i = 0; i < kBlock; ++i) {
+                    wrong_l[nl] = uint8_t(i);
+                    nl += !below(key(p[l + i], axis));
+                }
+            }
+            if (nr == 0) {
+                sr = 0;
+                for (uint32_t i = 0; i < kBlock; ++i) {
+                    wrong_r[nr] = uint8_t(i);
+                    nr += below(key(p[r - 1 - i], axis));
+                }
+            }
+            const uint32_t m = std::min(nl, nr);
+            for (uint32_t j = 0; j < m; ++j) swap(l + wrong_l[sl + j], r - 1 - wrong_r[sr + j]);
+            nl -= m, nr -= m, sl += m, sr += m;
+            if (nl == 0) l += kBlock;
+            if (nr == 0) r -= kBlock;
+        }
+        return partition_lomuto(l, r, axis, below);
+    }
+
+    // Selection in a range of at most kTiny photons: selects among (coordinate, position) pairs
+    // packed into 64-bit integers and moves the photons once, instead of swapping 20-byte records.
+    void select_tiny(uint32_t b, uint32_t e, uint32_t k, int axis) const {
+        const uint32_t n = e - b;
+        uint64_t order[kTiny];
+        for (uint32_t i = 0; i < n; ++i) order[i] = uint64_t(ordered_bits(key(p[b + i], axis))) << 32 | i;
+        select_keys(order, n, k - b);
+        alignas(Photon) unsigned char tmp[kTiny * sizeof(Photon)];  // raw: no default construction
+        std::memcpy(tmp, p + b, n * sizeof(Photon));
+        for (uint32_t i = 0; i < n; ++i)
+            std::memcpy(static_cast<void*>(p + b + i), tmp + sizeof(Photon) * uint32_t(order[i]),
+                        sizeof(Photon));
+        if constexpr (kIndex) {
+            uint32_t itmp[kTiny];
+            std::memcpy(itmp, idx + b, n * sizeof(uint32_t));
+            for (uint32_t i = 0; i < n; ++i) idx[b + i] = itmp[uint32_t(order[i])];
+        }
+    }
+
+    // Guaranteed O(n log n) fallback for select_small (heapsort).
+    void heap_sort(uint32_t b, uint32_t e, int axis) const {
+        const auto sift = [&](uint32_t root, uint32_t n) {
+            for (;;) {
+                uint32_t c = 2 * root + 1;
+                if (c >= n) return;
+                if (c + 1 < n && key(p[b + c + 1], axis) > key(p[b + c], axis)) ++c;
+                if (!(key(p[b + c], axis) > key(p[b + root], axis))) return;
+                swap(b + root, b + c);
+                root = c;
+            }
+        };
+        const uint32_t n = e - b;
+        for (uint32_t i = n / 2; i-- > 0;) sift(i, n);
+        for (uint32_t m = n; m > 1; --m) {
+            swap(b, b + m - 1);
+            sift(0, m - 1);
+        }
+    }
+
+    static float median3(float a, float b, float c) {
+        return std::max(std::min(a, b), std::min(std::max(a, b), c));
+    }
+
+    // The values just below and above the sample rank that corresponds to rank k - b of [b, e),
+    // from a pseudo-random sample of s coordinates (Floyd & Rivest, "Expected time bounds for
+    // selection", CACM 1975): rank k lies between them with high probability (the margin is 3
+    // standard deviations of the sample rank), while only ~3/sqrt(s) of the range does. With
+    // `narrow` both are the sample value at that rank. `sample` holds s floats.
+    void pick_pivots(uint32_t b, uint32_t e, uint32_t k, bool narrow, float* sample, uint32_t s, float& lo,
+                     float& hi) const {
+        const uint32_t n = e - b;
+        const uint32_t r = uint32_t(uint64_t(k - b) * s / n);
+        const uint32_t d = narrow ? 0 : uint32_t(1.5f * std::sqrt(float(s))) + 1;
+        const uint32_t ilo = r > d ? r - d : 0, ihi = std::min(s - 1, r + d);
+        std::nth_element(sample, sample + ilo, sample + s);
+        lo = hi = sample[ilo];
+        if (ihi > ilo) {
+            std::nth_element(sample + ilo + 1, sample + ihi, sample + s);
+            hi = sample[ihi];
+        }
+    }
+    // Sample position i of a range of n elements.
+    static uint32_t sample_at(uint32_t i, uint32_t n) { return uint32_t(((mix64(i) >> 32) * n) >> 32); }
+
+    // Puts the element of rank k - b (by coordinate `axis`) of [b, e) at k, smaller-or-equal ones
+    // before it and greater-or-equal ones after, like std::nth_element but several times faster
+    // here. Ranges above kSampled first take Floyd-Rivest steps: two sample values bracket rank
+    // k, two branchless partition passes cut out the band between them (1.5 passes over the
+    // range instead of the ~2.5 of quickselect), and the search continues in the band. Then a
+    // quickselect with a ninther pivot; runs of equal coordinates (photons on an axis-aligned
+    // wall, duplicates) are peeled off by a second `<=` pass so they cannot make it quadratic, and
+    // an unlucky pivot sequence falls back to heapsort. The last kTiny photons take select_tiny.
+    // Deterministic: a pure function of the input order.
+    void select_small(uint32_t b, uint32_t e, uint32_t k, int axis) const {
+        uint32_t lo = b, hi = e;
+        for (int steps = 0; hi - lo > kSampled && steps < 8; ++steps) {
+            const uint32_t n = hi - lo;
+            float sample[kSampleMax];
+            const uint32_t s = std::min(kSampleMax, n / 64);
+            for (uint32_t i = 0; i < s; ++i) sample[i] = key(p[lo + sample_at(i, n)], axis);
+            float plo, phi;
+            pick_pivots(lo, hi, k, false, sample, s, plo, phi);
+            const uint32_t s1 = partition(lo, hi, axis, [plo](float x) { return x < plo; });
+            if (k < s1) {  // rare: rank k is below the band
+                hi = s1;
+                continue;
+            }
+            const uint32_t s2 = partition(s1, hi, axis, [phi](float x) { return x <= phi; });
+            if (k >= s2) {  // rare: above it
+                lo = s2;
+                continue;
+            }
+            if (plo == phi) return;  // the band holds equal coordinates only
+            lo = s1, hi = s2;
+            if (2 * (hi - lo) > n) break;  // few distinct values: leave it to quickselect
+        }
+        for (int budget = 2 * std::bit_width(hi - lo) + 8; hi - lo > kTiny; --budget) {
+            if (budget == 0) {
+                heap_sort(lo, hi, axis);
+                return;
+            }
+            const uint32_t len = hi - lo, st = len / 8;
+            const auto v = [&](uint32_t i) { return key(p[lo + i], axis); };
+            const float pivot =
+                median3(median3(v(0), v(st), v(2 * st)), median3(v(3 * st), v(4 * st), v(5 * st)),
+                        median3(v(6 * st), v(7 * st), v(len - 1)));
+            uint32_t s = partition(lo, hi, axis, [pivot](float x) { return x < pivot; });
+            if (s == lo) {  // the pivot is the minimum: split off everything equal to it
+                s = partition(lo, hi, axis, [pivot](float x) { return x <= pivot; });
+                if (k < s) return;
+                lo = s;
+            } else if (k < s) {
+                hi = s;
+            } else {
+                lo = s;
+            }
+        }
+        select_tiny(lo, hi, k, axis);
+    }
+
+    // Exchanges the elements at ordinals [oa, oa + count) of list a with those at [ob, ob + count)
+    // of list b, pairwise.
+    void exchange(const SegmentList& a, uint32_t oa, const SegmentList& b, uint32_t ob,
+                  uint32_t count) const {
+        if (count == 0) return;
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kPiece),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              Cursor ca(a, oa + r.begin()), cb(b, ob + r.begin());
+                              for (uint32_t i = r.begin(); i < r.end();) {
+                                  const uint32_t m = std::min({ca.left, cb.left, r.end() - i});
+                                  for (uint32_t t = 0; t < m; ++t) swap(ca.pos + t, cb.pos + t);
+                                  ca.advance(m), cb.advance(m), i += m;
+                              }
+                          });
+    }
+
+    // Rotates triples: with pa, pb, pc the positions at ordinal oa + i of a, ob + i of b and oc + i
+    // of c, the element at pb moves to pa, the one at pc to pb and the one at pa to pc.
+    void rotate(const SegmentList& a, uint32_t oa, const SegmentList& b, uint32_t ob, const SegmentList& c,
+                uint32_t oc, uint32_t count) const {
+        if (count == 0) return;
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kPiece),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              Cursor ca(a, oa + r.begin()), cb(b, ob + r.begin()), cc(c, oc + r.begin());
+                              for (uint32_t i = r.begin(); i < r.end();) {
+                                  const uint32_t m = std::min({ca.left, cb.left, cc.left, r.end() - i});
+                                  for (uint32_t t = 0; t < m; ++t) {
+                                      const uint32_t pa = ca.pos + t, pb = cb.pos + t, pc = cc.pos + t;
+                                      const Photon x = p[pa];
+                                      p[pa] = p[pb], p[pb] = p[pc], p[pc] = x;
+                                      if constexpr (kIndex) {
+                                          const uint32_t u = idx[pa];
+                                          idx[pa] = idx[pb], idx[pb] = idx[pc], idx[pc] = u;
+                                      }
+                                  }
+                                  ca.advance(m), cb.advance(m), cc.advance(m), i += m;
+                              }
+                          });
+    }
+
+    // Three-way partition of [b, e) into class 0 (coordinate < lo), 1 (lo <= coordinate <= hi)
+    // and 2 (> hi), returning the class boundaries za <= zb and the bounding boxes of classes 0 and
+    // 2. First every fixed-size chunk is partitioned locally (in cache, in parallel) and the boxes
+    // are taken there; then each element still outside its class's zone is exchanged with one of
+    // the zone's foreign elements: pairs where two classes hold each other's places, 3-cycles for
+    // what remains. Misplaced elements are enumerated in chunk order through SegmentLists, so each
+    // exchange is fixed in advance and the exchanges run in parallel without synchronisation.
+    void partition3(uint32_t b, uint32_t e, int axis, float lo, float hi, uint32_t& za, uint32_t& zb,
+                    Box& box0, Box& box2) const {
+        struct Chunk {
+            uint32_t n0, n1;
+            Box box0, box2;
+        };
+        const uint32_t chunks = pieces_of(e - b, kChunk);
+        std::vector<Chunk> info(chunks);
+        tbb::parallel_for(
+            tbb::blocked_range<uint32_t>(0, chunks), [&](const tbb::blocked_range<uint32_t>& r) {
+                for (uint32_t c = r.begin(); c < r.end(); ++c) {
+                    const uint32_t cb = b + c * kChunk, ce = piece_end(cb, e, kChunk);
+                    const uint32_t s1 = partition(cb, ce, axis, [lo](float x) { return x < lo; });
+                    const uint32_t s2 = partition(s1, ce, axis, [hi](float x) { return x <= hi; });
+                    info[c] = {s1 - cb, s2 - s1, bounds_serial(cb, s1), bounds_serial(s2, ce)};
+                }
+            });
+        uint32_t n0 = 0, n1 = 0;
+        box0 = box2 = Box();
+        for (const Chunk& c : info) {
+            n0 += c.n0, n1 += c.n1;
+            box0.merge(c.box0), box2.merge(c.box2);
+        }
+        za = b + n0, zb = za + n1;
+        // misplaced[x][y]: positions of class-x elements inside zone y (x != y), in chunk order.
+        SegmentList misplaced[3][3];
+        const uint32_t zone[4] = {b, za, zb, e};
+        for (uint32_t c = 0; c < chunks; ++c) {
+            const uint32_t cb = b + c * kChunk, ce = piece_end(cb, e, kChunk);
+            const uint32_t seg[4] = {cb, cb + info[c].n0, cb + info[c].n0 + info[c].n1, ce};
+            for (int x = 0; x < 3; ++x) {
+                for (int y = 0; y < 3; ++y) {
+                    if (x != y)
+                        misplaced[x][y].add(std::max(seg[x], zone[y]), std::min(seg[x + 1], zone[y + 1]));
+                }
+            }
+        }
+        uint32_t done[3][3] = {};
+        for (int x = 0; x < 3; ++x) {
+            for (int y = x + 1; y < 3; ++y) {
+                const uint32_t m = std::min(misplaced[x][y].size(), misplaced[y][x].size());
+                exchange(misplaced[x][y], 0, misplaced[y][x], 0, m);
+                done[x][y] = done[y][x] = m;
+            }
+        }
+        // What is left is a number of 3-cycles, all in the same direction: class x in zone y, y in
+        // zone z and z in zone x. The element of class x goes to where the z one is, and so on.
+        const auto left = [&](int x, int y) { return misplaced[x][y].size() - done[x][y]; };
+        const int x = 0, y = left(0, 1) > 0 ? 1 : 2, z = 3 - y;
+        rotate(misplaced[z][x], done[z][x], misplaced[x][y], done[x][y], misplaced[y][z], done[y][z],
+               left(x, y));
+    }
+
+    // Puts the element of rank k - b of [b, e) along `axis` at k, smaller-or-equal ones before it
+    // and greater-or-equal ones after, and returns the bounding boxes of [b, k) and (k, e) (an
+    // empty box for a part of at most `skip` photons of a small range: a leaf needs none). Large
+    // ranges are split three ways around sample-chosen values (pick_pivots, partition3) and the
+    // search continues in the part that holds rank k: almost always the small middle one, so one
+    // partition pass over the range does most of the work. Every step removes at least one
+    // element or finishes, so runs of equal coordinates cannot loop: a middle part that did not
+    // shrink below half the range is split next around a single value, and a middle part of one
+    // value is done. Should sampling keep failing (2 or 3 steps are usual), the serial selection
+    // finishes the job after kMaxLargeSteps: slower, but O(n log n) at worst.
+    void select(uint32_t b, uint32_t e, uint32_t k, int axis, bool narrow, uint32_t skip, int depth,
+                Box& left, Box& right) const {
+        const uint32_t n = e - b;
+        if (n < kLarge || depth == kMaxLargeSteps) {
+            select_small(b, e, k, axis);
+            left = k - b > skip ? bounds_serial(b, k) : Box();
+            right = e - k - 1 > skip ? bounds_serial(k + 1, e) : Box();
             return;
         }
-        build_range(keys, axes, b, m, leaf);
-        b = m + 1;  // loop on the right subtree instead of recursing
+        const uint32_t s = std::clamp<uint32_t>(n >> 8, 1u << 10, 1u << 16);
+        std::vector<float> sample(s);
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s, 4096),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              for (uint32_t i = r.begin(); i < r.end(); ++i)
+                                  sample[i] = key(p[b + sample_at(i, n)], axis);
+                          });
+        float lo, hi;
+        pick_pivots(b, e, k, narrow, sample.data(), s, lo, hi);
+        uint32_t za, zb;
+        Box box0, box2;
+        partition3(b, e, axis, lo, hi, za, zb, box0, box2);
+        if (k < za) {
+            select(b, za, k, axis, false, 0, depth + 1, left, right);
+            right.merge(bounds(za, zb)), right.merge(box2);
+        } else if (k >= zb) {
+            select(zb, e, k, axis, false, 0, depth + 1, left, right);
+            left.merge(box0), left.merge(bounds(za, zb));
+        } else if (lo == hi) {  // the middle part holds equal coordinates only
+            left = box0, left.merge(bounds(za, k));
+            right = bounds(k + 1, zb), right.merge(box2);
+        } else {
+            select(za, zb, k, axis, 2 * uint64_t(zb - za) > e - b, 0, depth + 1, left, right);
+            left.merge(box0), right.merge(box2);
+        }
     }
-}
+
+    void build(uint32_t b, uint32_t e, Box box) const {
+        while (e - b > leaf) {
+            const int axis = box.widest_axis();
+            const uint32_t m = b + (e - b) / 2;
+            Box left, right;
+            select(b, e, m, axis, false, leaf, 0, left, right);
+            p[m].set_split_axis(axis);
+            if (e - b > kParallelSubtrees) {
+                tbb::parallel_invoke([&] { build(b, m, left); }, [&] { build(m + 1, e, right); });
+                return;
+            }
+            build(b, m, left);
+            b = m + 1, box = right;  // loop on the right subtree instead of recursing
+        }
+        for (uint32_t i = b; i < e; ++i) p[i].set_split_axis(3);
+    }
+};
 
 }  // namespace
 
@@ -145,37 +559,56 @@ void PhotonKdTree::load(ByteReader& in) {
 void PhotonKdTree::build(std::span<const Photon> photons, const KdTreeOptions& options) {
     if (photons.size() >= std::numeric_limits<uint32_t>::max() - 1)
         throw InputError("photon map: too many photons for 32-bit indices");
+    // Copied first, so `photons` may even be this tree's own array.
+    build(std::vector<Photon>(photons.begin(), photons.end()), options);
+}
+
+void PhotonKdTree::build(std::vector<Photon>&& photons, const KdTreeOptions& options) {
+    if (photons.size() >= std::numeric_limits<uint32_t>::max() - 1)
+        throw InputError("photon map: too many photons for 32-bit indices");
     const uint32_t n = uint32_t(photons.size());
     const uint32_t leaf = std::max<uint32_t>(options.leaf_size, 2);
 
-    std::vector<Key> keys(n);
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14),
-                      [&](const tbb::blocked_range<uint32_t>& r) {
-                          for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                              const Vec3 p = photons[i].position;
-                              keys[i] = {{p.x, p.y, p.z}, i};
-                          }
-                      });
-    for (const Key& k : keys) {
-        if (!std::isfinite(k.p[0]) || !std::isfinite(k.p[1]) || !std::isfinite(k.p[2]))
-            throw InputError("photon map: photon " + std::to_string(k.index) + " has a non-finite position");
+    // One pass checks the positions (the first bad one is reported, at any thread count) and
+    // takes the root's bounding box; nothing is modified before it.
+    const uint32_t pieces = pieces_of(n, kScan);
+    std::vector<Box> boxes(pieces);
+    std::vector<uint32_t> bad(pieces, n);
+    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, pieces), [&](const tbb::blocked_range<uint32_t>& r) {
+        for (uint32_t c = r.begin(); c < r.end(); ++c) {
+            Box box;
+            for (uint32_t i = c * kScan, end = piece_end(i, n, kScan); i < end; ++i) {
+                const Vec3 p = photons[i].position;
+                if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                    bad[c] = i;
+                    break;
+                }
+                box.grow(p);
+            }
+            boxes[c] = box;
+        }
+    });
+    Box root;
+    for (uint32_t c = 0; c < pieces; ++c) {
+        if (bad[c] < n)
+            throw InputError("photon map: photon " + std::to_string(bad[c]) + " has a non-finite position");
+        root.merge(boxes[c]);
     }
-    std::vector<uint8_t> axes(n, 3);  // 3 = leaf photon
-    if (n > 0) build_range(keys.data(), axes.data(), 0, n, leaf);
 
-    // Built aside and swapped in, so `photons` may even be this tree's own array.
-    std::vector<Photon> tree(n);
-    std::vector<uint32_t> input_index(options.keep_input_index ? n : 0);
-    tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, 1u << 14),
-                      [&](const tbb::blocked_range<uint32_t>& r) {
-                          for (uint32_t i = r.begin(); i < r.end(); ++i) {
-                              tree[i] = photons[keys[i].index];
-                              tree[i].set_split_axis(axes[i]);
-                              if (!input_index.empty()) input_index[i] = keys[i].index;
-                          }
-                      });
-    photons_.swap(tree);
-    input_index_.swap(input_index);
+    // Taken over before it is permuted, so `photons` may even be this tree's own array.
+    std::vector<Photon> tree = std::move(photons);
+    std::vector<uint32_t> index(options.keep_input_index ? n : 0);
+    if (options.keep_input_index) {
+        tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, kScan),
+                          [&](const tbb::blocked_range<uint32_t>& r) {
+                              for (uint32_t i = r.begin(); i < r.end(); ++i) index[i] = i;
+                          });
+        if (n > 0) Builder<true>{tree.data(), index.data(), leaf}.build(0, n, root);
+    } else if (n > 0) {
+        Builder<false>{tree.data(), nullptr, leaf}.build(0, n, root);
+    }
+    photons_ = std::move(tree);
+    input_index_ = std::move(index);
     leaf_size_ = leaf;
 }
 

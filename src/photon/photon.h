@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <immintrin.h>
 
 #include "core/vec.h"
 
@@ -22,7 +23,7 @@ namespace phos::photon {
 // 2^-127 encode as black. The all-zero word is black.
 inline constexpr float kRgbeMaxRelativeError = 1.0f / 255.0f;
 
-inline uint32_t encode_rgbe(Rgb c) {
+inline uint32_t encode_rgbe_reference(Rgb c) {
     // NaN fails every comparison, so `!(x > 0)` maps NaN and negatives to 0.
     const float r = c.r > 0 ? std::fmin(c.r, 3e38f) : 0.0f;
     const float g = c.g > 0 ? std::fmin(c.g, 3e38f) : 0.0f;
@@ -44,6 +45,34 @@ inline uint32_t encode_rgbe(Rgb c) {
         scale = std::ldexp(1.0f, 8 - e);
     }
     auto q = [&](float v) { return uint32_t(std::fmin(std::nearbyint(v * scale), 255.0f)); };
+    return q(r) | (q(g) << 8) | (q(b) << 16) | (uint32_t(e + 128) << 24);
+}
+
+// The same words as encode_rgbe_reference (photon_record_test.cpp compares them), without its
+// libm calls where the maximum channel is a normal float well inside the exponent range (every
+// photon in practice): the exponent from the bits, powers of two built from bits, and round to
+// nearest even by adding and subtracting 2^23 (exact for 0 <= x < 2^23 in the default rounding
+// mode, which nearbyint also uses). The photon tracer encodes every stored photon twice.
+inline uint32_t encode_rgbe(Rgb c) {
+    const float r = c.r > 0 ? (c.r < 3e38f ? c.r : 3e38f) : 0.0f;
+    const float g = c.g > 0 ? (c.g < 3e38f ? c.g : 3e38f) : 0.0f;
+    const float b = c.b > 0 ? (c.b < 3e38f ? c.b : 3e38f) : 0.0f;
+    const float m = r > g ? (r > b ? r : b) : (g > b ? g : b);
+    const int biased = int(std::bit_cast<uint32_t>(m) >> 23);  // m >= 0: no sign bit
+    if (!(m > 0) || biased < 16 || biased > 240) return encode_rgbe_reference(c);
+    int e = biased - 126;  // frexp's exponent for a normal float
+    const auto pow2 = [](int k) { return std::bit_cast<float>(uint32_t(k + 127) << 23); };
+    // (IEEE semantics, no -ffast-math: the compiler may not fold the sum and difference away.)
+    const auto round_even = [](float x) { return (x + 0x1p23f) - 0x1p23f; };
+    float scale = pow2(8 - e);
+    if (round_even(m * scale) >= 256.0f) {
+        ++e;
+        scale *= 0.5f;
+    }
+    auto q = [&](float v) {
+        const float x = round_even(v * scale);
+        return uint32_t(x < 255.0f ? x : 255.0f);
+    };
     return q(r) | (q(g) << 8) | (q(b) << 16) | (uint32_t(e + 128) << 24);
 }
 
@@ -80,9 +109,10 @@ inline Vec3 oct_decode_ints(int u, int v) {
 }
 }  // namespace detail
 
-// Encodes unit vector `d` into 2*Bits bits (u in the low Bits, v in the next Bits).
+// Encodes unit vector `d` into 2*Bits bits (u in the low Bits, v in the next Bits). This is the
+// reference form: one lattice point at a time. encode_octahedral below gives the same codes.
 template <int Bits>
-inline uint32_t encode_octahedral(Vec3 d) {
+inline uint32_t encode_octahedral_reference(Vec3 d) {
     static_assert(Bits >= 2 && Bits <= 15);
     constexpr int S = (1 << (Bits - 1)) - 1;
     const float l1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
@@ -104,6 +134,58 @@ inline uint32_t encode_octahedral(Vec3 d) {
         }
     }
     return uint32_t(best_u) | (uint32_t(best_v) << Bits);
+}
+
+// The same codes as encode_octahedral_reference, with the four lattice points decoded and compared
+// in the four lanes of one SSE register (each lane does the reference's IEEE operations in the
+// same order, so the results are identical bit for bit; photon_record_test.cpp checks it). This
+// is on the photon tracer's hot path: every stored photon encodes its direction.
+template <int Bits>
+inline uint32_t encode_octahedral(Vec3 d) {
+    static_assert(Bits >= 2 && Bits <= 15);
+    constexpr int S = (1 << (Bits - 1)) - 1;
+    const float l1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+    if (!(l1 > 0) || !std::isfinite(l1)) return uint32_t(S) | (uint32_t(S) << Bits);
+    const float inv = 1.0f / l1;
+    Vec2 p(d.x * inv, d.y * inv);
+    if (d.z < 0) p = detail::oct_wrap(p);
+    // fmin/fmax of the reference: p is finite here, so plain comparisons agree with them.
+    const float px = p.x < -1.0f ? -1.0f : (p.x > 1.0f ? 1.0f : p.x);
+    const float py = p.y < -1.0f ? -1.0f : (p.y > 1.0f ? 1.0f : p.y);
+    const float fu = px * S + S, fv = py * S + S;  // in [0, 2S]: the truncation below is floor
+    const int u0 = int(fu), v0 = int(fv);
+    const int u1 = std::min(u0 + 1, 2 * S), v1 = std::min(v0 + 1, 2 * S);
+    const Vec3 dn = normalize(d);
+    // Lanes in the reference's order (du, dv) = (0,0), (0,1), (1,0), (1,1); _mm_set_ps lists lane 3 first.
+    constexpr float kInv = 1.0f / float(S);
+    const __m128 sign_mask = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f);
+    const __m128 fx = _mm_mul_ps(_mm_set_ps(float(u1 - S), float(u1 - S), float(u0 - S), float(u0 - S)),
+                                 _mm_set1_ps(kInv));
+    const __m128 fy = _mm_mul_ps(_mm_set_ps(float(v1 - S), float(v0 - S), float(v1 - S), float(v0 - S)),
+                                 _mm_set1_ps(kInv));
+    const __m128 ax = _mm_andnot_ps(sign_mask, fx), ay = _mm_andnot_ps(sign_mask, fy);
+    const __m128 z = _mm_sub_ps(_mm_sub_ps(one, ax), ay);
+    // oct_wrap where z < 0: x' = (1 - |y|) sign(x), y' = (1 - |x|) sign(y), sign(0) = +1.
+    const __m128 wrap = _mm_cmplt_ps(z, _mm_setzero_ps());
+    const __m128 neg_x = _mm_andnot_ps(_mm_cmpge_ps(fx, _mm_setzero_ps()), sign_mask);
+    const __m128 neg_y = _mm_andnot_ps(_mm_cmpge_ps(fy, _mm_setzero_ps()), sign_mask);
+    const __m128 wx = _mm_xor_ps(_mm_sub_ps(one, ay), neg_x), wy = _mm_xor_ps(_mm_sub_ps(one, ax), neg_y);
+    const __m128 x = _mm_or_ps(_mm_and_ps(wrap, wx), _mm_andnot_ps(wrap, fx));
+    const __m128 y = _mm_or_ps(_mm_and_ps(wrap, wy), _mm_andnot_ps(wrap, fy));
+    const __m128 len = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+    const __m128 c = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_div_ps(x, len), _mm_set1_ps(dn.x)),
+                                           _mm_mul_ps(_mm_div_ps(y, len), _mm_set1_ps(dn.y))),
+                                _mm_mul_ps(_mm_div_ps(z, len), _mm_set1_ps(dn.z)));
+    alignas(16) float cs[4];
+    _mm_store_ps(cs, c);
+    // The first strictly largest lane wins, as in the reference (which starts from best = -2).
+    int k = 0;
+    float best = cs[0] > -2.0f ? cs[0] : -2.0f;
+    if (!(cs[0] > -2.0f)) k = -1;
+    for (int i = 1; i < 4; ++i)
+        if (cs[i] > best) best = cs[i], k = i;
+    const int u = k >= 2 ? u1 : u0, v = (k & 1) ? v1 : v0;
+    return k < 0 ? uint32_t(u0) | (uint32_t(v0) << Bits) : uint32_t(u) | (uint32_t(v) << Bits);
 }
 
 template <int Bits>

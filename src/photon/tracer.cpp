@@ -16,15 +16,19 @@
 namespace phos::photon {
 namespace {
 
-// What one batch of photon indices stored: per map, the photons (power not yet set), their raw
-// power (flux x N, see PhotonHit) and the index of the emitted photon within the batch (so a map
-// can be cut exactly after the emission that met its target).
+// What one batch of photon indices stored: per map, the photons (their power the raw flux x N,
+// see PhotonHit, rescaled by 1 / N once the maps are complete) and the index of the emitted photon
+// within the batch (so a map can be cut exactly after the emission that met its target). Slices
+// are reused from round to round: clear() keeps their capacity.
 struct Slice {
     std::vector<Photon> photons[kMapCount];
-    std::vector<Rgb> power[kMapCount];
     std::vector<uint32_t> emission[kMapCount];
     std::vector<uint8_t> bounces[kMapCount];  // only with TraceOptions::record_bounces
     uint64_t rays = 0;
+    void clear() {
+        for (int m = 0; m < kMapCount; ++m) photons[m].clear(), emission[m].clear(), bounces[m].clear();
+        rays = 0;
+    }
 };
 
 // Octahedral encoding of the stored normal costs four decodes and dot products per photon, a
@@ -64,12 +68,10 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     NormalCodes normals;
     // Volume photons: no normal; the volume map takes those after a non-specular scattering, the
     // volume caustic map those after specular bounces only (single scattering is not stored).
-    const auto store = [&](const Photon& ph, const bool into[kMapCount], const Rgb& power, uint64_t j,
-                           int bounces) {
+    const auto store = [&](const Photon& ph, const bool into[kMapCount], uint64_t j, int bounces) {
         for (int m = 0; m < kMapCount; ++m) {
             if (!active[m] || !into[m]) continue;
             s.photons[m].push_back(ph);
-            s.power[m].push_back(power);
             s.emission[m].push_back(uint32_t(j));
             if (o.record_bounces) s.bounces[m].push_back(uint8_t(std::min(bounces, 255)));
         }
@@ -77,7 +79,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     for (uint64_t j = 0; j < count; ++j) {
         const auto on_volume = [&](const PhotonVolumeHit& h) {
             const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
-            store(Photon(h.p, Rgb(0.0f), h.wi, Vec3(0.0f)), into, h.power, j, h.bounces);
+            store(Photon(h.p, h.power, h.wi, Vec3(0.0f)), into, j, h.bounces);
             // After a scattering in a medium the path can only feed the non-caustic maps.
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
         };
@@ -85,10 +87,10 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             // Normal on the side the photon arrived from: the estimate compares it with the
             // query's normal turned towards the viewer.
             const Vec3 n = dot(h.hit.ng, h.wi) >= 0 ? h.hit.ng : -h.hit.ng;
-            Photon ph(h.hit.p, Rgb(0.0f), h.wi, Vec3(0.0f));
+            Photon ph(h.hit.p, h.power, h.wi, Vec3(0.0f));
             ph.normal_axis = normals.get(n);  // = set_normal(n), split axis bits as constructed
             const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse, false, false};
-            store(ph, into, h.power, j, h.bounces);
+            store(ph, into, j, h.bounces);
             // Only caustic maps still filling: a path that went diffuse can never store a
             // caustic photon again, so stop it here (most of the caustic map's rounds).
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
@@ -118,7 +120,6 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], T
             for (int m = 0; m < kMapCount; ++m) {
                 if (!active[m]) continue;
                 w.put_vector(s.photons[m]);
-                w.put_vector(s.power[m]);
                 w.put_vector(s.emission[m]);
                 w.put_vector(s.bounces[m]);
             }
@@ -135,7 +136,6 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], T
         for (int m = 0; m < kMapCount; ++m) {
             if (!active[m]) continue;
             s.photons[m] = r.get_vector<Photon>();
-            s.power[m] = r.get_vector<Rgb>();
             s.emission[m] = r.get_vector<uint32_t>();
             s.bounces[m] = r.get_vector<uint8_t>();
         }
@@ -167,12 +167,18 @@ namespace {
 // `out` (see tracer.h for the rounds and the cut at a target).
 void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[kMapCount], uint64_t pass,
                 const ProjectionMap* projection, TracedPhotons& out) {
-    std::vector<Rgb> raw[kMapCount];
     bool active[kMapCount];
     bool any = false;
     for (int m = 0; m < kMapCount; ++m) {
         active[m] = wanted[m] && (o.target[m] > 0 || o.emit > 0);
         any |= active[m];
+        // A map with a target ends within one emission of it (an emission stores at most one
+        // photon per scattering event): its final array is reserved once and filled in place.
+        // Reserved pages that are never written cost no memory.
+        if (active[m] && o.target[m] > 0) {
+            out.photons[m].reserve(size_t(o.target[m]) + size_t(o.max_depth) + 2);
+            if (o.record_bounces) out.bounces[m].reserve(size_t(o.target[m]) + size_t(o.max_depth) + 2);
+        }
     }
     const uint64_t cap =
         std::min<uint64_t>(o.emit > 0 ? o.emit : ~0ull, o.max_emit > 0 ? o.max_emit : 0xffffffffull);
@@ -180,43 +186,65 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     uint64_t next = 0;  // first photon index of the next round
     uint64_t round_batches = 4;
     std::vector<Slice> slices;
+    std::vector<size_t> take[kMapCount], offset[kMapCount];  // per batch: photons kept, where they go
     // An interrupt ends tracing at the next round (its batches are skipped): the caller renders
     // nothing from incomplete maps.
     // (dist::any: under MPI an interrupt on one rank ends the rounds of all.)
     while (any && next < cap && ps.lights.size() > 0 && !dist::any(interrupt::requested())) {
         const uint64_t n_round = std::min(round_batches * B, cap - next);
         const uint64_t nb = (n_round + B - 1) / B;
-        slices.assign(nb, Slice{});
+        if (slices.size() < nb) slices.resize(nb);
         tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
+            slices[b].clear();
             if (interrupt::requested() || !dist::owns(b)) return;
             const uint64_t first = next + b * B;
             trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
                         slices[b]);
         });
         exchange_slices(slices, active, out);
-        // Concatenate in batch order; a map that meets its target stops after that emission.
+        // Count, then fill: the batches' photons in batch order, each map cut after the emission
+        // that met its target, copied in parallel straight into the final arrays.
         for (int m = 0; m < kMapCount; ++m) {
+            take[m].assign(nb, 0);
+            offset[m].assign(nb, 0);
             if (!active[m]) continue;
+            size_t size = out.photons[m].size();
             for (uint64_t b = 0; b < nb && active[m]; ++b) {
                 const Slice& s = slices[b];
                 const size_t n = s.photons[m].size();
                 size_t end = n;
-                if (o.target[m] > 0 && out.photons[m].size() + n >= o.target[m]) {
-                    end = size_t(o.target[m] - out.photons[m].size()) - 1;  // the photon meeting the target
+                if (o.target[m] > 0 && size + n >= o.target[m]) {
+                    end = size_t(o.target[m] - size) - 1;  // the photon meeting the target
                     const uint32_t e = s.emission[m][end];
                     while (end < n && s.emission[m][end] == e) ++end;
                     out.emitted[m] = next + b * B + e + 1;
                     out.reached[m] = true;
                     active[m] = false;
                 }
-                out.photons[m].insert(out.photons[m].end(), s.photons[m].begin(), s.photons[m].begin() + end);
-                raw[m].insert(raw[m].end(), s.power[m].begin(), s.power[m].begin() + end);
-                if (o.record_bounces)
-                    out.bounces[m].insert(out.bounces[m].end(), s.bounces[m].begin(),
-                                          s.bounces[m].begin() + end);
+                offset[m][b] = size;
+                take[m][b] = end;
+                size += end;
             }
+            if (size > out.photons[m].capacity()) {
+                // Only maps without a target (a fixed emission count) grow: by the rate so far.
+                const double per_emission = double(size) / double(next + n_round);
+                const size_t expect = size_t(per_emission * double(cap - std::min(cap, next + n_round)) * 1.05);
+                out.photons[m].reserve(size + expect);
+                if (o.record_bounces) out.bounces[m].reserve(size + expect);
+            }
+            out.photons[m].resize(size);
+            if (o.record_bounces) out.bounces[m].resize(size);
         }
-        for (const Slice& s : slices) out.rays += s.rays;
+        tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
+            const Slice& s = slices[b];
+            for (int m = 0; m < kMapCount; ++m) {
+                if (take[m][b] == 0) continue;
+                std::copy_n(s.photons[m].begin(), take[m][b], out.photons[m].begin() + ptrdiff_t(offset[m][b]));
+                if (o.record_bounces)
+                    std::copy_n(s.bounces[m].begin(), take[m][b], out.bounces[m].begin() + ptrdiff_t(offset[m][b]));
+            }
+        });
+        for (uint64_t b = 0; b < nb; ++b) out.rays += slices[b].rays;
         next += n_round;
         // Size the next round from the storage rate so far (counts only: deterministic): enough
         // emissions to meet the farthest target with 5 % to spare, between 1 and 256 batches.
@@ -236,17 +264,20 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
         }
         round_batches = std::clamp<uint64_t>(uint64_t(std::ceil(need / double(B))), 1, 256);
     }
+    std::vector<Slice>().swap(slices);  // tracing no longer needs them
     out.total_emitted += next;
     // Maps still active ran to the emission cap: their N is everything emitted.
     for (int m = 0; m < kMapCount; ++m)
         if (active[m]) out.emitted[m] = next, out.reached[m] = o.target[m] == 0;
+    // The photons carry their raw power (flux x N): divide by N now that N is known. The power is
+    // rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa step.
     for (int m = 0; m < kMapCount; ++m) {
         std::vector<Photon>& P = out.photons[m];
         if (P.empty() || !wanted[m]) continue;
         const float inv = 1.0f / float(out.emitted[m]);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
                           [&](const tbb::blocked_range<size_t>& r) {
-                              for (size_t i = r.begin(); i < r.end(); ++i) P[i].set_power(raw[m][i] * inv);
+                              for (size_t i = r.begin(); i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
                           });
     }
 }

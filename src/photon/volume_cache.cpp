@@ -4,6 +4,7 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
+#include <utility>
 
 namespace phos::photon {
 
@@ -48,7 +49,7 @@ void VolumeCache::build(const PhotonKdTree& volume, const VolumeEstimateOptions&
         const Photon& ph = volume.photon(uint32_t(i * stride));
         pts[i] = Photon(ph.position, Rgb(0.0f), Vec3(0, 0, 1), Vec3(0, 0, 1));
     }
-    points_.build(pts);
+    points_.build(std::move(pts));  // in place: no second copy of the points
     moments_.assign(points_.size(), VolumeMoments{});
     tbb::parallel_for(tbb::blocked_range<size_t>(0, points_.size(), 256),
                       [&](const tbb::blocked_range<size_t>& r) {

@@ -62,8 +62,10 @@ Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::
     cond_eta_ = m.conductor_eta;
     cond_k_ = m.conductor_k;
     schlick_ = options.schlick;
-    dist_ =
-        MicrofacetDistribution(options.microfacet, MicrofacetDistribution::alpha_from_phong(t_shininess_));
+    // Only the frosted dielectric reads the microfacet distribution.
+    if (!kt_.is_black() && !sharp_glass_)
+        dist_ = MicrofacetDistribution(options.microfacet,
+                                       MicrofacetDistribution::alpha_from_phong(t_shininess_));
 
     if (!m.diffuse.is_black()) lobes_ |= 1u << kLambert;
     if (!ks_.is_black()) lobes_ |= 1u << (mirror_ ? kMirror : kPhong);
@@ -139,8 +141,14 @@ Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo) const {
 Rgb Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return Rgb(0.0f);
-    Vec3 wo_l = frame_.to_local(wo), wi_l = frame_.to_local(wi);
+    Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
+    return eval_local(wo_l, wi, s, mask, mode);
+}
+
+// eval_masked after its side test, with wo already in the (side-flipped) local frame.
+Rgb Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, TransportMode mode) const {
+    Vec3 wi_l = frame_.to_local(wi);
     wi_l.z *= s;
     const float gi = dot(wi, ng_) * s;
     const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
@@ -172,16 +180,23 @@ Rgb Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const
 float Bsdf::pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return 0;
-    Vec3 wo_l = frame_.to_local(wo), wi_l = frame_.to_local(wi);
+    Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
+    float w[kNumLobes];
+    selection_weights(wo_l, mask, w);
+    return pdf_local(wo_l, wi, s, w);
+}
+
+// pdf_masked after its side test, with wo in the (side-flipped) local frame and the lobes'
+// selection weights for the mask.
+float Bsdf::pdf_local(Vec3 wo_l, Vec3 wi, float s, const float w[]) const {
+    Vec3 wi_l = frame_.to_local(wi);
     wi_l.z *= s;
     const float gi = dot(wi, ng_) * s;
     const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
     if (!refl && !trans) return 0;
-    float w[kNumLobes];
-    selection_weights(wo_l, mask, w);
     float total = 0;
-    for (float x : w) total += x;
+    for (int i = 0; i < kNumLobes; ++i) total += w[i];
     if (!(total > 0)) return 0;
 
     float pdf = 0;
@@ -299,8 +314,9 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
         bs.f = coefficient_over_prob * (branch_prob / abs_cos);
         return bs;
     }
-    bs.f = eval_masked(wo, bs.wi, lobe_mask, mode);
-    bs.pdf = pdf_masked(wo, bs.wi, lobe_mask);
+    // eval_masked and pdf_masked of wi (their wo terms are the ones computed above).
+    bs.f = eval_local(wo_l, bs.wi, s, lobe_mask, mode);
+    bs.pdf = pdf_local(wo_l, bs.wi, s, w);
     if (!(bs.pdf > 0) || bs.f.is_black()) return std::nullopt;
     bs.weight = bs.f * (abs_cos / bs.pdf);
     return bs;

@@ -144,6 +144,8 @@ private:
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
     Rgb eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;
+    Rgb eval_local(Vec3 wo_l, Vec3 wi, float side, uint32_t mask, TransportMode mode) const;
+    float pdf_local(Vec3 wo_l, Vec3 wi, float side, const float w[]) const;
 };
 
 }  // namespace phos::shading

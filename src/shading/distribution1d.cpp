@@ -28,7 +28,8 @@ size_t Distribution1D::sample_discrete(float u, float* pmf, float* remapped) con
     const size_t n = weights_.size();
     const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
     // First bin whose upper edge exceeds x; empty bins (zero width) can never satisfy this.
-    size_t i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
+    // (One bin, e.g. a scene's only light: no search.)
+    size_t i = n == 1 ? 0 : size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
     if (i >= n) i = n - 1;
     while (i > 0 && cdf_[i + 1] - cdf_[i] <= 0) --i;  // guard against rounding at the top end
     const double width = cdf_[i + 1] - cdf_[i];

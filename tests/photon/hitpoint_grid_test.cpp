@@ -21,7 +21,8 @@ std::vector<uint32_t> brute_force(const std::vector<Vec3>& pos, const std::vecto
     return out;
 }
 
-void check(float cell_factor, uint64_t seed, float spread = 0.05f) {
+void check(float cell_factor, uint64_t seed, float spread = 0.05f, int max_levels = HitPointGrid::kMaxLevels,
+           size_t min_levels = 1) {
     Sampler s(seed);
     std::vector<Vec3> pos;
     std::vector<float> r2;
@@ -34,7 +35,10 @@ void check(float cell_factor, uint64_t seed, float spread = 0.05f) {
     }
     HitPointGrid grid;
     grid.set_cell_factor(cell_factor);
+    grid.set_max_levels(max_levels);
     grid.build(pos, r2);
+    EXPECT_GE(grid.level_count(), min_levels);
+    EXPECT_LE(grid.level_count(), size_t(max_levels));
     size_t total = 0;
     for (int k = 0; k < 4000; ++k) {
         Vec3 q = k % 2 ? Vec3(s.next(), 0.25f + 0.01f * (s.next() - 0.5f), s.next())
@@ -53,6 +57,14 @@ TEST(HitPointGrid, QueryEqualsBruteForce) { check(2.0f, 1); }
 TEST(HitPointGrid, QueryEqualsBruteForceSmallCells) { check(0.6f, 2); }
 // Cells follow the mean radius, so discs far larger than the mean span many cells.
 TEST(HitPointGrid, QueryEqualsBruteForceWideRadiusSpread) { check(2.0f, 3, 0.3f); }
+
+// Radii over three decades (long SPPM renders: pixels that never got a photon keep their first
+// radius): several radius classes, each its own grid; and the same points in a single grid.
+TEST(HitPointGrid, QueryEqualsBruteForceRadiusClasses) {
+    check(2.0f, 4, 0.5f, HitPointGrid::kMaxLevels, 3);
+    check(2.0f, 4, 0.5f, 1, 1);
+    check(0.6f, 5, 0.5f, 3, 2);
+}
 
 TEST(HitPointGrid, EmptyAndDisabled) {
     HitPointGrid grid;

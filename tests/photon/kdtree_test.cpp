@@ -1,6 +1,8 @@
 // Tests of the photon k-d tree: kNN and range queries against brute force on random, planar,
 // duplicate and Cornell-box photon sets, the edge cases (empty map, k > n, radius 0), the split
-// invariant, the filtered query, and bit-identical builds at 1 and 2 threads.
+// invariant, the filtered query, bit-identical builds at 1 and 2 threads, and the in-place build:
+// the same tree as from a copy, and the invariants and input indices on large (parallel-path)
+// inputs full of equal coordinates.
 #include "photon/kdtree.h"
 
 #include <gtest/gtest.h>
@@ -355,6 +357,160 @@ TEST(KdTree, RejectsNonFinitePositions) {
     input[3].position.y = NAN;
     PhotonKdTree tree;
     EXPECT_THROW(tree.build(input), InputError);
+    // The in-place build refuses before touching the array, and names the first bad photon.
+    input[7].position.z = -kInf;
+    const std::vector<Photon> before = input;
+    try {
+        tree.build(std::move(input));
+        ADD_FAILURE() << "no exception";
+    } catch (const InputError& e) {
+        EXPECT_STREQ(e.what(), "photon map: photon 3 has a non-finite position");
+    }
+    ASSERT_EQ(input.size(), before.size());
+    EXPECT_EQ(std::memcmp(input.data(), before.data(), before.size() * sizeof(Photon)), 0);
+    EXPECT_TRUE(tree.empty());
+}
+
+// ---- the in-place build and large inputs (the parallel top-level selection) ----
+
+// Every split photon's left range is <= and right range >= its coordinate on its axis, leaf
+// photons carry axis 3, and tree photon i is input photon input_index(i) (all its bits but the
+// axis), each input photon exactly once.
+::testing::AssertionResult valid_tree(const std::vector<Photon>& input, const PhotonKdTree& tree) {
+    const auto P = tree.photons();
+    if (P.size() != input.size()) return ::testing::AssertionFailure() << "size " << P.size();
+    std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, uint32_t(P.size())}};
+    size_t splits = 0;
+    while (!todo.empty()) {
+        const auto [b, e] = todo.back();
+        todo.pop_back();
+        if (e - b <= tree.leaf_size()) {
+            for (uint32_t i = b; i < e; ++i)
+                if (P[i].split_axis() != 3) return ::testing::AssertionFailure() << "leaf photon " << i;
+            continue;
+        }
+        const uint32_t m = b + (e - b) / 2;
+        const int a = P[m].split_axis();
+        if (a > 2) return ::testing::AssertionFailure() << "split photon " << m << " has no axis";
+        const float s = detail::coord(P[m].position, a);
+        for (uint32_t i = b; i < m; ++i)
+            if (!(detail::coord(P[i].position, a) <= s))
+                return ::testing::AssertionFailure() << "left of split " << m << ": " << i;
+        for (uint32_t i = m + 1; i < e; ++i)
+            if (!(detail::coord(P[i].position, a) >= s))
+                return ::testing::AssertionFailure() << "right of split " << m << ": " << i;
+        ++splits;
+        todo.push_back({b, m});
+        todo.push_back({m + 1, e});
+    }
+    if (P.size() > tree.leaf_size() && splits == 0) return ::testing::AssertionFailure() << "no splits";
+    if (!tree.has_input_index()) return ::testing::AssertionSuccess();
+    std::vector<uint8_t> seen(input.size(), 0);
+    for (uint32_t i = 0; i < P.size(); ++i) {
+        const uint32_t j = tree.input_index(i);
+        if (j >= input.size() || seen[j]++)
+            return ::testing::AssertionFailure() << "input_index(" << i << ")";
+        Photon want = input[j];
+        want.set_split_axis(P[i].split_axis());
+        if (std::memcmp(&want, &P[i], sizeof(Photon)) != 0)
+            return ::testing::AssertionFailure() << "tree photon " << i << " is not input photon " << j;
+    }
+    return ::testing::AssertionSuccess();
+}
+
+bool same_tree(const PhotonKdTree& a, const PhotonKdTree& b) {
+    if (a.size() != b.size() || a.has_input_index() != b.has_input_index()) return false;
+    if (std::memcmp(a.photons().data(), b.photons().data(), a.size() * sizeof(Photon)) != 0) return false;
+    for (uint32_t i = 0; a.has_input_index() && i < a.size(); ++i)
+        if (a.input_index(i) != b.input_index(i)) return false;
+    return true;
+}
+
+// 2^20 + photons: the Cornell-like walls (coordinates exactly 0 or 1 on one axis each), a quarter
+// of them on a coarse lattice of 5 values per axis (long runs of equal coordinates everywhere),
+// and exact duplicates.
+std::vector<Photon> large_ties(uint64_t seed) {
+    std::vector<Photon> v = cornell_like(1 << 20, seed);
+    Sampler rng(seed + 1);
+    for (size_t i = 0; i < v.size(); i += 4)
+        v[i].position =
+            Vec3(float(rng.next_index(5)), float(rng.next_index(5)), float(rng.next_index(5))) * 0.25f;
+    return v;
+}
+
+TEST(KdTree, InPlaceBuildMatchesSpanBuild) {
+    const auto input = cornell_like(300000, 20);
+    for (bool keep : {false, true}) {
+        KdTreeOptions o;
+        o.keep_input_index = keep;
+        const PhotonKdTree from_span(input, o);
+        std::vector<Photon> moved = input;
+        const Photon* buffer = moved.data();
+        PhotonKdTree in_place;
+        in_place.build(std::move(moved), o);
+        EXPECT_EQ(in_place.photons().data(), buffer);  // the very array, permuted
+        EXPECT_TRUE(same_tree(from_span, in_place));
+        EXPECT_TRUE(valid_tree(input, in_place));
+        EXPECT_EQ(in_place.has_input_index(), keep);
+        // And through the constructor.
+        EXPECT_TRUE(same_tree(from_span, PhotonKdTree(std::vector<Photon>(input), o)));
+    }
+    // Rebuilding from the tree's own array (the span aliases photons_) gives a valid tree.
+    PhotonKdTree tree(input, with_index(8));
+    const std::vector<Photon> own(tree.photons().begin(), tree.photons().end());
+    tree.build(tree.photons(), with_index(8));
+    EXPECT_TRUE(valid_tree(own, tree));
+}
+
+TEST(KdTree, LargeBuildIsIdenticalAtOneAndTwoThreads) {
+    // Large enough for the parallel top-level selection (and its exchanges between chunks).
+    const auto input = large_ties(21);
+    for (uint32_t leaf : {8u, 16u}) {
+        PhotonKdTree t1, t2, t2_no_index;
+        tbb::task_arena(1).execute([&] { t1.build(input, with_index(leaf)); });
+        tbb::task_arena(2).execute([&] { t2.build(std::vector<Photon>(input), with_index(leaf)); });
+        KdTreeOptions o;
+        o.leaf_size = leaf;
+        tbb::task_arena(2).execute([&] { t2_no_index.build(input, o); });
+        EXPECT_TRUE(same_tree(t1, t2));
+        EXPECT_EQ(
+            std::memcmp(t1.photons().data(), t2_no_index.photons().data(), input.size() * sizeof(Photon)), 0);
+        EXPECT_TRUE(valid_tree(input, t2));
+    }
+}
+
+TEST(KdTree, LargeBuildInvariantsOnDegenerateInputs) {
+    // Inputs that stress the selection: ties everywhere, all duplicates, two values per axis,
+    // a plane, presorted and reverse-sorted input, plus a kNN spot check on each.
+    const uint32_t n = (1 << 20) + 3;
+    Sampler rng(22);
+    std::vector<std::vector<Photon>> inputs;
+    inputs.push_back(large_ties(23));
+    inputs.emplace_back(n, make_photon(Vec3(0.5f, 0.25f, 0.75f)));
+    inputs.back()[n / 3].position = Vec3(0.6f, 0.25f, 0.75f);
+    std::vector<Photon> two, plane;
+    for (uint32_t i = 0; i < n; ++i) {
+        two.push_back(
+            make_photon(Vec3(float(rng.next_index(2)), float(rng.next_index(2)), float(rng.next_index(2)))));
+        plane.push_back(make_photon(Vec3(rng.next(), 0.25f, rng.next())));
+    }
+    inputs.push_back(std::move(two));
+    inputs.push_back(std::move(plane));
+    std::vector<Photon> sorted = random_cube(int(n), 24);
+    std::sort(sorted.begin(), sorted.end(),
+              [](const Photon& a, const Photon& b) { return a.position.x < b.position.x; });
+    inputs.push_back(sorted);
+    std::reverse(sorted.begin(), sorted.end());
+    inputs.push_back(std::move(sorted));
+    for (size_t c = 0; c < inputs.size(); ++c) {
+        SCOPED_TRACE(c);
+        const auto& input = inputs[c];
+        PhotonKdTree tree;
+        tbb::task_arena(2).execute([&] { tree.build(input, with_index(8)); });
+        ASSERT_TRUE(valid_tree(input, tree));
+        for (int i = 0; i < 3; ++i)
+            expect_same_knn(input, tree, input[rng.next_index(n)].position, 20, 1e-4f);
+    }
 }
 
 }  // namespace

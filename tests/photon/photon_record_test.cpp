@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/rng.h"
 #include "photon/photon.h"
@@ -77,6 +78,31 @@ TEST(Rgbe, DegenerateInputs) {
     EXPECT_NEAR(dt.r, tiny.r, tiny.r * kRgbeMaxRelativeError);
 }
 
+// The fast encoder must give the reference's word for every input: random powers over the whole
+// exponent range (where it defers to the reference at the ends), mantissas that round up to the
+// next exponent, ties, zeros, negatives, NaN and infinities.
+TEST(Rgbe, FastEncoderGivesTheReferenceWords) {
+    Sampler rng(31);
+    int mismatches = 0;
+    const auto check = [&](Rgb c) {
+        if (encode_rgbe(c) != encode_rgbe_reference(c)) ++mismatches;
+    };
+    for (int i = 0; i < 1000000; ++i) {
+        const float scale = std::ldexp(1.0f, int(rng.next_index(300)) - 150);
+        check(Rgb(rng.next(), rng.next(), rng.next()) * scale);
+        check(Rgb(rng.next(), 1e-3f * rng.next(), 0.0f) * scale);
+        // Exactly representable mantissas and halfway points: k/2 * 2^j.
+        const float half = float(rng.next_index(512)) * 0.5f * std::ldexp(1.0f, int(rng.next_index(40)) - 20);
+        check(Rgb(half, half * 0.5f, 255.5f * std::ldexp(1.0f, int(rng.next_index(40)) - 20)));
+    }
+    const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
+    for (Rgb c : {Rgb(0.0f), Rgb(-1.0f, 2.0f, -0.0f), Rgb(nan, 1.0f, 0.5f), Rgb(inf, 1.0f, 0.0f), Rgb(3e38f),
+                  Rgb(1e-40f), Rgb(0x1p-110f, 0x1p-120f, 0.0f), Rgb(0x1p114f, 1.0f, 0.0f), Rgb(255.5f, 0.0f, 1.0f),
+                  Rgb(0.99999994f, 0.5f, 0.25f)})
+        check(c);
+    EXPECT_EQ(mismatches, 0);
+}
+
 template <int Bits>
 float worst_octahedral_error(int n, uint64_t seed) {
     Sampler rng(seed);
@@ -117,6 +143,40 @@ TEST(Octahedral, AxesAndSeamsAreExact) {
     }
     // Degenerate input still yields a valid unit vector.
     EXPECT_NEAR(length(decode_octahedral<8>(encode_octahedral<8>(Vec3(0.0f)))), 1.0f, 1e-6f);
+}
+
+// The four-lane encoder must give the reference's code for every input: random unit and
+// non-unit vectors, the axes, the fold lines and the lattice's own directions (ties between
+// neighbouring lattice points), for the direction (8) and normal (7) widths and a wide one.
+template <int Bits>
+void expect_same_codes_as_reference(uint64_t seed) {
+    Sampler rng(seed);
+    int mismatches = 0;
+    const auto check = [&](Vec3 d) {
+        if (encode_octahedral<Bits>(d) != encode_octahedral_reference<Bits>(d)) ++mismatches;
+    };
+    for (int i = 0; i < 400000; ++i) {
+        const Vec3 d = uniform_sphere(rng.next2());
+        check(d);
+        check(d * (0.01f + 10.0f * rng.next()));
+        // Directions on the lattice, and halfway between two lattice points.
+        constexpr uint32_t mask = (1u << Bits) - 1;
+        const uint32_t code = uint32_t(rng.next_bits()) & ((mask << Bits) | mask);
+        const Vec3 a = decode_octahedral<Bits>(code), b = decode_octahedral<Bits>(code ^ 1u);
+        check(a);
+        check(a + b);
+    }
+    for (Vec3 a : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1),
+                   Vec3(0.7f, 0.0f, -0.7f), Vec3(0.0f, -0.6f, -0.8f), Vec3(-0.0f, 0.0f, -1.0f), Vec3(0.0f),
+                   Vec3(1e-30f, -1e-30f, 1e-30f), Vec3(3e38f, 3e38f, -3e38f)})
+        check(a);
+    EXPECT_EQ(mismatches, 0) << Bits << "-bit codes";
+}
+
+TEST(Octahedral, FourLaneEncoderGivesTheReferenceCodes) {
+    expect_same_codes_as_reference<8>(21);
+    expect_same_codes_as_reference<7>(22);
+    expect_same_codes_as_reference<12>(23);
 }
 
 TEST(PhotonRecord, ConstructAndDecodeFields) {
