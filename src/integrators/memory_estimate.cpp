@@ -195,8 +195,8 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, con
     if (o.irradiance_cache && global && !o.photon_viz)
         render.add("irradiance cache", sizeof(Photon) * n[photon::kGlobalMap] / stride);
     if (o.irradiance_cache && media && o.indirect_light)
-        render.add("irradiance cache", (sizeof(Photon) + sizeof(photon::VolumeMoments)) *
-                                           n[photon::kVolumeMap] / stride);
+        render.add("irradiance cache",
+                   (sizeof(Photon) + sizeof(photon::VolumeMoments)) * n[photon::kVolumeMap] / stride);
     phases.push_back(render);
 }
 

@@ -3,10 +3,11 @@
 // direction, 14-bit surface normal), plus the 2-bit k-d tree split axis.
 #pragma once
 
+#include <immintrin.h>
+
 #include <bit>
 #include <cmath>
 #include <cstdint>
-#include <immintrin.h>
 
 #include "core/vec.h"
 
@@ -159,10 +160,10 @@ inline uint32_t encode_octahedral(Vec3 d) {
     // Lanes in the reference's order (du, dv) = (0,0), (0,1), (1,0), (1,1); _mm_set_ps lists lane 3 first.
     constexpr float kInv = 1.0f / float(S);
     const __m128 sign_mask = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f);
-    const __m128 fx = _mm_mul_ps(_mm_set_ps(float(u1 - S), float(u1 - S), float(u0 - S), float(u0 - S)),
-                                 _mm_set1_ps(kInv));
-    const __m128 fy = _mm_mul_ps(_mm_set_ps(float(v1 - S), float(v0 - S), float(v1 - S), float(v0 - S)),
-                                 _mm_set1_ps(kInv));
+    const __m128 fx =
+        _mm_mul_ps(_mm_set_ps(float(u1 - S), float(u1 - S), float(u0 - S), float(u0 - S)), _mm_set1_ps(kInv));
+    const __m128 fy =
+        _mm_mul_ps(_mm_set_ps(float(v1 - S), float(v0 - S), float(v1 - S), float(v0 - S)), _mm_set1_ps(kInv));
     const __m128 ax = _mm_andnot_ps(sign_mask, fx), ay = _mm_andnot_ps(sign_mask, fy);
     const __m128 z = _mm_sub_ps(_mm_sub_ps(one, ax), ay);
     // oct_wrap where z < 0: x' = (1 - |y|) sign(x), y' = (1 - |x|) sign(y), sign(0) = +1.
@@ -172,7 +173,8 @@ inline uint32_t encode_octahedral(Vec3 d) {
     const __m128 wx = _mm_xor_ps(_mm_sub_ps(one, ay), neg_x), wy = _mm_xor_ps(_mm_sub_ps(one, ax), neg_y);
     const __m128 x = _mm_or_ps(_mm_and_ps(wrap, wx), _mm_andnot_ps(wrap, fx));
     const __m128 y = _mm_or_ps(_mm_and_ps(wrap, wy), _mm_andnot_ps(wrap, fy));
-    const __m128 len = _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
+    const __m128 len =
+        _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
     const __m128 c = _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_div_ps(x, len), _mm_set1_ps(dn.x)),
                                            _mm_mul_ps(_mm_div_ps(y, len), _mm_set1_ps(dn.y))),
                                 _mm_mul_ps(_mm_div_ps(z, len), _mm_set1_ps(dn.z)));

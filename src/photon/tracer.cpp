@@ -228,7 +228,8 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
             if (size > out.photons[m].capacity()) {
                 // Only maps without a target (a fixed emission count) grow: by the rate so far.
                 const double per_emission = double(size) / double(next + n_round);
-                const size_t expect = size_t(per_emission * double(cap - std::min(cap, next + n_round)) * 1.05);
+                const size_t expect =
+                    size_t(per_emission * double(cap - std::min(cap, next + n_round)) * 1.05);
                 out.photons[m].reserve(size + expect);
                 if (o.record_bounces) out.bounces[m].reserve(size + expect);
             }
@@ -239,9 +240,11 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
             const Slice& s = slices[b];
             for (int m = 0; m < kMapCount; ++m) {
                 if (take[m][b] == 0) continue;
-                std::copy_n(s.photons[m].begin(), take[m][b], out.photons[m].begin() + ptrdiff_t(offset[m][b]));
+                std::copy_n(s.photons[m].begin(), take[m][b],
+                            out.photons[m].begin() + ptrdiff_t(offset[m][b]));
                 if (o.record_bounces)
-                    std::copy_n(s.bounces[m].begin(), take[m][b], out.bounces[m].begin() + ptrdiff_t(offset[m][b]));
+                    std::copy_n(s.bounces[m].begin(), take[m][b],
+                                out.bounces[m].begin() + ptrdiff_t(offset[m][b]));
             }
         });
         for (uint64_t b = 0; b < nb; ++b) out.rays += slices[b].rays;

@@ -97,8 +97,8 @@ TEST(Rgbe, FastEncoderGivesTheReferenceWords) {
     }
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
     for (Rgb c : {Rgb(0.0f), Rgb(-1.0f, 2.0f, -0.0f), Rgb(nan, 1.0f, 0.5f), Rgb(inf, 1.0f, 0.0f), Rgb(3e38f),
-                  Rgb(1e-40f), Rgb(0x1p-110f, 0x1p-120f, 0.0f), Rgb(0x1p114f, 1.0f, 0.0f), Rgb(255.5f, 0.0f, 1.0f),
-                  Rgb(0.99999994f, 0.5f, 0.25f)})
+                  Rgb(1e-40f), Rgb(0x1p-110f, 0x1p-120f, 0.0f), Rgb(0x1p114f, 1.0f, 0.0f),
+                  Rgb(255.5f, 0.0f, 1.0f), Rgb(0.99999994f, 0.5f, 0.25f)})
         check(c);
     EXPECT_EQ(mismatches, 0);
 }
@@ -166,9 +166,10 @@ void expect_same_codes_as_reference(uint64_t seed) {
         check(a);
         check(a + b);
     }
-    for (Vec3 a : {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1),
-                   Vec3(0.7f, 0.0f, -0.7f), Vec3(0.0f, -0.6f, -0.8f), Vec3(-0.0f, 0.0f, -1.0f), Vec3(0.0f),
-                   Vec3(1e-30f, -1e-30f, 1e-30f), Vec3(3e38f, 3e38f, -3e38f)})
+    for (Vec3 a :
+         {Vec3(1, 0, 0), Vec3(-1, 0, 0), Vec3(0, 1, 0), Vec3(0, -1, 0), Vec3(0, 0, 1), Vec3(0, 0, -1),
+          Vec3(0.7f, 0.0f, -0.7f), Vec3(0.0f, -0.6f, -0.8f), Vec3(-0.0f, 0.0f, -1.0f), Vec3(0.0f),
+          Vec3(1e-30f, -1e-30f, 1e-30f), Vec3(3e38f, 3e38f, -3e38f)})
         check(a);
     EXPECT_EQ(mismatches, 0) << Bits << "-bit codes";
 }
