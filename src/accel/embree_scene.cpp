@@ -54,9 +54,10 @@ struct InstanceData {
 
 // The intersect context extended with the exact canonical hit of the last accepted analytic
 // intersection (Embree passes our context through to the callbacks unchanged).
+// Indexed by the ray's id: 0 for single rays, the lane for packets (EmbreeScene::intersect16).
 struct QueryContext {
     RTCIntersectContext ctx;
-    CanonicalHit hit;
+    CanonicalHit hit[16];
 };
 
 // (Two-argument maxima: the initializer-list form was not inlined, 2 % of photon tracing.)
@@ -106,7 +107,7 @@ void analytic_intersect_cb(const RTCIntersectFunctionNArguments* args) {
         RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
         // Each accepted hit is closer than all earlier ones, so the last one stored is the final
         // closest hit whenever that is an analytic shape.
-        qc->hit = h;
+        qc->hit[RTCRayN_id(ray, args->N, i) & 15u] = h;
     }
 }
 
@@ -499,15 +500,52 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->top, &qc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
+    finish_hit({rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar}, qc.hit[0],
+               hit);
+    return true;
+}
 
+void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
+    alignas(64) RTCRayHit16 rh;
+    alignas(64) int valid[16];
+    QueryContext qc;
+    rtcInitIntersectContext(&qc.ctx);
+    bool any = false;
+    for (int k = 0; k < 16; ++k) {
+        valid[k] = 0;
+        rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
+        rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
+        if (k >= n || !usable(rays[k])) continue;
+        RTCRay r;
+        init_ray(rays[k], r);
+        rh.ray.org_x[k] = r.org_x, rh.ray.org_y[k] = r.org_y, rh.ray.org_z[k] = r.org_z;
+        rh.ray.dir_x[k] = r.dir_x, rh.ray.dir_y[k] = r.dir_y, rh.ray.dir_z[k] = r.dir_z;
+        rh.ray.tnear[k] = r.tnear, rh.ray.tfar[k] = r.tfar, rh.ray.time[k] = r.time;
+        rh.ray.mask[k] = r.mask, rh.ray.flags[k] = r.flags;
+        rh.ray.id[k] = unsigned(k);  // the analytic callbacks file their canonical hit by lane
+        valid[k] = -1;
+        any = true;
+    }
+    if (any) rtcIntersect16(valid, impl_->top, &qc.ctx, &rh);
+    for (int k = 0; k < n; ++k) {
+        found[k] = valid[k] != 0 && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
+        if (found[k])
+            finish_hit({rh.hit.geomID[k], rh.hit.primID[k], rh.hit.instID[0][k], rh.hit.u[k], rh.hit.v[k],
+                        rh.ray.tfar[k]},
+                       qc.hit[k], hits[k]);
+    }
+}
+
+void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& canonical,
+                             SurfaceHit& hit) const {
     const Impl& im = *impl_;
     const InstanceData* inst = nullptr;
     const Geom* g;
-    if (rh.hit.instID[0] != RTC_INVALID_GEOMETRY_ID) {
-        inst = &im.instances[size_t(im.top_geoms[rh.hit.instID[0]].index)];
-        g = &im.object_geoms[size_t(inst->object)][rh.hit.geomID];
+    if (raw.inst != RTC_INVALID_GEOMETRY_ID) {
+        inst = &im.instances[size_t(im.top_geoms[raw.inst].index)];
+        g = &im.object_geoms[size_t(inst->object)][raw.geom];
     } else {
-        g = &im.top_geoms[rh.hit.geomID];
+        g = &im.top_geoms[raw.geom];
     }
 
     Local L;
@@ -515,13 +553,13 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     int shape_index;
     if (g->kind == Geom::Mesh) {
         const MeshGeom& m = im.meshes[size_t(g->index)];
-        L = mesh_local(m, rh.hit.primID, rh.hit.u, rh.hit.v);
+        L = mesh_local(m, raw.prim, raw.u, raw.v);
         shape = m.source;
         shape_index = m.shape;
-        hit.primitive = int(rh.hit.primID);
+        hit.primitive = int(raw.prim);
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];
-        L = analytic_local(a, qc.hit, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);
+        L = analytic_local(a, canonical, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);
         shape = a.source;
         shape_index = a.shape;
         hit.primitive = 0;
@@ -539,7 +577,7 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     }
 
     // ng, ns and dpdu are unit vectors in double here; rounding to float keeps them unit to 1e-7.
-    hit.t = rh.ray.tfar;
+    hit.t = raw.t;
     hit.p = L.p.to_float();
     hit.ng = L.ng.to_float();
     hit.ns = L.ns.to_float();
@@ -552,7 +590,6 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     hit.media = shape->media;
     // Also cover the rounding of p itself to float.
     hit.error = float(L.error + 2 * kUlp * max_abs(L.p)) * 1.0001f;
-    return true;
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {

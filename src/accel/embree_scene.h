@@ -10,6 +10,10 @@
 
 namespace phos::accel {
 
+namespace detail {
+struct CanonicalHit;  // accel/analytic.h
+}
+
 struct Bounds {
     Vec3 lo{kInf}, hi{-kInf};
     bool empty() const { return lo.x > hi.x; }
@@ -46,6 +50,11 @@ public:
 
     // Closest hit in (ray.tmin, ray.tmax); fills `hit` and returns true if there is one.
     bool intersect(const Ray& ray, SurfaceHit& hit) const;
+    // The same for up to 16 rays at once through Embree's packet interface (rtcIntersect16):
+    // found[k] and hits[k] for rays[k], k < n. Each hit is the one intersect() gives (Embree's
+    // packet and single-ray kernels compute the same hits; tests/accel checks it); packets save
+    // traversal work when many independent rays are in flight (the photon tracer's wavefront).
+    void intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* found) const;
     // True if anything lies in (ray.tmin, ray.tmax).
     bool occluded(const Ray& ray) const;
     // World-space bounds of all geometry.
@@ -54,6 +63,12 @@ public:
 
 private:
     struct Impl;
+    struct RawHit {  // what Embree reports for one ray
+        unsigned geom, prim, inst;
+        float u, v, t;
+    };
+    // The SurfaceHit of an Embree hit (exact hit point, normals, tangent, error bound).
+    void finish_hit(const RawHit& raw, const detail::CanonicalHit& canonical, SurfaceHit& hit) const;
     const scene::Scene& scene_;
     std::unique_ptr<Impl> impl_;
 };

@@ -100,69 +100,93 @@ bool visit_hit(Visitor& visit, const Hit& h) {
 // expectation) and sets `wi_out` and whether the chosen lobe was specular.
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
                     bool& specular);
+
+// A photon between events: what trace_photon carries from one bounce to the next (also the
+// state of each lane of the photon tracer's wavefront, tracer.cpp).
+struct PhotonState {
+    Sampler sampler;
+    accel::Ray ray;
+    Rgb power;
+    int medium = -1;
+    int bounces = 0;
+    bool after_diffuse = false, after_specular = false;
+};
+// Photon `index` of pass `pass`: its sampler, then its emission. False when no light emits it.
+inline bool start_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
+                         const PhotonPathOptions& options, PhotonState& st) {
+    st = PhotonState{};
+    st.sampler = Sampler(seed, 0x70686f746f6eULL ^ pass, index);
+    return options.projection
+               ? emit_projected(*options.projection, ps, st.sampler, st.ray, st.power, st.medium)
+               : emit_photon(ps, st.sampler, st.ray, st.power, st.medium);
+}
+// The photon has reached scattering surface `hit` along st.ray: the visitor sees it (if it has a
+// non-specular component), then Russian roulette and BSDF sampling. Returns false when the path
+// ends; otherwise st.ray leaves the surface and `wi` is its direction (for SurfaceWalk::leave).
+template <class Visitor>
+bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const accel::SurfaceHit& hit,
+                  PhotonState& st, Visitor& visit, Vec3& wi) {
+    const Vec3 wo = -normalize(st.ray.dir);
+    const shading::Bsdf bsdf(ps.scene.materials[size_t(hit.material)], hit, ps.scene, ps.bsdf_options);
+    if (bsdf.has_non_specular()) {
+        const PhotonHit ph{hit, bsdf, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
+        // A visitor returning bool may end the path (false): e.g. once no map it fills can
+        // take this photon any more.
+        if (!visit_hit(visit, ph)) return false;
+    }
+    if (st.bounces == options.max_bounces) return false;
+    bool specular = false;
+    if (!scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular)) return false;
+    if (specular) {
+        st.after_specular = !st.after_diffuse;
+    } else {
+        st.after_diffuse = true;
+        st.after_specular = false;
+    }
+    st.ray = accel::spawn_ray(hit, wi);
+    ++st.bounces;
+    return true;
+}
 }  // namespace detail
 
 template <class Visitor>
 uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
                       const PhotonPathOptions& options, Visitor&& visit) {
-    Sampler sampler(seed, 0x70686f746f6eULL ^ pass, index);
-    accel::Ray ray;
-    Rgb power;
-    int medium = -1;
-    if (!(options.projection ? detail::emit_projected(*options.projection, ps, sampler, ray, power, medium)
-                             : detail::emit_photon(ps, sampler, ray, power, medium)))
-        return 0;
-    bool after_diffuse = false, after_specular = false;
+    detail::PhotonState st;
+    if (!detail::start_photon(ps, seed, pass, index, options, st)) return 0;
+    if (options.max_bounces < 0) return 0;
     const shading::MediaSet* media = ps.media && ps.media->active() ? ps.media : nullptr;
-    shading::SurfaceWalk walk(ps.accel, media, medium);
-    for (int bounces = 0; bounces <= options.max_bounces;) {
+    shading::SurfaceWalk walk(ps.accel, media, st.medium);
+    while (true) {
         accel::SurfaceHit hit;
-        const Rgb power_before = power;
+        const Rgb power_before = st.power;
         Rgb emitted;  // media emission is not traced from the camera side only; photons ignore it
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, power, emitted) : walk.next(ray, hit);
+            media ? walk.next(st.ray, hit, st.sampler, st.power, emitted) : walk.next(st.ray, hit);
         if (event == shading::SurfaceWalk::Event::Medium) {
-            const PhotonVolumeHit vh{walk.medium_point(), walk.medium_wo(), power, walk.medium(), bounces,
-                                     after_diffuse,       after_specular};
+            const PhotonVolumeHit vh{walk.medium_point(), walk.medium_wo(), st.power,         walk.medium(),
+                                     st.bounces,          st.after_diffuse, st.after_specular};
             if constexpr (std::is_invocable_v<Visitor&, const PhotonVolumeHit&>) {
                 if (!detail::visit_hit(visit, vh)) break;
             }
-            if (bounces == options.max_bounces) break;
+            if (st.bounces == options.max_bounces) break;
             // Russian roulette on the albedo the tracking weight applied: keep the power of a
             // grey medium's photon constant (Jensen & Christensen 1998).
-            const float q = std::min(1.0f, power.average() / std::max(power_before.average(), 1e-30f));
-            if (!(sampler.next() < q)) break;
-            power *= 1.0f / q;
+            const float q = std::min(1.0f, st.power.average() / std::max(power_before.average(), 1e-30f));
+            if (!(st.sampler.next() < q)) break;
+            st.power *= 1.0f / q;
             Vec3 wi;
-            ps.media->operator[](walk.medium()).phase().sample(walk.medium_wo(), sampler.next2(), wi);
-            ray = accel::Ray{walk.medium_point(), wi};
-            after_diffuse = true;
-            after_specular = false;
-            ++bounces;
+            ps.media->operator[](walk.medium()).phase().sample(walk.medium_wo(), st.sampler.next2(), wi);
+            st.ray = accel::Ray{walk.medium_point(), wi};
+            st.after_diffuse = true;
+            st.after_specular = false;
+            ++st.bounces;
             continue;
         }
         if (event != shading::SurfaceWalk::Event::Surface) break;
-        const Vec3 wo = -normalize(ray.dir);
-        const shading::Bsdf bsdf(ps.scene.materials[size_t(hit.material)], hit, ps.scene, ps.bsdf_options);
-        if (bsdf.has_non_specular()) {
-            const PhotonHit ph{hit, bsdf, wo, power, bounces, after_diffuse, after_specular};
-            // A visitor returning bool may end the path (false): e.g. once no map it fills can
-            // take this photon any more.
-            if (!detail::visit_hit(visit, ph)) break;
-        }
-        if (bounces == options.max_bounces) break;
         Vec3 wi;
-        bool specular = false;
-        if (!detail::scatter_photon(bsdf, wo, sampler, power, wi, specular)) break;
-        if (specular) {
-            after_specular = !after_diffuse;
-        } else {
-            after_diffuse = true;
-            after_specular = false;
-        }
-        ray = accel::spawn_ray(hit, wi);
+        if (!detail::surface_step(ps, options, hit, st, visit, wi)) break;
         walk.leave(hit, wi);
-        ++bounces;
     }
     return walk.rays();
 }

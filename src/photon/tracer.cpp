@@ -60,6 +60,34 @@ private:
     Entry entries_[16];
 };
 
+// Puts each map's photons of a slice back in emission order (stable: a photon's own hits keep
+// their order), as the one-photon-at-a-time loop stores them. Counting sort on the emission index.
+void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
+    std::vector<uint32_t> start;
+    std::vector<Photon> photons;
+    std::vector<uint32_t> emission;
+    std::vector<uint8_t> bounce;
+    for (int m = 0; m < kMapCount; ++m) {
+        const size_t n = s.photons[m].size();
+        if (n < 2 || std::is_sorted(s.emission[m].begin(), s.emission[m].end())) continue;
+        start.assign(count + 1, 0);
+        for (uint32_t e : s.emission[m]) ++start[e + 1];
+        for (uint64_t e = 0; e < count; ++e) start[e + 1] += start[e];
+        photons.resize(n);
+        emission.resize(n);
+        if (bounces) bounce.resize(n);
+        for (size_t i = 0; i < n; ++i) {
+            const uint32_t to = start[s.emission[m][i]]++;
+            photons[to] = s.photons[m][i];
+            emission[to] = s.emission[m][i];
+            if (bounces) bounce[to] = s.bounces[m][i];
+        }
+        s.photons[m].swap(photons);
+        s.emission[m].swap(emission);
+        if (bounces) s.bounces[m].swap(bounce);
+    }
+}
+
 void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t pass,
                  const ProjectionMap* projection, uint64_t first, uint64_t count, Slice& s) {
     PhotonPathOptions po;
@@ -76,14 +104,9 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             if (o.record_bounces) s.bounces[m].push_back(uint8_t(std::min(bounces, 255)));
         }
     };
-    for (uint64_t j = 0; j < count; ++j) {
-        const auto on_volume = [&](const PhotonVolumeHit& h) {
-            const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
-            store(Photon(h.p, h.power, h.wi, Vec3(0.0f)), into, j, h.bounces);
-            // After a scattering in a medium the path can only feed the non-caustic maps.
-            return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
-        };
-        const auto on_surface = [&](const PhotonHit& h) {
+    // What photon j stores at a surface, and whether its path goes on.
+    const auto on_surface_of = [&](uint64_t j) {
+        return [&, j](const PhotonHit& h) {
             // Normal on the side the photon arrived from: the estimate compares it with the
             // query's normal turned towards the viewer.
             const Vec3 n = dot(h.hit.ng, h.wi) >= 0 ? h.hit.ng : -h.hit.ng;
@@ -96,7 +119,60 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
                    (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
         };
-        s.rays += trace_photon(ps, o.seed, pass, first + j, po, Visitor{on_surface, on_volume});
+    };
+    bool packets = o.packets && po.max_bounces >= 0 && !(ps.media && ps.media->active());
+    for (const scene::Material& m : ps.scene.materials) packets = packets && !m.interface_only;
+    if (packets) {
+        // The wavefront: 16 photons in flight, one rtcIntersect16 per step for all of them, a
+        // finished photon's lane refilled with the next emission. Each photon's random numbers
+        // and events are those of trace_photon (the same helpers, and packet hits equal single
+        // hits), so after sorting by emission the slice is the one the loop below stores.
+        detail::PhotonState lane[16];
+        uint64_t photon[16];
+        uint32_t rays[16] = {};
+        bool live[16] = {};
+        accel::Ray ray[16];
+        accel::SurfaceHit hit[16];
+        bool found[16];
+        uint64_t next = 0;
+        while (true) {
+            int n_live = 0;
+            for (int k = 0; k < 16; ++k) {
+                while (!live[k] && next < count) {
+                    photon[k] = next++;
+                    rays[k] = 0;
+                    live[k] = detail::start_photon(ps, o.seed, pass, first + photon[k], po, lane[k]);
+                }
+                n_live += live[k];
+            }
+            if (n_live == 0) break;
+            int n = 16;
+            while (n > 0 && !live[n - 1]) --n;
+            for (int k = 0; k < n; ++k)
+                ray[k] =
+                    live[k] ? lane[k].ray : accel::Ray{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};  // not traced
+            ps.accel.intersect16(ray, n, hit, found);
+            for (int k = 0; k < n; ++k) {
+                if (!live[k]) continue;
+                ++rays[k];
+                Vec3 wi;
+                auto visit = Visitor{on_surface_of(photon[k])};
+                if (found[k] && detail::surface_step(ps, po, hit[k], lane[k], visit, wi)) continue;
+                s.rays += rays[k];  // escaped, absorbed or stopped
+                live[k] = false;
+            }
+        }
+        sort_by_emission(s, count, o.record_bounces);
+        return;
+    }
+    for (uint64_t j = 0; j < count; ++j) {
+        const auto on_volume = [&](const PhotonVolumeHit& h) {
+            const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
+            store(Photon(h.p, h.power, h.wi, Vec3(0.0f)), into, j, h.bounces);
+            // After a scattering in a medium the path can only feed the non-caustic maps.
+            return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
+        };
+        s.rays += trace_photon(ps, o.seed, pass, first + j, po, Visitor{on_surface_of(j), on_volume});
     }
 }
 

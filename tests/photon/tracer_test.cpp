@@ -147,6 +147,58 @@ TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
     }
 }
 
+// The wavefront (16 photons per rtcIntersect16) must store exactly what the one-photon-at-a-time
+// loop stores: the same photons in the same order in every map, the same emission counts and
+// rays, with the caustic stream (projection maps), an analytic sphere, the box's triangles,
+// bounce records and a depth limit that cuts paths; and a scene with an interface-only surface
+// (which only the one-at-a-time walk steps through) gives the same maps with packets asked for.
+TEST(PhotonTracer, PacketWavefrontStoresWhatTheLoopStores) {
+    const auto expect_same = [](const PhotonScene& ps, TraceOptions o) {
+        TraceOptions loop = o;
+        loop.packets = false;
+        o.packets = true;
+        const TracedPhotons a = trace_photons(ps, o), b = trace_photons(ps, loop);
+        EXPECT_EQ(a.rays, b.rays);
+        EXPECT_EQ(a.total_emitted, b.total_emitted);
+        size_t stored = 0;
+        for (int m = 0; m < kMapCount; ++m) {
+            ASSERT_EQ(a.photons[m].size(), b.photons[m].size()) << map_name(m);
+            EXPECT_EQ(a.emitted[m], b.emitted[m]);
+            EXPECT_EQ(a.bounces[m], b.bounces[m]);
+            stored += a.photons[m].size();
+            if (a.photons[m].empty()) continue;
+            EXPECT_EQ(0, std::memcmp(a.photons[m].data(), b.photons[m].data(),
+                                     a.photons[m].size() * sizeof(Photon)))
+                << map_name(m);
+        }
+        EXPECT_GT(stored, 0u);
+    };
+    BoxScene box(0.7f, 1.0f, true);
+    TraceOptions o;
+    o.target[kGlobalMap] = 40000;
+    o.target[kCausticMap] = 4000;
+    o.batch_size = 1000;
+    o.record_bounces = true;
+    expect_same(box.ps(), o);
+    o.max_depth = 2;
+    o.record_bounces = false;
+    expect_same(box.ps(), o);
+
+    BoxScene walled(0.7f, 1.0f, true);
+    scene::Material interface;
+    interface.interface_only = true;
+    walled.s.materials.push_back(interface);
+    scene::Shape pane;
+    pane.kind = scene::Shape::Kind::Sphere;
+    pane.center = Vec3(0.5f, 0.0f, 0.0f);
+    pane.radius = 0.2f;
+    pane.material = int(walled.s.materials.size()) - 1;
+    walled.s.shapes.push_back(pane);
+    walled.accel = std::make_unique<accel::EmbreeScene>(walled.s);
+    o.max_depth = 16;
+    expect_same(walled.ps(), o);
+}
+
 TEST(PhotonTracer, RecordedBounceCountsFollowTheRouletteAndChangeNothing) {
     // In the closed box every emitted photon hits a wall first (bounce 0, stored in the global map)
     // and survives each bounce with probability rho, so the global map holds exactly N photons with

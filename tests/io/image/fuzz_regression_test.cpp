@@ -5,8 +5,8 @@
 #include <ImfFrameBuffer.h>
 #include <ImfHeader.h>
 #include <ImfMultiPartOutputFile.h>
-#include <ImfPartType.h>
 #include <ImfOutputPart.h>
+#include <ImfPartType.h>
 #include <gtest/gtest.h>
 
 #include <fstream>
@@ -213,6 +213,27 @@ TEST(ImageFuzz, ExrAttributeClaimingMoreThanTheFileIsRejected) {
     const Image first = read_image(multi);
     ASSERT_EQ(first.width, 3);
     EXPECT_EQ(first.pixels[0].r, 1.0f);  // the first part
+}
+
+// stb_image multiplies a JPEG block's DC prediction, which the file steers block after block, by a
+// 16-bit quantiser in int: the fuzzer's file below overflowed it (-33215 * 65535), undefined
+// behaviour that UBSan stops on. stb_image.cpp is now compiled with -fwrapv, so the arithmetic
+// wraps by definition: the file decodes to some pixels or is refused, either way without undefined
+// behaviour (this test fails under `scripts/test.sh --sanitize` without the flag).
+TEST(ImageFuzz, JpegWithAnOverflowingDcPredictionIsDefined) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "ffd8ffdb004301010101010101010101010101010101010101010101ffc0000b080408000801011100ffc40014000100"
+        "000200000000000000000000000009ffc400141001000000000000000000000000000001010101010101010101494441"
+        "5401010101010101010101010101010101010101010101010101ffc0000b080408000801011100ffc400140001000000"
+        "00000000000000000000000009ffc40014100100000000000000000000000000000000ffda0008010100000000ffda00"
+        "08010100003f000000000000000000000000000000000000000000000000000000000000000000000000000000000000"
+        "000000000000003f01010101d8fefefefefefefa01010101010101fe0001010100003f003fffd9");
+    try {
+        const Image image = read_image(write(dir, "dc.jpeg", found), true);
+        EXPECT_EQ(image.pixels.size(), size_t(image.width) * size_t(image.height));
+    } catch (const InputError&) {
+    }
 }
 
 }  // namespace
