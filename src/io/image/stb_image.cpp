@@ -40,9 +40,12 @@ std::string stb_reason() {
 
 // stb_image 2.27 (Debian 12) copies a JPEG Huffman table's symbols into 256-entry arrays without
 // checking that the table's 16 code counts add up to at most 256, so a corrupt DHT segment
-// overwrites the decoder's memory. This walks the file the way stb does (segments skipped by their
-// length, entropy-coded data scanned for markers, fill bytes 0xFF skipped) and returns a reason
-// when any DHT segment stb could reach holds such a table, else "". Keeps `f`'s position.
+// overwrites the decoder's memory; and it decodes a scan with a Huffman table no DHT segment
+// defined, reading the table's uninitialised memory as code limits and offsets (a symbol index of
+// -56837: an out-of-bounds read, the image fuzzer's finding). This walks the file the way stb does
+// (segments skipped by their length, entropy-coded data scanned for markers, fill bytes 0xFF
+// skipped) and returns a reason when any DHT segment stb could reach holds such a table, or a scan
+// uses a table not defined before it, else "". Keeps `f`'s position.
 std::string jpeg_huffman_problem(std::FILE* f) {
     const long start = std::ftell(f);
     std::vector<unsigned char> b;
@@ -56,6 +59,8 @@ std::string jpeg_huffman_problem(std::FILE* f) {
     ++p;
     // Bytes past the end read as 0, as in stb.
     const auto at = [&](size_t i) -> unsigned { return i < b.size() ? b[i] : 0u; };
+    bool defined[2][4] = {};  // [class: 0 DC, 1 AC][table id]
+    bool progressive = false;
     while (p < b.size()) {
         if (b[p] != 0xFF) {  // entropy-coded data or padding: look for the next marker
             ++p;
@@ -67,6 +72,20 @@ std::string jpeg_huffman_problem(std::FILE* f) {
         if (m == 0x00 || m == 0x01 || (m >= 0xD0 && m <= 0xD8)) continue;  // stuffing, TEM, RSTn, SOI
         if (m == 0xD9) break;                                              // EOI: stb stops here
         const size_t length = at(p) << 8 | at(p + 1);
+        if (m == 0xC2) progressive = true;
+        if (m == 0xDA) {
+            // Which tables the scan decodes with (stb rejects indices above 3 itself): baseline
+            // scans a DC and an AC table per component; progressive DC-first scans (Ss = 0,
+            // Ah = 0) DC tables only, DC refinements none, AC scans (Ss > 0) AC tables only.
+            const unsigned ns = at(p + 2);
+            const unsigned ss = at(p + 3 + 2 * ns), ah = at(p + 5 + 2 * ns) >> 4;
+            for (unsigned i = 0; i < ns && i < 4; ++i) {
+                const unsigned td = at(p + 4 + 2 * i) >> 4, ta = at(p + 4 + 2 * i) & 15;
+                const bool dc = !progressive || (ss == 0 && ah == 0), ac = !progressive || ss > 0;
+                if ((dc && td <= 3 && !defined[0][td]) || (ac && ta <= 3 && !defined[1][ta]))
+                    return "corrupt JPEG (a scan uses a Huffman table that no DHT segment defines)";
+            }
+        }
         if (m == 0xC4) {
             long left = long(length) - 2;
             size_t q = p + 2;
@@ -78,6 +97,7 @@ std::string jpeg_huffman_problem(std::FILE* f) {
                 if (codes > 256)
                     return "corrupt JPEG (a Huffman table declares " + std::to_string(codes) +
                            " codes; at most 256 are possible)";
+                defined[tc][th] = true;
                 q += 17 + codes;
                 left -= long(17 + codes);
             }

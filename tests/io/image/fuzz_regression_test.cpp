@@ -236,5 +236,45 @@ TEST(ImageFuzz, JpegWithAnOverflowingDcPredictionIsDefined) {
     }
 }
 
+// stb_image decodes a scan with whatever Huffman table the scan names, defined or not: in the
+// fuzzer's file below the scan's AC table 1 was never defined, and the table's uninitialised
+// limits gave a symbol index of -56837 (an out-of-bounds read; UBSan's finding). Such files are
+// refused; a progressive file whose scans use only the tables they need (DC-first scans no AC
+// table, DC refinements none, AC scans no DC table, an AC table defined after the DC scan) is not.
+TEST(ImageFuzz, JpegScanWithAnUndefinedHuffmanTableIsRejected) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "ffd8ffdb0043000101010101010101015e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e5e"
+        "5e5e5e5e405e5f5e5e5e5e5e5e5e5e5e5e5e315e5e6c696e654f72646572006c01fd01ffc0000b080008000801011100"
+        "ffc40014000100000000000000000000000000000000ffc40014100100000000000000000000000000000068ffda0008"
+        "010101003f003f636875504c54456e6b436f9594a72ffe7f0000000014100100000000000000000000000000000000ff"
+        "da000801010000000000000000000f460700406000000000000000000000000000000000000000000000000e00000000"
+        "6e74696e7400ffd9");
+    expect_refused(write(dir, "undefined.jpg", found), "no DHT segment defines",
+                   "accepted a scan with an undefined Huffman table");
+
+    std::string q = "ffdb004300";
+    for (int i = 0; i < 64; ++i) q += "01";
+    const std::string dc_table =
+        "ffc40014"
+        "00"
+        "01000000000000000000000000000000"
+        "00";
+    const std::string ac_table =
+        "ffc40014"
+        "10"
+        "01000000000000000000000000000000"
+        "00";
+    const std::string progressive = from_hex("ffd8" + q + "ffc2000b080008000801011100" + dc_table +
+                                             "ffda0008010101000000" + "00" +  // DC first: td 0 (ta 1 unused)
+                                             "ffda0008010132000010" + "00" +  // DC refinement: no table
+                                             ac_table + "ffda0008010120013f00" + "00" + "ffd9");
+    try {
+        read_image(write(dir, "progressive.jpg", progressive));
+    } catch (const InputError& e) {
+        EXPECT_EQ(std::string(e.what()).find("no DHT segment defines"), std::string::npos) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace phos::io
