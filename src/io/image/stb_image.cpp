@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
@@ -156,6 +157,36 @@ std::string hdr_rle_problem(std::FILE* f, int width, int height) {
     return "";
 }
 
+// stb_image 2.27 grows its buffer for a PNG IDAT chunk to the chunk's claimed length before it
+// reads a byte of it: a 93-byte file claiming a 2 GB chunk made it allocate 2 GB (the image
+// fuzzer's out-of-memory finding). This walks the chunks (8-byte signature, then length, type,
+// data, CRC each) up to IEND and returns a reason when a chunk claims more bytes than the file
+// has left, else "" (also for files that are not PNG). Keeps `f`'s position.
+std::string png_chunk_problem(std::FILE* f, uintmax_t file_bytes) {
+    const long start = std::ftell(f);
+    std::string reason;
+    unsigned char b[8];
+    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (std::fread(b, 1, 8, f) == 8 && std::memcmp(b, kSignature, 8) == 0) {
+        for (uintmax_t pos = 8; std::fread(b, 1, 8, f) == 8;) {
+            const uintmax_t length =
+                uintmax_t(b[0]) << 24 | uintmax_t(b[1]) << 16 | uintmax_t(b[2]) << 8 | b[3];
+            pos += 8;
+            const uintmax_t left = file_bytes > pos ? file_bytes - pos : 0;
+            if (length > left) {
+                reason = "corrupt PNG (a chunk claims " + std::to_string(length) + " bytes, more than the " +
+                         std::to_string(left) + " left in the file)";
+                break;
+            }
+            if (std::memcmp(b + 4, "IEND", 4) == 0) break;
+            if (std::fseek(f, long(length + 4), SEEK_CUR) != 0) break;  // data and CRC
+            pos += length + 4;
+        }
+    }
+    std::fseek(f, start, SEEK_SET);
+    return reason;
+}
+
 // Whether stb decodes the file (from its current position) as TGA: by content, whatever the
 // file's name, trying the formats in stb's own order (TGA's weak test comes last).
 bool decodes_as_tga(FILE* f) {
@@ -176,6 +207,13 @@ Image read_stb(const std::string& path, bool srgb) {
     if (const std::string reason = bmp_truncation(f.get()); !reason.empty()) throw_read_error(path, reason);
     if (const std::string reason = jpeg_huffman_problem(f.get()); !reason.empty())
         throw_read_error(path, reason);
+    {
+        std::error_code ec;
+        const auto file_bytes = std::filesystem::file_size(path, ec);
+        if (!ec)
+            if (const std::string reason = png_chunk_problem(f.get(), file_bytes); !reason.empty())
+                throw_read_error(path, reason);
+    }
     // stb allocates the whole image from the header before reading any pixel (and for TGA then
     // loops over every pixel even when the file ends), so a corrupt size is refused first.
     int w = 0, h = 0, n = 0;

@@ -276,5 +276,25 @@ TEST(ImageFuzz, JpegScanWithAnUndefinedHuffmanTableIsRejected) {
     }
 }
 
+// stb_image grows its buffer to a PNG IDAT chunk's claimed length before reading it: the fuzzer's
+// 92-byte file below claims a chunk of 1.9 GB, which stb allocated (the fuzzer's out-of-memory
+// finding). Chunks claiming more than the file holds are refused first; a valid PNG (written by
+// phos, several chunks) still reads.
+TEST(ImageFuzz, PngChunkClaimingMoreThanTheFileIsRejected) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "89504e470d0a1a0a0000000d49484452000000470000000801000000019b73b3b00000000d49444154789c5374313372"
+        "756e74696d655f6572726f72000d49444154e8e810171717e8e8e8e8e8e8e8e8e8e8e80049454e44ae426082");
+    expect_refused(write(dir, "chunk.png", found), "claims 1869742093 bytes",
+                   "accepted a PNG chunk longer than the file");
+    Image image(5, 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i) image.pixels[i] = Rgb(0.1f * float(i % 10), 0.5f, 0.25f);
+    const std::string ok = dir.file("ok.png");
+    write_image(ok, image);
+    const Image back = read_image(ok, false);
+    ASSERT_EQ(back.width, 5);
+    ASSERT_EQ(back.height, 3);
+}
+
 }  // namespace
 }  // namespace phos::io
