@@ -330,24 +330,9 @@ void time_builds(benchmark::State& state, size_t n, Prepare&& prepare, Build&& b
 
 // ---- benchmarks ----
 
-// The build from a span (a copy of the caller's photons, then the in-place build).
-void BM_BuildPhos(benchmark::State& state) {
-    const size_t n = size_t(state.range(0));
-    const std::vector<Photon>& photons = photon_set(n);
-    tbb::task_arena arena(int(state.range(1)));
-    KdTreeOptions options;
-    options.leaf_size = kPhosLeaf;
-    std::unique_ptr<PhotonKdTree> tree;
-    time_builds(
-        state, n, [&] { tree = std::make_unique<PhotonKdTree>(); },
-        [&] {
-            arena.execute([&] { tree->build(photons, options); });
-            benchmark::DoNotOptimize(tree->photons().data());
-        });
-}
-
-// The in-place build: the tree takes over a fresh copy of the photons (made untimed).
-void BM_BuildPhosInPlace(benchmark::State& state) {
+// The build from a span (a copy of the caller's photons, then the in-place build), or in place:
+// the tree takes over a fresh copy of the photons (made untimed).
+void build_phos(benchmark::State& state, bool in_place) {
     const size_t n = size_t(state.range(0));
     const std::vector<Photon>& photons = photon_set(n);
     tbb::task_arena arena(int(state.range(1)));
@@ -359,14 +344,22 @@ void BM_BuildPhosInPlace(benchmark::State& state) {
         state, n,
         [&] {
             tree.reset();
-            copy = photons;
+            if (in_place) copy = photons;
             tree = std::make_unique<PhotonKdTree>();
         },
         [&] {
-            arena.execute([&] { tree->build(std::move(copy), options); });
+            arena.execute([&] {
+                if (in_place)
+                    tree->build(std::move(copy), options);
+                else
+                    tree->build(photons, options);
+            });
             benchmark::DoNotOptimize(tree->photons().data());
         });
 }
+
+void BM_BuildPhos(benchmark::State& state) { build_phos(state, false); }
+void BM_BuildPhosInPlace(benchmark::State& state) { build_phos(state, true); }
 
 void BM_BuildNanoflann(benchmark::State& state) {
     const Dataset& d = dataset(size_t(state.range(0)));

@@ -54,10 +54,11 @@ struct InstanceData {
 
 // The intersect context extended with the exact canonical hit of the last accepted analytic
 // intersection (Embree passes our context through to the callbacks unchanged).
-// Indexed by the ray's id: 0 for single rays, the lane for packets (EmbreeScene::intersect16).
+// `hit` is indexed by the ray's id: 0 for single rays (one hit), the lane for packets
+// (EmbreeScene::intersect16, sixteen), so a single-ray query sets up only one.
 struct QueryContext {
     RTCIntersectContext ctx;
-    CanonicalHit hit[16];
+    CanonicalHit* hit;
 };
 
 // (Two-argument maxima: the initializer-list form was not inlined, 2 % of photon tracing.)
@@ -492,7 +493,8 @@ Local analytic_local(const Analytic& a, const CanonicalHit& h, double amplify) {
 
 bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     if (!usable(ray)) return false;
-    QueryContext qc;
+    CanonicalHit canonical;
+    QueryContext qc{{}, &canonical};
     rtcInitIntersectContext(&qc.ctx);
     RTCRayHit rh;
     init_ray(ray, rh.ray);
@@ -500,7 +502,7 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->top, &qc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    finish_hit({rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar}, qc.hit[0],
+    finish_hit({rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar}, canonical,
                hit);
     return true;
 }
@@ -508,7 +510,8 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
 void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
-    QueryContext qc;
+    CanonicalHit canonical[16];
+    QueryContext qc{{}, canonical};
     rtcInitIntersectContext(&qc.ctx);
     bool any = false;
     for (int k = 0; k < 16; ++k) {
@@ -532,7 +535,7 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
         if (found[k])
             finish_hit({rh.hit.geomID[k], rh.hit.primID[k], rh.hit.instID[0][k], rh.hit.u[k], rh.hit.v[k],
                         rh.ray.tfar[k]},
-                       qc.hit[k], hits[k]);
+                       canonical[k], hits[k]);
     }
 }
 

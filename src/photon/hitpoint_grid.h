@@ -5,8 +5,10 @@
 // photon keep their first radius while the others shrink), and one grid sized by the largest
 // radius makes every photon scan many far points: so points are split into radius classes by
 // powers of two (r in (R/2^(k+1), R/2^k], R the largest radius; the last class takes all smaller
-// ones), each class a grid with cells sized by its own largest radius. A photon visits one cell per
-// non-empty class. The set of points a query reports does not depend on the classes.
+// ones), and a level (a grid with cells sized by its own largest radius) starts at a class when
+// the classes from there down hold at least half of the points not yet in a level; smaller
+// classes share the level above. A photon visits one cell per level. The set of points a query
+// reports does not depend on the levels.
 // bench/hitpoint_lookup_bench.cpp compares it with a k-d tree.
 #pragma once
 
@@ -43,7 +45,7 @@ public:
     // cells mean fewer candidates per photon but more entries). Must be >= 0.5.
     void set_cell_factor(float f) { cell_factor_ = f; }
 
-    // Classes of radii (at most kMaxLevels; the default) whose points get a grid of their own.
+    // Radius classes considered (at most kMaxLevels, the default); so also the most levels.
     static constexpr int kMaxLevels = 8;
     void set_max_levels(int n) { max_levels_ = std::clamp(n, 1, kMaxLevels); }
 

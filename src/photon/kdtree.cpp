@@ -14,6 +14,7 @@
 #include <string>
 
 #include "core/error.h"
+#include "core/rng.h"  // mix64: deterministic pseudo-random sample positions
 
 namespace phos::photon {
 
@@ -108,13 +109,6 @@ inline void select_keys(uint64_t* a, uint32_t n, uint32_t k) {
 inline uint32_t ordered_bits(float x) {
     const uint32_t u = std::bit_cast<uint32_t>(x);
     return u ^ (uint32_t(int32_t(u) >> 31) | 0x80000000u);
-}
-
-// 64-bit mix (splitmix64's finaliser): deterministic pseudo-random sample positions.
-inline uint64_t mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
 }
 
 // A list of disjoint position intervals, addressed by ordinal: element o of the list is the o-th

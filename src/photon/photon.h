@@ -180,14 +180,14 @@ inline uint32_t encode_octahedral(Vec3 d) {
                                 _mm_mul_ps(_mm_div_ps(z, len), _mm_set1_ps(dn.z)));
     alignas(16) float cs[4];
     _mm_store_ps(cs, c);
-    // The first strictly largest lane wins, as in the reference (which starts from best = -2).
+    // The first strictly largest lane wins, as in the reference (which keeps (u0, v0) if none
+    // beats its start, best = -2).
     int k = 0;
-    float best = cs[0] > -2.0f ? cs[0] : -2.0f;
-    if (!(cs[0] > -2.0f)) k = -1;
-    for (int i = 1; i < 4; ++i)
+    float best = -2.0f;
+    for (int i = 0; i < 4; ++i)
         if (cs[i] > best) best = cs[i], k = i;
     const int u = k >= 2 ? u1 : u0, v = (k & 1) ? v1 : v0;
-    return k < 0 ? uint32_t(u0) | (uint32_t(v0) << Bits) : uint32_t(u) | (uint32_t(v) << Bits);
+    return uint32_t(u) | (uint32_t(v) << Bits);
 }
 
 template <int Bits>

@@ -88,8 +88,16 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
     }
 }
 
+// Whether photons can travel 16 at a time (the wavefront in trace_batch): only surfaces stop them,
+// so trace_photon's walk is one closest hit per event.
+bool packets_apply(const PhotonScene& ps, const TraceOptions& o) {
+    bool packets = o.packets && o.max_depth >= 0 && !(ps.media && ps.media->active());
+    for (const scene::Material& m : ps.scene.materials) packets = packets && !m.interface_only;
+    return packets;
+}
+
 void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t pass,
-                 const ProjectionMap* projection, uint64_t first, uint64_t count, Slice& s) {
+                 const ProjectionMap* projection, bool packets, uint64_t first, uint64_t count, Slice& s) {
     PhotonPathOptions po;
     po.max_bounces = o.max_depth;
     po.projection = projection;
@@ -120,8 +128,6 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
                    (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
         };
     };
-    bool packets = o.packets && po.max_bounces >= 0 && !(ps.media && ps.media->active());
-    for (const scene::Material& m : ps.scene.materials) packets = packets && !m.interface_only;
     if (packets) {
         // The wavefront: 16 photons in flight, one rtcIntersect16 per step for all of them, a
         // finished photon's lane refilled with the next emission. Each photon's random numbers
@@ -252,10 +258,12 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
         // photon per scattering event): its final array is reserved once and filled in place.
         // Reserved pages that are never written cost no memory.
         if (active[m] && o.target[m] > 0) {
-            out.photons[m].reserve(size_t(o.target[m]) + size_t(o.max_depth) + 2);
-            if (o.record_bounces) out.bounces[m].reserve(size_t(o.target[m]) + size_t(o.max_depth) + 2);
+            const size_t most = size_t(o.target[m]) + size_t(o.max_depth) + 2;
+            out.photons[m].reserve(most);
+            if (o.record_bounces) out.bounces[m].reserve(most);
         }
     }
+    const bool packets = packets_apply(ps, o);
     const uint64_t cap =
         std::min<uint64_t>(o.emit > 0 ? o.emit : ~0ull, o.max_emit > 0 ? o.max_emit : 0xffffffffull);
     const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
@@ -274,7 +282,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
             slices[b].clear();
             if (interrupt::requested() || !dist::owns(b)) return;
             const uint64_t first = next + b * B;
-            trace_batch(ps, o, active, pass, projection, first, std::min(B, next + n_round - first),
+            trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, next + n_round - first),
                         slices[b]);
         });
         exchange_slices(slices, active, out);

@@ -158,7 +158,7 @@ std::string hdr_rle_problem(std::FILE* f, int width, int height) {
 }
 
 // stb_image 2.27 grows its buffer for a PNG IDAT chunk to the chunk's claimed length before it
-// reads a byte of it: a 93-byte file claiming a 2 GB chunk made it allocate 2 GB (the image
+// reads a byte of it: a 92-byte file claiming a 1.9 GB chunk made it allocate 2 GB (the image
 // fuzzer's out-of-memory finding). This walks the chunks (8-byte signature, then length, type,
 // data, CRC each) up to IEND and returns a reason when a chunk claims more bytes than the file
 // has left, else "" (also for files that are not PNG). Keeps `f`'s position.
@@ -207,22 +207,18 @@ Image read_stb(const std::string& path, bool srgb) {
     if (const std::string reason = bmp_truncation(f.get()); !reason.empty()) throw_read_error(path, reason);
     if (const std::string reason = jpeg_huffman_problem(f.get()); !reason.empty())
         throw_read_error(path, reason);
-    {
-        std::error_code ec;
-        const auto file_bytes = std::filesystem::file_size(path, ec);
-        if (!ec)
-            if (const std::string reason = png_chunk_problem(f.get(), file_bytes); !reason.empty())
-                throw_read_error(path, reason);
-    }
+    std::error_code size_error;
+    const auto file_bytes = std::filesystem::file_size(path, size_error);
+    if (!size_error)
+        if (const std::string reason = png_chunk_problem(f.get(), file_bytes); !reason.empty())
+            throw_read_error(path, reason);
     // stb allocates the whole image from the header before reading any pixel (and for TGA then
     // loops over every pixel even when the file ends), so a corrupt size is refused first.
     int w = 0, h = 0, n = 0;
     if (stbi_info_from_file(f.get(), &w, &h, &n)) {
-        std::error_code ec;
-        const auto file_bytes = std::filesystem::file_size(path, ec);
         // TGA: stb fills the pixels a truncated run-length file lacks, however many its header
         // claims, so the bound is what run-length packets can encode.
-        if (!ec)
+        if (!size_error)
             check_pixel_count(path, w, h, file_bytes,
                               decodes_as_tga(f.get()) ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
         if (stbi_is_hdr_from_file(f.get()))
