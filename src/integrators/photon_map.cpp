@@ -20,9 +20,6 @@
 namespace phos::integrators {
 namespace {
 
-// "PHOSMAP1": the payload's format (photon record, map count and the caches' layouts).
-constexpr uint64_t kMapsMagic = 0x3150414d534f4850ULL;
-
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -52,37 +49,6 @@ bool has_delta_materials(const scene::Scene& scene) {
 }
 
 }  // namespace
-
-std::string PhotonMaps::save() const {
-    std::string out;
-    ByteWriter w(out);
-    w.put(kMapsMagic);
-    for (int m = 0; m < photon::kMapCount; ++m) {
-        map[m].save(w);
-        w.put(emitted[m]);
-    }
-    cache.save(w);
-    volume_cache.save(w);
-    volume_beams.save(w);
-    volume_caustic_beams.save(w);
-    return out;
-}
-
-PhotonMaps PhotonMaps::load(const std::string& bytes, const std::string& what) {
-    ByteReader r(bytes, what);
-    if (r.get<uint64_t>() != kMapsMagic) r.fail("not a photon map record of this phos version");
-    PhotonMaps maps;
-    for (int m = 0; m < photon::kMapCount; ++m) {
-        maps.map[m].load(r);
-        maps.emitted[m] = r.get<uint64_t>();
-    }
-    maps.cache.load(r);
-    maps.volume_cache.load(r);
-    maps.volume_beams.load(r);
-    maps.volume_caustic_beams.load(r);
-    if (!r.at_end()) r.fail("unexpected bytes after the maps");
-    return maps;
-}
 
 // The options arrive validated against their table (integrators/factory.cpp).
 PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)

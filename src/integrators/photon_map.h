@@ -11,37 +11,13 @@
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/render_budget.h"
-#include "photon/beam_bvh.h"
-#include "photon/irradiance_cache.h"
-#include "photon/kdtree.h"
+#include "photon/photon_maps.h"
 #include "photon/tracer.h"
-#include "photon/volume_cache.h"
 
 namespace phos::integrators {
 
-// The photon maps built by pass 1 (kd-trees with powers already divided by their emission count).
-struct PhotonMaps {
-    photon::PhotonKdTree map[photon::kMapCount];
-    uint64_t emitted[photon::kMapCount] = {};
-    photon::IrradianceCache cache;  // empty unless --irradiance-cache
-    // In-scattered light at volume photons for final-gather rays in media (with --irradiance-cache).
-    photon::VolumeCache volume_cache;
-    // The volume maps' photons with their kernel radii for --volume-estimate beam (else empty).
-    photon::BeamBvh volume_beams, volume_caustic_beams;
-    // Only from build_maps(..., record_bounces = true), for the photon tools: per photon of map[m]
-    // (tree order), the scattering events before it was stored. Not part of save().
-    std::vector<uint8_t> bounces[photon::kMapCount];
-
-    // All of the above as bytes (a checkpoint's payload) and back, exactly: a resumed render reads
-    // its maps instead of tracing them again. `what` names the source in errors.
-    std::string save() const;
-    static PhotonMaps load(const std::string& bytes, const std::string& what);
-    const photon::PhotonKdTree& global() const { return map[photon::kGlobalMap]; }
-    const photon::PhotonKdTree& caustic() const { return map[photon::kCausticMap]; }
-    const photon::PhotonKdTree& indirect() const { return map[photon::kIndirectMap]; }
-    const photon::PhotonKdTree& volume() const { return map[photon::kVolumeMap]; }
-    const photon::PhotonKdTree& volume_caustic() const { return map[photon::kVolumeCausticMap]; }
-};
+// The maps pass 1 builds (photon/photon_maps.h).
+using photon::PhotonMaps;
 
 class PhotonMapIntegrator : public Integrator {
 public:

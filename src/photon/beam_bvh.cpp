@@ -71,11 +71,31 @@ void BeamBvh::save(ByteWriter& out) const {
 void BeamBvh::load(ByteReader& in) {
     nodes_ = in.get_vector<Node>();
     spheres_ = in.get_vector<PhotonSphere>();
-    for (const Node& n : nodes_) {
-        const bool ok = n.count == 0 ? n.offset < nodes_.size()
-                                     : n.offset <= spheres_.size() && n.count <= spheres_.size() - n.offset;
-        if (!ok) in.fail("inconsistent beam tree");
+    if (!nodes_.empty() && !is_tree(nodes_, spheres_.size())) in.fail("inconsistent beam tree");
+}
+
+bool BeamBvh::is_tree(std::span<const Node> nodes, size_t spheres) {
+    // The builder's layout: the subtree of node i fills the slots [i, e); an interior node's left
+    // child is i + 1 and its right child `offset` splits the rest. Ranges shrink at every step, so
+    // for_each_hit ends, and its 64-entry stack holds a path of at most 64 nodes.
+    struct Range {
+        size_t i, e;
+        int depth;
+    };
+    std::vector<Range> todo{{0, nodes.size(), 1}};
+    while (!todo.empty()) {
+        const Range r = todo.back();
+        todo.pop_back();
+        const Node& n = nodes[r.i];
+        if (n.count > 0) {
+            if (r.e != r.i + 1 || n.offset > spheres || n.count > spheres - n.offset) return false;
+            continue;
+        }
+        if (!(r.i + 1 < n.offset && n.offset < r.e) || r.depth >= 64) return false;
+        todo.push_back({r.i + 1, n.offset, r.depth + 1});
+        todo.push_back({n.offset, r.e, r.depth + 1});
     }
+    return true;
 }
 
 void BeamBvh::build(std::vector<PhotonSphere> spheres, uint32_t leaf_size) {

@@ -95,6 +95,9 @@ public:
         uint32_t count;
     };
     std::span<const Node> nodes() const { return nodes_; }
+    // True if `nodes` (not empty) has the layout build() gives, over `spheres` spheres: what
+    // load() asks of bytes before for_each_hit may walk them.
+    static bool is_tree(std::span<const Node> nodes, size_t spheres);
 
 private:
     std::vector<Node> nodes_;

@@ -12,6 +12,8 @@
 #include <cstring>
 #include <limits>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
 #include "core/rng.h"  // mix64: deterministic pseudo-random sample positions
@@ -548,6 +550,25 @@ void PhotonKdTree::load(ByteReader& in) {
     if (leaf_size_ == 0 || photons_.size() > size_t(0xfffffffeu) ||
         (!input_index_.empty() && input_index_.size() != photons_.size()))
         in.fail("inconsistent photon map");
+    // The layout build() gives: split photons name an axis (traverse() indexes by it), leaf
+    // photons say 3, and every position is finite.
+    for (const Photon& ph : photons_)
+        if (!is_finite(ph.position)) in.fail("photon map: a photon has a non-finite position");
+    const uint32_t n = uint32_t(photons_.size());
+    std::vector<std::pair<uint32_t, uint32_t>> todo{{0, n}};
+    while (!todo.empty()) {
+        const auto [b, e] = todo.back();
+        todo.pop_back();
+        if (e - b <= leaf_size_) {
+            for (uint32_t i = b; i < e; ++i)
+                if (photons_[i].split_axis() != 3) in.fail("inconsistent photon map");
+            continue;
+        }
+        const uint32_t m = b + (e - b) / 2;
+        if (photons_[m].split_axis() > 2) in.fail("inconsistent photon map");
+        todo.push_back({b, m});
+        todo.push_back({m + 1, e});
+    }
 }
 
 void PhotonKdTree::build(std::span<const Photon> photons, const KdTreeOptions& options) {

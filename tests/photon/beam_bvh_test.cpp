@@ -1,7 +1,7 @@
 // Tests of the photon-sphere BVH (photon/beam_bvh.h): segment queries against brute force over
 // every sphere (the same spheres, the same sum up to float rounding) on random spheres and
 // segments, axis-aligned and degenerate segments, the node invariants, and bit-identical builds at
-// 1 and 2 threads.
+// 1 and 2 threads; save / load, and the shapes load refuses.
 #include "photon/beam_bvh.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include "core/error.h"
@@ -185,6 +186,48 @@ TEST(BeamBvh, NodesBoundTheirSpheres) {
         }
     }
     EXPECT_EQ(covered, 2000u) << "every sphere in exactly one leaf";
+}
+
+TEST(BeamBvh, LoadRestoresTheTreeAndRefusesOtherShapes) {
+    BeamBvh bvh;
+    bvh.build(random_spheres(300, 0.01f, 0.1f, 6), 4);
+    ASSERT_TRUE(BeamBvh::is_tree(bvh.nodes(), bvh.size()));
+    std::string bytes;
+    ByteWriter w(bytes);
+    bvh.save(w);
+    {
+        ByteReader r(bytes, "'beams'");
+        BeamBvh back;
+        back.load(r);
+        ASSERT_EQ(back.nodes().size(), bvh.nodes().size());
+        EXPECT_EQ(std::memcmp(back.nodes().data(), bvh.nodes().data(), bvh.nodes().size_bytes()), 0);
+    }
+    // Each of these would make for_each_hit loop forever, overflow its stack or read past an array.
+    const size_t n = bvh.nodes().size();
+    std::vector<BeamBvh::Node> nodes(bvh.nodes().begin(), bvh.nodes().end());
+    const auto refused = [&](const char* why) {
+        EXPECT_FALSE(BeamBvh::is_tree(nodes, bvh.size())) << why;
+        nodes.assign(bvh.nodes().begin(), bvh.nodes().end());
+    };
+    ASSERT_EQ(nodes[0].count, 0u);
+    nodes[0].offset = 0;
+    refused("a right child pointing at its parent (a cycle)");
+    nodes[0].offset = 1;
+    refused("a right child equal to the left one");
+    nodes[0].offset = uint32_t(n);
+    refused("a right child past the array");
+    nodes[n - 1].count = 0, nodes[n - 1].offset = uint32_t(n - 1);
+    refused("an interior node in the last slot (its left child would be past the array)");
+    for (BeamBvh::Node& node : nodes)
+        if (node.count > 0) node.offset = uint32_t(bvh.size());
+    refused("leaves past the spheres");
+    // A chain 70 deep: every interior node's left child is a leaf.
+    std::vector<BeamBvh::Node> chain(141);
+    for (uint32_t i = 0; i < 140; i += 2) chain[i].offset = i + 2, chain[i + 1].count = 1;
+    chain[140].count = 1;
+    EXPECT_FALSE(BeamBvh::is_tree(chain, 1)) << "deeper than for_each_hit's stack";
+    chain.resize(121), chain[120].count = 1, chain[120].offset = 0;
+    EXPECT_TRUE(BeamBvh::is_tree(chain, 1)) << "61 deep fits";
 }
 
 TEST(BeamBvh, BitIdenticalAtOneAndTwoThreads) {

@@ -2,7 +2,7 @@
 // duplicate and Cornell-box photon sets, the edge cases (empty map, k > n, radius 0), the split
 // invariant, the filtered query, bit-identical builds at 1 and 2 threads, and the in-place build:
 // the same tree as from a copy, and the invariants and input indices on large (parallel-path)
-// inputs full of equal coordinates.
+// inputs full of equal coordinates; save / load, and the layouts load refuses.
 #include "photon/kdtree.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +10,9 @@
 
 #include <algorithm>
 #include <cstring>
+#include <functional>
 #include <set>
+#include <string>
 
 #include "core/error.h"
 #include "core/rng.h"
@@ -436,6 +438,44 @@ std::vector<Photon> large_ties(uint64_t seed) {
         v[i].position =
             Vec3(float(rng.next_index(5)), float(rng.next_index(5)), float(rng.next_index(5))) * 0.25f;
     return v;
+}
+
+TEST(KdTree, LoadRestoresTheTreeAndRefusesOtherLayouts) {
+    KdTreeOptions o;
+    o.leaf_size = 4;
+    const PhotonKdTree tree(random_cube(100, 16), o);
+    std::string bytes;
+    ByteWriter w(bytes);
+    tree.save(w);
+    const auto load = [](const std::string& b) {
+        ByteReader r(b, "'map'");
+        PhotonKdTree t;
+        t.load(r);
+        return t;
+    };
+    const PhotonKdTree back = load(bytes);
+    ASSERT_EQ(back.size(), tree.size());
+    EXPECT_EQ(std::memcmp(back.photons().data(), tree.photons().data(), tree.photons().size_bytes()), 0);
+    // The photons follow a 4-byte leaf size and an 8-byte count; the root's split photon is 50.
+    const size_t root = 4 + 8 + 50 * sizeof(Photon);
+    const auto with_root = [&](const std::function<void(Photon&)>& change) {
+        std::string b = bytes;
+        Photon p;
+        std::memcpy(&p, b.data() + root, sizeof p);
+        change(p);
+        std::memcpy(b.data() + root, &p, sizeof p);
+        return b;
+    };
+    EXPECT_THROW(load(with_root([](Photon& p) { p.set_split_axis(3); })), InputError)
+        << "a split photon with no axis (traverse() would index past its 3 coordinates)";
+    EXPECT_THROW(load(with_root([](Photon& p) { p.position.x = NAN; })), InputError);
+    std::string leaf_marked = bytes;
+    Photon first;
+    std::memcpy(&first, leaf_marked.data() + 12, sizeof first);
+    EXPECT_EQ(first.split_axis(), 3) << "photon 0 lies in a leaf";
+    first.set_split_axis(0);
+    std::memcpy(leaf_marked.data() + 12, &first, sizeof first);
+    EXPECT_THROW(load(leaf_marked), InputError) << "a leaf photon marked as a split";
 }
 
 TEST(KdTree, InPlaceBuildMatchesSpanBuild) {
