@@ -11,6 +11,11 @@
 # Ratios, not absolute figures, are what to compare between machines: run it on an idle machine
 # (the load average at the start is printed).
 # Usage: bench/photon_throughput.sh [BUILD_DIR] [--big]
+# Environment: PHOS_THREADS (thread counts, default "1 2"; e.g. "1 2 4 8 16" for a scaling curve:
+# each row's scaling is against the first count), PHOS_ANCHOR (a prebuilt anchor binary, for a
+# machine without Embree's headers), PHOS_BENCH_DIR (the shared bench folder, default
+# ../shared/bench), PHOS_PHOTONS (global photons of the tracing rows, default 4000000) and
+# PHOS_ANCHOR_RAYS (the anchor's rays, default 20000000): raise both for many cores.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
@@ -18,11 +23,16 @@ build=${1:-$here/../build}
 big=0
 [ "${1:-}" = "--big" ] && big=1
 phos=$build/phos
-shared=$here/../../shared/bench
+shared=${PHOS_BENCH_DIR:-$here/../../shared/bench}
+threads=${PHOS_THREADS:-1 2}
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores"
-g++ -O3 -march=native -std=c++17 "$shared/anchors/embree_rays.cpp" -lembree3 -ltbb -o "$out/rays"
+if [ -n "${PHOS_ANCHOR:-}" ]; then
+    cp "$PHOS_ANCHOR" "$out/rays"
+else
+    g++ -O3 -march=native -std=c++17 "$shared/anchors/embree_rays.cpp" -lembree3 -ltbb -o "$out/rays"
+fi
 
 # `photonmap THREADS GLOBAL`: runs the issue's command, leaves -v's output in $out/pm.log.
 photonmap() {
@@ -30,24 +40,27 @@ photonmap() {
         --gather-rays 1 --global "$2" --no-irradiance-cache -v --no-progress --threads "$1" -o "$out/pm.pfm" \
         2> "$out/pm.log"
 }
+calc() { awk "BEGIN { print $1 }"; }
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
 
-printf '| %-7s | %13s | %13s | %6s | %8s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio trace-s "build Mphot/s"
-printf '| %-7s | %13s | %13s | %6s | %8s | %13s |\n' --- --- --- --- --- ---
-for t in 1 2; do
-    anchor=$("$out/rays" "$t" 20000000 | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')
-    photonmap "$t" 4000000
+printf '| %-7s | %13s | %13s | %6s | %8s | %13s | %13s | %13s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio \
+    trace-s "build Mphot/s" "Embree scaling" "trace scaling" "build scaling"
+printf '| %-7s | %13s | %13s | %6s | %8s | %13s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- --- ---
+first=""
+for t in $threads; do
+    anchor=$("$out/rays" "$t" "${PHOS_ANCHOR_RAYS:-20000000}" | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')
+    photonmap "$t" "${PHOS_PHOTONS:-4000000}"
     rays=$(sed -n 's/.* \([0-9]*\) photon (.*/\1/p' "$out/pm.log")
     trace=$(field "time photon trace:")
     build_s=$(field "time photon map build:")
     stored=$(sed -n 's/.*global map: \([0-9]*\) photons.*/\1/p' "$out/pm.log")
-    rate=$(echo "$rays / $trace / 1000000" | bc -l)
-    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %13.2f |\n' "$t" "$anchor" "$rate" \
-        "$(echo "$rate / $anchor" | bc -l)" "$trace" "$(echo "$stored / $build_s / 1000000" | bc -l)"
-    eval "trace_$t=$trace build_$t=$build_s"
+    rate=$(calc "$rays / $trace / 1000000")
+    [ -z "$first" ] && first=$t anchor_1=$anchor trace_1=$trace build_1=$build_s
+    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" "$rate" \
+        "$(calc "$rate / $anchor")" "$trace" "$(calc "$stored / $build_s / 1000000")" \
+        "$(calc "$anchor / $anchor_1")" "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
 done
-echo "scaling 1 -> 2 threads: photon tracing $(echo "$trace_1 / $trace_2" | bc -l | cut -c1-4)x," \
-    "map build $(echo "$build_1 / $build_2" | bc -l | cut -c1-4)x"
+echo "(scaling: against $first thread(s))"
 
 if [ "$big" = 1 ]; then
     photonmap 2 100000000
@@ -56,8 +69,8 @@ if [ "$big" = 1 ]; then
     build_s=$(field "time photon map build:")
     trace=$(field "time photon trace:")
     peak_gb=$(echo "$peak" | awk '{ print ($2 == "GB") ? $1 : $1 / 1000 }')
-    map_gb=$(echo "$stored * 20 / 1000000000" | bc -l)
+    map_gb=$(calc "$stored * 20 / 1000000000")
     printf '100 M photons (2 threads): %s stored, map %.2f GB, peak RSS %s GB (%.2fx the map), trace %s s, build %s s (%.2f M photons/s)\n' \
-        "$stored" "$map_gb" "$peak_gb" "$(echo "$peak_gb / $map_gb" | bc -l)" "$trace" "$build_s" \
-        "$(echo "$stored / $build_s / 1000000" | bc -l)"
+        "$stored" "$map_gb" "$peak_gb" "$(calc "$peak_gb / $map_gb")" "$trace" "$build_s" \
+        "$(calc "$stored / $build_s / 1000000")"
 fi

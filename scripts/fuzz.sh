@@ -7,6 +7,8 @@
 #            volume checkpoint photon_maps (default: all). --smoke (CI): every seed plus a few seconds per target.
 #   --runs N also stops a target after N executions (whichever comes first: `--runs 10000000 3600`
 #            is the "10 M executions or one hour" campaign of docs/testing.md).
+# PHOS_FUZZ_TIMEOUT (seconds, default 10): what counts as a hang. libFuzzer times wall clock, so a
+# campaign sharing the machine with builds may raise it rather than report a starved input.
 # Exits 1 if any target crashed, hung, leaked, ran out of memory or tripped a sanitizer; the inputs
 # are in build-fuzz/artifacts/, the logs in build-fuzz/logs/.
 set -euo pipefail
@@ -95,7 +97,7 @@ for t in "${targets[@]}"; do
   ASAN_OPTIONS="${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=0}" \
   "$build/fuzz/${t}_fuzzer" "$corpus" "$seeds/$t" \
     -dict="$here/fuzz/$(dict_of "$t").dict" -max_len="$(max_len_of "$t")" \
-    -max_total_time="$seconds" -runs="$runs" -timeout=10 -rss_limit_mb=2048 -detect_leaks=1 \
+    -max_total_time="$seconds" -runs="$runs" -timeout="${PHOS_FUZZ_TIMEOUT:-10}" -rss_limit_mb=2048 -detect_leaks=1 \
     -print_final_stats=1 -artifact_prefix="$build/artifacts/$t-" >"$log" 2>&1 || rc=$?
   took=$((SECONDS - start))
   after=$(find "$build/artifacts" -name "$t-*" | wc -l)
