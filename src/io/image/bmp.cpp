@@ -37,17 +37,30 @@ std::string bmp_truncation(std::FILE* f) {
     long size = -1;
     if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
     std::fseek(f, start, SEEK_SET);
-    if (got < sizeof h || h[0] != 'B' || h[1] != 'M') return "";  // not a BMP, or too short for stb anyway
-    // Only BITMAPINFOHEADER-or-later headers with uncompressed (BI_RGB) or bit-field pixels have a
-    // size we can predict; RLE data (1, 2) is left to stb, which refuses it. Other compression
-    // codes (JPEG, PNG, CMYK, or none at all) are refused here: stb reads them as uncompressed
-    // pixels without checking the size, row by row, however many rows the header claims.
-    const uint32_t offset = get32(h + 10), header_size = get32(h + 14), compression = get32(h + 30);
-    if (header_size < 40 || compression == 1 || compression == 2) return "";
-    if (compression != 0 && compression != 3)
-        return "unsupported BMP compression " + std::to_string(compression);
-    const int64_t width = int32_t(get32(h + 18)), height = int32_t(get32(h + 22));
-    const int64_t bpp = uint16_t(h[28] | h[29] << 8);
+    if (got < 2 || h[0] != 'B' || h[1] != 'M') return "";  // not a BMP
+    // stb reads a header the file lacks as zeros (uncompressed pixels of whatever size the bytes
+    // that are there claim), so the file must hold its whole header first.
+    const uint32_t header_size = got >= 18 ? get32(h + 14) : 0;
+    if (got < 18 || (size >= 0 && size < 14 + int64_t(header_size)))
+        return "truncated BMP header (" + std::to_string(size) + " bytes)";
+    // Only the headers stb reads have a size we can predict: BITMAPCOREHEADER (12 bytes, 16-bit
+    // sizes, no compression) and BITMAPINFOHEADER or later (40 bytes and more). Of the latter, only
+    // uncompressed (BI_RGB) and bit-field pixels; RLE data (1, 2) is left to stb, which refuses it.
+    // Other compression codes (JPEG, PNG, CMYK, or none at all) are refused here: stb reads them as
+    // uncompressed pixels without checking the size, row by row, however many rows the header claims.
+    const uint32_t offset = get32(h + 10);
+    int64_t width = 0, height = 0, bpp = 0;
+    if (header_size == 12) {
+        width = h[18] | h[19] << 8, height = h[20] | h[21] << 8, bpp = h[24] | h[25] << 8;
+    } else if (header_size >= 40) {
+        const uint32_t compression = get32(h + 30);
+        if (compression == 1 || compression == 2) return "";
+        if (compression != 0 && compression != 3)
+            return "unsupported BMP compression " + std::to_string(compression);
+        width = int32_t(get32(h + 18)), height = int32_t(get32(h + 22)), bpp = uint16_t(h[28] | h[29] << 8);
+    } else {
+        return "";  // a header type stb refuses
+    }
     if (width <= 0 || height == 0 || bpp <= 0 || bpp > 32) return "";
     const int64_t row = ((width * bpp + 31) / 32) * 4, rows = height < 0 ? -height : height;
     // row < 2^36 and rows <= 2^31: their product may not fit in 64 bits, and then no file is long enough.
