@@ -53,9 +53,8 @@ void query(const PhotonMaps& maps) {
         if (maps.volume_cache.lookup(q, 1.0f, Vec3(0, 0, -1), 0.3f, e)) sink += e.r;
         for (const BeamBvh* b : {&maps.volume_beams, &maps.volume_caustic_beams}) {
             const Vec3 d = normalize(Vec3(0.3f, -0.5f, 0.8f));
-            b->for_each_hit(q - 2.0f * d, d, 4.0f, [&](uint32_t k, const SphereHit&) {
-                sink += b->spheres()[k].power.g;
-            });
+            b->for_each_hit(q - 2.0f * d, d, 4.0f,
+                            [&](uint32_t k, const SphereHit&) { sink += b->spheres()[k].power.g; });
         }
     }
     volatile float keep = sink;

@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
     vo.k = 8;
     volume.volume_cache.build(volume.map[kVolumeMap], vo, volume.map[kVolumeCausticMap], vo, 3);
     std::vector<PhotonSphere> spheres;
-    for (const Photon& p : volume.map[kVolumeMap].photons()) spheres.push_back({p.position, 0.1f, p.power(), p.wi()});
+    for (const Photon& p : volume.map[kVolumeMap].photons())
+        spheres.push_back({p.position, 0.1f, p.power(), p.wi()});
     volume.volume_beams.build(spheres, 2);
     spheres.resize(5);
     volume.volume_caustic_beams.build(spheres, 2);

@@ -116,17 +116,36 @@ TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
 // header's 16-bit sizes are checked against the file as well.
 TEST(ImageFuzz, BmpWithATruncatedHeaderIsRejected) {
     TempDir dir;
-    const std::string cut = from_hex("424d" "bafa0000" "00000000" "34000000" "28000000" "0a1c0000" "fc08ffff"
-                                     "0100" "0800");
+    const std::string cut = from_hex(
+        "424d"
+        "bafa0000"
+        "00000000"
+        "34000000"
+        "28000000"
+        "0a1c0000"
+        "fc08ffff"
+        "0100"
+        "0800");
     expect_refused(write(dir, "cut.bmp", cut), "truncated BMP header",
                    "accepted a 30-byte BMP whose header stops after its height");
     // The core header (12 bytes): 65535 x 65535 pixels of 24 bits in 32 bytes.
-    const std::string core = from_hex("424d20000000000000001a0000000c000000ffffffff01001800" "000000000000");
+    const std::string core = from_hex(
+        "424d20000000000000001a0000000c000000ffffffff01001800"
+        "000000000000");
     expect_refused(write(dir, "core.bmp", core), "truncated BMP (",
                    "accepted a 32-byte core-header BMP claiming 65535 x 65535 pixels");
     // A valid core-header BMP still reads: 2 x 1 pixels, 24 bits, one padded row.
-    const std::string valid = from_hex("424d2200000000000000" "1a000000" "0c000000" "0200" "0100" "0100" "1800"
-                                       "0000ff" "00ff00" "0000");
+    const std::string valid = from_hex(
+        "424d2200000000000000"
+        "1a000000"
+        "0c000000"
+        "0200"
+        "0100"
+        "0100"
+        "1800"
+        "0000ff"
+        "00ff00"
+        "0000");
     const Image image = read_image(write(dir, "valid.bmp", valid));
     EXPECT_EQ(image.width, 2);
     EXPECT_EQ(image.height, 1);
