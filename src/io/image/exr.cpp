@@ -7,6 +7,7 @@
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
@@ -42,14 +43,22 @@ void write_exr(const std::string& path, const Image& image) {
 
 namespace {
 
-// OpenEXR allocates (and clears) an attribute's claimed size before it notices that the file is
-// shorter: a 369-byte file whose string attribute claims 846 MB took 0.6 s, and timed out under
-// the address sanitizer (the image fuzzer's finding). So the header's attribute sizes are checked
-// against the bytes that follow them first. The layout (openexr.com, "OpenEXR File Layout"): magic
-// 76 2f 31 01, a 4-byte version with flags (0x1000: multi-part, each part's header ending with a
-// null byte and the list with an empty header), then attributes: name and type as null-terminated
-// strings, a little-endian int32 size, the value. Anything else odd is left to OpenEXR's own checks.
-void check_exr_attribute_sizes(const std::string& path, uintmax_t file_bytes) {
+// OpenEXR trusts a header's sizes before it reads any pixel, so they are checked against the file
+// first, from the bytes alone:
+//  - it allocates (and clears) an attribute's claimed size before it notices that the file is
+//    shorter: a 369-byte file whose string attribute claims 846 MB took 0.6 s, and timed out under
+//    the address sanitizer (the image fuzzer's finding);
+//  - opening a scanline file allocates line buffers for a block of lines (up to 32) of the data
+//    window's width, and a tiled one buffers of its tile size: a 148-byte file whose data window is
+//    33.5 M pixels wide asked for 2.2 GB (the fuzzer's next finding). So each part's data window is
+//    held to what read_exr accepts (sides up to 2^24, 2^31 pixels, check_pixel_count), and its
+//    buffers (width x 32 lines, or a tile, times the channels' bytes per pixel) to the bytes of an
+//    image of the plausible pixel count at 16 bytes per pixel.
+// The layout (openexr.com, "OpenEXR File Layout"): magic 76 2f 31 01, a 4-byte version with flags
+// (0x1000: multi-part, each part's header ending with a null byte and the list with an empty
+// header), then attributes: name and type as null-terminated strings, a little-endian int32 size,
+// the value. Anything else odd is left to OpenEXR's own checks.
+void check_exr_header(const std::string& path, uintmax_t file_bytes) {
     std::ifstream in(path, std::ios::binary);
     unsigned char head[8];
     if (!in.read(reinterpret_cast<char*>(head), 8)) return;
@@ -66,9 +75,14 @@ void check_exr_attribute_sizes(const std::string& path, uintmax_t file_bytes) {
         }
         return false;
     };
-    std::string name, type;
+    const auto le32 = [](const std::string& v, size_t at) {
+        return int32_t(uint32_t(uint8_t(v[at])) | uint32_t(uint8_t(v[at + 1])) << 8 |
+                       uint32_t(uint8_t(v[at + 2])) << 16 | uint32_t(uint8_t(v[at + 3])) << 24);
+    };
+    std::string name, type, value;
     for (int headers = 0; headers < 1 << 16; ++headers) {
         int attributes = 0;
+        long long w = 0, h = 0, tile_w = 0, tile_h = 0, pixel_bytes = 0;
         for (;; ++attributes) {
             if (!read_string(name)) return;
             if (name.empty()) break;  // end of this header
@@ -83,10 +97,38 @@ void check_exr_attribute_sizes(const std::string& path, uintmax_t file_bytes) {
                                            std::to_string(size) + " bytes, more than the " +
                                            std::to_string(file_bytes - std::min(pos, file_bytes)) +
                                            " left in the file");
-            in.seekg(std::streamoff(size), std::ios::cur);
+            value.resize(size_t(size));
+            if (!in.read(value.data(), size)) return;
             pos += uintmax_t(size);
+            if (name == "dataWindow" && type == "box2i" && size == 16) {
+                w = (long long)le32(value, 8) - le32(value, 0) + 1;
+                h = (long long)le32(value, 12) - le32(value, 4) + 1;
+            } else if (name == "tiles" && type == "tiledesc" && size >= 8) {
+                tile_w = uint32_t(le32(value, 0)), tile_h = uint32_t(le32(value, 4));
+            } else if (name == "channels" && type == "chlist") {
+                // name, int32 pixel type (0 uint, 1 half, 2 float), 4 bytes, 2 int32 samplings.
+                for (size_t at = 0; at < value.size() && value[at] != 0;) {
+                    const size_t end = value.find('\0', at);
+                    if (end == std::string::npos || end + 17 > value.size()) break;
+                    pixel_bytes += le32(value, end + 1) == 1 ? 2 : 4;
+                    at = end + 17;
+                }
+            }
         }
-        if (!multipart || attributes == 0) return;
+        if (attributes == 0) return;  // the empty header that ends a multi-part file's list
+        if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
+            throw_read_error(path, "unsupported EXR data window size");
+        check_pixel_count(path, w, h, file_bytes);
+        // One buffer's pixels: a tile, or a block of up to 32 full lines.
+        const long double buffer = tile_w > 0 ? (long double)tile_w * (long double)tile_h
+                                              : (long double)w * (long double)std::min(h, 32ll);
+        if (buffer * (long double)std::max(pixel_bytes, 1ll) >
+            (long double)file_bytes * (long double)kMaxPixelsPerByte * 16.0L)
+            throw_read_error(path, "its header asks for " + std::to_string((unsigned long long)(buffer)) +
+                                       "-pixel buffers of " + std::to_string(pixel_bytes) +
+                                       " bytes per pixel, implausibly large for a file of " +
+                                       std::to_string(file_bytes) + " bytes (corrupt header?)");
+        if (!multipart) return;
     }
 }
 
@@ -96,7 +138,7 @@ Image read_exr(const std::string& path) {
     try {
         std::error_code size_error;
         const auto file_bytes = std::filesystem::file_size(path, size_error);
-        if (!size_error) check_exr_attribute_sizes(path, file_bytes);
+        if (!size_error) check_exr_header(path, file_bytes);
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;

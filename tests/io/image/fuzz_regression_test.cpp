@@ -151,6 +151,34 @@ TEST(ImageFuzz, BmpWithATruncatedHeaderIsRejected) {
     EXPECT_EQ(image.height, 1);
 }
 
+// A 148-byte EXR whose data window is 33,537,537 pixels wide: opening it, OpenEXR allocated line
+// buffers for 32 lines of that width (2.2 GB, the image fuzzer's out-of-memory finding of
+// 2026-11-24, session 25) before phos looked at the window. The header's data window (and the
+// buffers it implies) is now checked from the file's bytes before OpenEXR opens it.
+TEST(ImageFuzz, ExrWithAHugeDataWindowIsRejectedBeforeOpenExrAllocates) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "762f3101020000006368616e6e656c730063686c697374001300000059000200000000000000010000000100000000"
+        "636f6d70f273696f6e00636f6d7072657373696f6e0001000000006461746157696e646f7700626f7832690010000000"
+        "004200000000000000000002f900000000006f77576964746800666c6fff1400040000000000803f001d00003f000000"
+        "3f0000003f");
+    expect_refused(write(dir, "wide.exr", found), "unsupported EXR data window size",
+                   "accepted a 148-byte EXR 33.5 M pixels wide");
+}
+
+// Radiance HDR: stb ends the header at a line whose first byte is 0 (it reads lines as C strings),
+// but phos's walk of the run-length scanlines waited for a truly empty line, missed the pixels,
+// and let through a scanline whose last run is cut off, on which stb loops for ever (the fuzzer's
+// timeouts, 2026-11-24, session 25). The walk now ends the header where stb does.
+TEST(ImageFuzz, HdrHeaderEndedByANulLineIsWalkedAsStbReadsIt) {
+    TempDir dir;
+    const std::string found = from_hex(
+        "233f52414449414e43450a6269745f726c650a464f524d41543d33322d6269745f726c655f726762650a000a2d5920"
+        "31202b5820380a020200088801010100000182");
+    expect_refused(write(dir, "nul.hdr", found), "corrupt HDR",
+                   "accepted a cut-off run-length HDR whose header ends with a NUL line");
+}
+
 // A BMP whose compression field holds no known code (0xBB000000): stb read it as uncompressed
 // pixels, 3 wide and 14,417,922 rows (a negative height: top-down), skipping each row's padding
 // with a seek (the fuzzer's timeout, 2026-11-24); phos's size check left unknown codes to stb.
