@@ -43,6 +43,14 @@ void write_exr(const std::string& path, const Image& image) {
 
 namespace {
 
+// The data windows read_exr accepts: sides up to 2^24, at most 2^31 pixels, and (when the file's
+// size is known) no more pixels than check_pixel_count allows for it.
+void check_data_window(const std::string& path, long long w, long long h, const uintmax_t* file_bytes) {
+    if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
+        throw_read_error(path, "unsupported EXR data window size");
+    if (file_bytes) check_pixel_count(path, w, h, *file_bytes);
+}
+
 // OpenEXR trusts a header's sizes before it reads any pixel, so they are checked against the file
 // first, from the bytes alone:
 //  - it allocates (and clears) an attribute's claimed size before it notices that the file is
@@ -51,7 +59,7 @@ namespace {
 //  - opening a scanline file allocates line buffers for a block of lines (up to 32) of the data
 //    window's width, and a tiled one buffers of its tile size: a 148-byte file whose data window is
 //    33.5 M pixels wide asked for 2.2 GB (the fuzzer's next finding). So each part's data window is
-//    held to what read_exr accepts (sides up to 2^24, 2^31 pixels, check_pixel_count), and its
+//    held to what read_exr accepts (check_data_window), and its
 //    buffers (width x 32 lines, or a tile, times the channels' bytes per pixel) to the bytes of an
 //    image of the plausible pixel count at 16 bytes per pixel.
 // The layout (openexr.com, "OpenEXR File Layout"): magic 76 2f 31 01, a 4-byte version with flags
@@ -116,9 +124,7 @@ void check_exr_header(const std::string& path, uintmax_t file_bytes) {
             }
         }
         if (attributes == 0) return;  // the empty header that ends a multi-part file's list
-        if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
-            throw_read_error(path, "unsupported EXR data window size");
-        check_pixel_count(path, w, h, file_bytes);
+        check_data_window(path, w, h, &file_bytes);
         // One buffer's pixels: a tile, or a block of up to 32 full lines.
         const long double buffer = tile_w > 0 ? (long double)tile_w * (long double)tile_h
                                               : (long double)w * (long double)std::min(h, 32ll);
@@ -142,9 +148,7 @@ Image read_exr(const std::string& path) {
         Imf::InputFile file(path.c_str());
         const Imath::Box2i dw = file.header().dataWindow();
         const long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-        if (w <= 0 || h <= 0 || w > (1 << 24) || h > (1 << 24) || w * h > (1ll << 31))
-            throw_read_error(path, "unsupported EXR data window size");
-        if (!size_error) check_pixel_count(path, w, h, file_bytes);
+        check_data_window(path, w, h, size_error ? nullptr : &file_bytes);
         const Imf::ChannelList& channels = file.header().channels();
         const bool has_rgb =
             channels.findChannel("R") || channels.findChannel("G") || channels.findChannel("B");
