@@ -1,5 +1,6 @@
 // BMP writer: uncompressed 24-bit BGR, rows bottom to top, each padded to 4 bytes, behind the
 // 14-byte file header and 40-byte BITMAPINFOHEADER. BMP reading goes through stb_image.cpp.
+#include <algorithm>
 #include <cerrno>
 #include <cstdint>
 #include <cstdio>
@@ -30,18 +31,16 @@ uint32_t get32(const uint8_t* p) {
 
 }  // namespace
 
-std::string bmp_truncation(std::FILE* f) {
-    const long start = std::ftell(f);
+std::string bmp_truncation(std::span<const unsigned char> bytes) {
     uint8_t h[34] = {};
-    const size_t got = std::fread(h, 1, sizeof h, f);
-    long size = -1;
-    if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
-    std::fseek(f, start, SEEK_SET);
+    const size_t got = std::min(bytes.size(), sizeof h);
+    if (got > 0) std::memcpy(h, bytes.data(), got);
+    const int64_t size = int64_t(bytes.size());
     if (got < 2 || h[0] != 'B' || h[1] != 'M') return "";  // not a BMP
     // stb reads a header the file lacks as zeros (uncompressed pixels of whatever size the bytes
     // that are there claim), so the file must hold its whole header first.
     const uint32_t header_size = got >= 18 ? get32(h + 14) : 0;
-    if (got < 18 || (size >= 0 && size < 14 + int64_t(header_size)))
+    if (got < 18 || size < 14 + int64_t(header_size))
         return "truncated BMP header (" + std::to_string(size) + " bytes)";
     // Only the headers stb reads have a size we can predict: BITMAPCOREHEADER (12 bytes, 16-bit
     // sizes, no compression) and BITMAPINFOHEADER or later (40 bytes and more). Of the latter, only
@@ -67,7 +66,7 @@ std::string bmp_truncation(std::FILE* f) {
     if (rows > (INT64_MAX - int64_t(offset)) / row)
         return "truncated BMP (" + std::to_string(size) + " bytes; its header asks for more than 2^63)";
     const int64_t needed = int64_t(offset) + row * rows;
-    if (size >= 0 && size < needed)
+    if (size < needed)
         return "truncated BMP (" + std::to_string(size) + " of " + std::to_string(needed) + " bytes)";
     return "";
 }

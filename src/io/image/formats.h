@@ -2,7 +2,7 @@
 // but tests use it to reach format-specific options such as greyscale PFM.
 #pragma once
 
-#include <cstdio>
+#include <span>
 #include <string>
 
 #include "core/image.h"
@@ -25,8 +25,8 @@ Image read_pfm(const std::string& path);
 Image read_stb(const std::string& path, bool srgb);
 
 // stb_image decodes a truncated uncompressed BMP without complaint (missing rows read as 0); this
-// returns a reason when the BMP in `f` is shorter than its header promises, else "". Keeps `f`'s position.
-std::string bmp_truncation(std::FILE* f);
+// returns a reason when the BMP file `bytes` is shorter than its header promises, else "".
+std::string bmp_truncation(std::span<const unsigned char> bytes);
 
 // "cannot read 'path': reason" — the one wording all readers use.
 [[noreturn]] void throw_read_error(const std::string& path, const std::string& reason);

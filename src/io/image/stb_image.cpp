@@ -15,11 +15,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -46,13 +48,8 @@ std::string stb_reason() {
 // -56837: an out-of-bounds read, the image fuzzer's finding). This walks the file the way stb does
 // (segments skipped by their length, entropy-coded data scanned for markers, fill bytes 0xFF
 // skipped) and returns a reason when any DHT segment stb could reach holds such a table, or a scan
-// uses a table not defined before it, else "". Keeps `f`'s position.
-std::string jpeg_huffman_problem(std::FILE* f) {
-    const long start = std::ftell(f);
-    std::vector<unsigned char> b;
-    unsigned char buf[4096];
-    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) b.insert(b.end(), buf, buf + n);
-    std::fseek(f, start, SEEK_SET);
+// uses a table not defined before it, else "".
+std::string jpeg_huffman_problem(std::span<const unsigned char> b) {
     // stb takes a file for a JPEG when it starts with an SOI marker, 0xFF fill bytes allowed.
     size_t p = 0;
     while (p < b.size() && b[p] == 0xFF) ++p;
@@ -111,14 +108,9 @@ std::string jpeg_huffman_problem(std::FILE* f) {
 // stb_image 2.27 decodes a run-length encoded Radiance HDR scanline with a loop that never ends when
 // a "dump" count is 0, which is also what it reads at the end of the file: a truncated or corrupt
 // file hangs it. This walks the scanlines of the `width` x `height` HDR in `f` as stb does and
-// returns a reason when it would meet such a count, else "". Keeps `f`'s position.
-std::string hdr_rle_problem(std::FILE* f, int width, int height) {
+// returns a reason when it would meet such a count, else "".
+std::string hdr_rle_problem(std::span<const unsigned char> b, int width, int height) {
     if (width < 8 || width >= 32768) return "";  // stb reads flat pixels then, which always ends
-    const long start = std::ftell(f);
-    std::vector<unsigned char> b;
-    unsigned char buf[4096];
-    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f)) > 0;) b.insert(b.end(), buf, buf + n);
-    std::fseek(f, start, SEEK_SET);
     const auto at = [&](size_t i) -> unsigned { return i < b.size() ? b[i] : 0u; };  // 0 past the end
     // The header: the magic line, lines up to an empty one, then the "-Y h +X w" line.
     size_t p = 0;
@@ -164,74 +156,78 @@ std::string hdr_rle_problem(std::FILE* f, int width, int height) {
 // fuzzer's out-of-memory finding). This walks the chunks (8-byte signature, then length, type,
 // data, CRC each) up to IEND and returns a reason when a chunk claims more bytes than the file
 // has left, else "" (also for files that are not PNG). Keeps `f`'s position.
-std::string png_chunk_problem(std::FILE* f, uintmax_t file_bytes) {
-    const long start = std::ftell(f);
-    std::string reason;
-    unsigned char b[8];
+std::string png_chunk_problem(std::span<const unsigned char> b) {
     static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (std::fread(b, 1, 8, f) == 8 && std::memcmp(b, kSignature, 8) == 0) {
-        for (uintmax_t pos = 8; std::fread(b, 1, 8, f) == 8;) {
-            const uintmax_t length =
-                uintmax_t(b[0]) << 24 | uintmax_t(b[1]) << 16 | uintmax_t(b[2]) << 8 | b[3];
-            pos += 8;
-            const uintmax_t left = file_bytes > pos ? file_bytes - pos : 0;
-            if (length > left) {
-                reason = "corrupt PNG (a chunk claims " + std::to_string(length) + " bytes, more than the " +
-                         std::to_string(left) + " left in the file)";
-                break;
-            }
-            if (std::memcmp(b + 4, "IEND", 4) == 0) break;
-            if (std::fseek(f, long(length + 4), SEEK_CUR) != 0) break;  // data and CRC
-            pos += length + 4;
-        }
+    if (b.size() < 8 || std::memcmp(b.data(), kSignature, 8) != 0) return "";
+    for (size_t pos = 8; b.size() - pos >= 8;) {
+        const unsigned char* c = b.data() + pos;
+        const uint64_t length = uint64_t(c[0]) << 24 | uint64_t(c[1]) << 16 | uint64_t(c[2]) << 8 | c[3];
+        pos += 8;
+        const uint64_t left = b.size() - pos;
+        if (length > left)
+            return "corrupt PNG (a chunk claims " + std::to_string(length) + " bytes, more than the " +
+                   std::to_string(left) + " left in the file)";
+        if (std::memcmp(c + 4, "IEND", 4) == 0) break;
+        if (length + 4 > left) break;  // data and CRC
+        pos += size_t(length) + 4;
     }
-    std::fseek(f, start, SEEK_SET);
-    return reason;
+    return "";
 }
 
-// Whether stb decodes the file (from its current position) as TGA: by content, whatever the
-// file's name, trying the formats in stb's own order (TGA's weak test comes last).
-bool decodes_as_tga(FILE* f) {
-    const long pos = std::ftell(f);
+// Whether stb decodes the bytes as TGA: by content, whatever the file's name, trying the formats in
+// stb's own order (TGA's weak test comes last).
+bool decodes_as_tga(std::span<const unsigned char> b) {
     stbi__context s;
-    stbi__start_file(&s, f);
-    const bool tga = !stbi__png_test(&s) && !stbi__bmp_test(&s) && !stbi__jpeg_test(&s) &&
-                     !stbi__hdr_test(&s) && stbi__tga_test(&s);
-    std::fseek(f, pos, SEEK_SET);
-    return tga;
+    stbi__start_mem(&s, b.data(), int(b.size()));
+    return !stbi__png_test(&s) && !stbi__bmp_test(&s) && !stbi__jpeg_test(&s) && !stbi__hdr_test(&s) &&
+           stbi__tga_test(&s);
+}
+
+// The whole file: stb decodes from memory. Its file reader keeps only the first 128 bytes for the
+// rewinds between its format tests, so a test that reads further (a JPEG after 136 fill bytes, the
+// image fuzzer's finding) leaves it decoding a stream that is not the file, one the checks above
+// cannot see: a Huffman table whose counts came from stale buffer bytes overran stb's size list.
+std::vector<unsigned char> read_file_bytes(const std::string& path) {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f) throw_read_error(path, std::strerror(errno));
+    std::vector<unsigned char> bytes;
+    unsigned char buf[1 << 16];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f.get())) > 0;) {
+        bytes.insert(bytes.end(), buf, buf + n);
+        if (bytes.size() > size_t(INT_MAX))  // stb's lengths are ints
+            throw_read_error(path, "file too large for PNG/JPEG/TGA/BMP/HDR decoding (over 2 GB)");
+    }
+    if (std::ferror(f.get())) throw_read_error(path, std::strerror(errno));
+    return bytes;
 }
 
 }  // namespace
 
 Image read_stb(const std::string& path, bool srgb) {
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!f) throw_read_error(path, std::strerror(errno));
-    if (const std::string reason = bmp_truncation(f.get()); !reason.empty()) throw_read_error(path, reason);
-    if (const std::string reason = jpeg_huffman_problem(f.get()); !reason.empty())
+    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    const unsigned char* const data_in = bytes.data();
+    const int size = int(bytes.size());
+    if (const std::string reason = bmp_truncation(bytes); !reason.empty()) throw_read_error(path, reason);
+    if (const std::string reason = jpeg_huffman_problem(bytes); !reason.empty())
         throw_read_error(path, reason);
-    std::error_code size_error;
-    const auto file_bytes = std::filesystem::file_size(path, size_error);
-    if (!size_error)
-        if (const std::string reason = png_chunk_problem(f.get(), file_bytes); !reason.empty())
-            throw_read_error(path, reason);
+    if (const std::string reason = png_chunk_problem(bytes); !reason.empty()) throw_read_error(path, reason);
     // stb allocates the whole image from the header before reading any pixel (and for TGA then
     // loops over every pixel even when the file ends), so a corrupt size is refused first.
     int w = 0, h = 0, n = 0;
-    if (stbi_info_from_file(f.get(), &w, &h, &n)) {
+    if (stbi_info_from_memory(data_in, size, &w, &h, &n)) {
         // TGA: stb fills the pixels a truncated run-length file lacks, however many its header
         // claims, so the bound is what run-length packets can encode.
-        if (!size_error)
-            check_pixel_count(path, w, h, file_bytes,
-                              decodes_as_tga(f.get()) ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
-        if (stbi_is_hdr_from_file(f.get()))
-            if (const std::string reason = hdr_rle_problem(f.get(), w, h); !reason.empty())
+        check_pixel_count(path, w, h, bytes.size(),
+                          decodes_as_tga(bytes) ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
+        if (stbi_is_hdr_from_memory(data_in, size))
+            if (const std::string reason = hdr_rle_problem(bytes, w, h); !reason.empty())
                 throw_read_error(path, reason);
     }
     Image image;
 
-    if (stbi_is_hdr_from_file(f.get())) {
+    if (stbi_is_hdr_from_memory(data_in, size)) {
         // Radiance HDR holds linear floats already; stb would not alter them for .hdr input.
-        std::unique_ptr<float, StbFree> data(stbi_loadf_from_file(f.get(), &w, &h, &n, 3));
+        std::unique_ptr<float, StbFree> data(stbi_loadf_from_memory(data_in, size, &w, &h, &n, 3));
         if (!data || w <= 0 || h <= 0) throw_read_error(path, stb_reason());
         image = Image(w, h);
         for (size_t i = 0; i < image.pixels.size(); ++i)
@@ -239,8 +235,8 @@ Image read_stb(const std::string& path, bool srgb) {
         return image;
     }
 
-    if (stbi_is_16_bit_from_file(f.get())) {
-        std::unique_ptr<stbi_us, StbFree> data(stbi_load_from_file_16(f.get(), &w, &h, &n, 3));
+    if (stbi_is_16_bit_from_memory(data_in, size)) {
+        std::unique_ptr<stbi_us, StbFree> data(stbi_load_16_from_memory(data_in, size, &w, &h, &n, 3));
         if (!data || w <= 0 || h <= 0) throw_read_error(path, stb_reason());
         image = Image(w, h);
         for (size_t i = 0; i < image.pixels.size(); ++i)
@@ -252,7 +248,7 @@ Image read_stb(const std::string& path, bool srgb) {
     }
 
     // Plain 8-bit load: stbi_loadf would apply its own gamma 2.2 guess instead of the sRGB curve.
-    std::unique_ptr<stbi_uc, StbFree> data(stbi_load_from_file(f.get(), &w, &h, &n, 3));
+    std::unique_ptr<stbi_uc, StbFree> data(stbi_load_from_memory(data_in, size, &w, &h, &n, 3));
     if (!data || w <= 0 || h <= 0) throw_read_error(path, stb_reason());
     image = Image(w, h);
     for (size_t i = 0; i < image.pixels.size(); ++i)

@@ -346,6 +346,42 @@ TEST(ImageFuzz, JpegScanWithAnUndefinedHuffmanTableIsRejected) {
     }
 }
 
+// stb_image's file reader keeps only its first 128 bytes for the rewinds between its format tests:
+// the fuzzer's 245-byte JPEG below starts with 137 fill bytes, so after the JPEG test stb decoded
+// bytes 128.. followed by stale buffer bytes, whose DHT held code counts the file does not, and
+// built a Huffman table past its 257-entry size list (UBSan, stb_image.h:1990); phos's checks had
+// walked the file itself. stb now decodes the bytes phos checked, from memory: the file is refused
+// (its only Huffman table is cut off), and a valid JPEG behind 137 fill bytes reads exactly as
+// without them.
+TEST(ImageFuzz, JpegBehindFillBytesIsDecodedFromTheBytesThatWereChecked) {
+    TempDir dir;
+    const std::string fill(137, char(0xff));
+    const std::string found =
+        fill +
+        from_hex(
+            "d8ffdb004300013e00420000000000000000000000000000000000000000000000000000000000015e000000815e5e5e"
+            "5e5e5e5e4073637265656e57696e646f7743656e7465720076326600d9fd01ffc2000b080008000801011100ffc40014"
+            "0001000000000000000000");
+    EXPECT_THROW(read_image(write(dir, "fill.jpg", found)), InputError);
+
+    const std::string valid = tiny_jpeg("01000000000000000000000000000000");
+    const Image plain = read_image(write(dir, "plain.jpg", valid));
+    const Image filled = read_image(write(dir, "filled.jpg", fill + valid.substr(1)));  // FF.. FF D8
+    ASSERT_EQ(plain.width, 8);
+    ASSERT_EQ(filled.width, plain.width);
+    ASSERT_EQ(filled.height, plain.height);
+    for (size_t i = 0; i < plain.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c) ASSERT_EQ(filled.pixels[i][c], plain.pixels[i][c]) << i;
+}
+
+// An empty file is refused by every stb-decoded format (the fuzzer's one-byte input: an empty BMP
+// made the BMP check copy from a null pointer once files were read into memory).
+TEST(ImageFuzz, EmptyFilesAreRefused) {
+    TempDir dir;
+    for (const char* name : {"e.png", "e.jpg", "e.jpeg", "e.tga", "e.bmp", "e.hdr"})
+        EXPECT_THROW(read_image(write(dir, name, "")), InputError) << name;
+}
+
 // stb_image grows its buffer to a PNG IDAT chunk's claimed length before reading it: the fuzzer's
 // 92-byte file below claims a chunk of 1.9 GB, which stb allocated (the fuzzer's out-of-memory
 // finding). Chunks claiming more than the file holds are refused first; a valid PNG (written by
