@@ -66,6 +66,12 @@ int rank() { return g_rank; }
 int ranks() { return g_ranks; }
 uint64_t bytes_exchanged() { return g_bytes; }
 
+std::string all_gather(const std::string& mine) {
+    std::string all;
+    all_gather(mine, all);
+    return all;
+}
+
 #ifdef PHOS_HAS_MPI
 
 bool built_with_mpi() { return true; }
@@ -175,28 +181,30 @@ std::vector<std::string> gather(const std::string& mine) {
     return out;
 }
 
-std::string all_gather(const std::string& mine) {
-    if (g_ranks == 1) return mine;
+void all_gather(std::string_view mine, std::string& all) {
+    if (g_ranks == 1) {
+        all.assign(mine);
+        return;
+    }
     std::vector<uint64_t> sizes(size_t(g_ranks), 0);
     uint64_t n = mine.size();
     check(MPI_Allgather(&n, 1, MPI_UINT64_T, sizes.data(), 1, MPI_UINT64_T, MPI_COMM_WORLD), "MPI_Allgather");
     uint64_t total = 0;
     for (uint64_t k : sizes) total += k;
     if (total >= uint64_t(std::numeric_limits<int>::max())) {  // int counts: large ones go through rank 0
-        std::string all;
-        for (const std::string& part : gather(mine)) all += part;
+        all.clear();
+        for (const std::string& part : gather(std::string(mine))) all += part;
         broadcast(all);
-        return all;
+        return;
     }
     std::vector<int> counts(static_cast<size_t>(g_ranks)), offsets(static_cast<size_t>(g_ranks));
     for (size_t r = 0, at = 0; r < sizes.size(); at += sizes[r], ++r)
         counts[r] = int(sizes[r]), offsets[r] = int(at);
-    std::string all(total, '\0');
+    all.resize(total);
     check(MPI_Allgatherv(mine.data(), int(n), MPI_BYTE, all.data(), counts.data(), offsets.data(), MPI_BYTE,
                          MPI_COMM_WORLD),
           "MPI_Allgatherv");
     g_bytes += total;
-    return all;
 }
 
 void abort_all(int exit_code) {
@@ -216,7 +224,7 @@ void sum(uint64_t*, size_t) {}
 void max(uint32_t*, size_t) {}
 bool any(bool value) { return value; }
 std::vector<std::string> gather(const std::string& mine) { return {mine}; }
-std::string all_gather(const std::string& mine) { return mine; }
+void all_gather(std::string_view mine, std::string& all) { all.assign(mine); }
 void abort_all(int exit_code) { std::exit(exit_code); }
 
 #endif

@@ -44,6 +44,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     PhotonAccumulator acc(pixels * per_pixel);
     photon::HitPointGrid grid;
     const auto tiles = film::make_tiles(ro.width, ro.height);
+    EyePassExchange exchange;  // under MPI: the ranks' eye passes
     // Pixel (x, y)'s eye path of iteration `it`, keyed by (seed, pixel, iteration).
     const auto eye_path = [&](int x, int y, uint64_t it, VisiblePoint& vp, RayCounts& rays) {
         Sampler sampler(ro.seed, 0x65796570617373ULL, size_t(y) * size_t(ro.width) + size_t(x), it);
@@ -70,7 +71,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         // Eye pass: one stochastic camera path per pixel, keyed by (seed, pixel, iteration); its
         // emission and direct light add to the pixel's direct sum.
         tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
-            if (!dist::owns(t)) return;  // under MPI: another rank's tile (share_eye_pass)
+            if (!dist::owns(t)) return;  // under MPI: another rank's tile (EyePassExchange)
             const film::Tile& tile = tiles[t];
             RayCounts rays;
             uint64_t dropped = 0;
@@ -97,7 +98,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
             P.stats.add_rays(rays);
             P.stats.add_dropped_samples(dropped);
         });
-        share_eye_pass(tiles, ro.width, per_pixel, vps, state.slots);
+        exchange.share(tiles, ro.width, per_pixel, vps, state.slots);
         const bool is_pilot = it == 0 && pilot.k > 0;
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
             for (size_t i = 0; i < vps.size(); ++i)

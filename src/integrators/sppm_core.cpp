@@ -177,7 +177,8 @@ void PhotonAccumulator::drain(F&& f) {
         });
         return;
     }
-    std::vector<int64_t> all(count_ * 4);  // per point: Φ r, g, b, M
+    std::vector<int64_t>& all = reduced_;
+    all.resize(count_ * 4);  // per point: Φ r, g, b, M
     tbb::parallel_for(size_t(0), count_, [&](size_t i) {
         uint64_t m;
         take(i, m, &all[4 * i]);
@@ -187,8 +188,8 @@ void PhotonAccumulator::drain(F&& f) {
     tbb::parallel_for(size_t(0), count_, [&](size_t i) { f(i, uint64_t(all[4 * i + 3]), &all[4 * i]); });
 }
 
-void share_eye_pass(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
-                    std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots) {
+void EyePassExchange::share(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
+                            std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots) {
     if (!dist::distributed()) return;
     // Plain data (the Bsdf holds its parameters, no pointers): copied as bytes.
     static_assert(std::is_trivially_copyable_v<VisiblePoint> && std::is_trivially_copyable_v<PixelStats>);
@@ -201,14 +202,16 @@ void share_eye_pass(const std::vector<film::Tile>& tiles, int width, size_t per_
                 for (size_t s = base; s < base + per_pixel; ++s) copy(vps[s], slots[s]);
             }
     };
-    std::string mine;
+    std::string& mine = mine_;
+    mine.clear();
     for (size_t t = 0; t < tiles.size(); ++t)
         if (dist::owns(t))
             visit(tiles[t], [&](const VisiblePoint& v, const PixelStats& st) {
                 mine.append(reinterpret_cast<const char*>(&v), sizeof v);
                 mine.append(reinterpret_cast<const char*>(&st), sizeof st);
             });
-    const std::string all = dist::all_gather(mine);  // rank 0 .. N-1, each its own in order
+    dist::all_gather(mine, all_);  // rank 0 .. N-1, each its own in order
+    const std::string& all = all_;
     size_t at = 0;
     const size_t n = size_t(dist::ranks());
     for (size_t r = 0; r < n; ++r)
