@@ -11,6 +11,12 @@ namespace phos::interrupt {
 // the handler says nothing (the MPI ranks other than 0, whose rank 0 says it); `distributed`
 // words rank 0's message for an MPI job (whose image needs every rank).
 void install_handlers(bool silent = false, bool distributed = false);
+// Under MPI, rank 0's processes to look at when a signal arrives: `pids[r]` is rank r's process
+// id when it runs on rank 0's machine, else 0 (at most kMaxWatchedRanks are kept). mpirun ends
+// the job with SIGTERM when a rank dies; rank 0's handler then names the ranks that are no longer
+// running (kill(pid, 0) fails with ESRCH) instead of promising an image it cannot gather.
+constexpr int kMaxWatchedRanks = 4096;
+void watch_ranks(const int* pids, int count);
 // Whether a stop was requested (cheap: one relaxed atomic load; safe from any thread).
 bool requested();
 // The signal that asked to stop (SIGINT, SIGTERM), or 0 when none did or the request came from

@@ -3,6 +3,7 @@
 #include "dist/ranks.h"
 
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -70,6 +71,21 @@ std::string all_gather(const std::string& mine) {
     std::string all;
     all_gather(mine, all);
     return all;
+}
+
+std::vector<int> pids_on_this_machine() {
+    if (!distributed()) return {};
+    struct Process {
+        int pid;
+        char host[256];
+    };
+    Process me{int(::getpid()), {}};
+    ::gethostname(me.host, sizeof me.host - 1);
+    const std::vector<Process> all = all_gather(std::span<const Process>(&me, 1));
+    std::vector<int> pids(all.size(), 0);
+    for (size_t r = 0; r < all.size(); ++r)
+        if (std::strncmp(all[r].host, me.host, sizeof me.host) == 0) pids[r] = all[r].pid;
+    return pids;
 }
 
 #ifdef PHOS_HAS_MPI

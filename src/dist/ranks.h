@@ -87,6 +87,10 @@ bool started();
 void mark_finished();
 bool finished();
 
+// Collective: every rank's process id where it runs on the same machine as this rank (by host
+// name), 0 where it runs elsewhere; {} with one rank.
+std::vector<int> pids_on_this_machine();
+
 // Bytes this rank has sent and received through the calls above (for -v and bench/mpi_scaling.sh).
 uint64_t bytes_exchanged();
 

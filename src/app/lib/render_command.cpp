@@ -395,6 +395,8 @@ int run_render(const RenderCommand& command) {
     RenderCommand cmd = command;
     log::set_quiet(cmd.run.quiet);
     interrupt::install_handlers(!dist::root(), dist::distributed());
+    if (const std::vector<int> pids = dist::pids_on_this_machine(); dist::root() && !pids.empty())
+        interrupt::watch_ranks(pids.data(), int(pids.size()));  // to name a rank that dies
     std::optional<tbb::global_control> threads;
     if (cmd.run.threads > 0)
         threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
