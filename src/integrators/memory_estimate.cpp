@@ -10,6 +10,7 @@
 #include <set>
 
 #include "core/memory.h"
+#include "dist/ranks.h"
 #include "integrators/bidirectional_path.h"
 #include "integrators/factory.h"
 #include "integrators/sppm_core.h"
@@ -27,6 +28,9 @@ using photon::Photon;
 // The process before any scene: binary, libraries, TBB workers, the Embree device (VmHWM of a
 // 16x16 path render of a 12-triangle box: 40 MB, for 1 to 8 threads).
 constexpr double kBase = 40e6;
+// Under mpirun: OpenMPI 4.1's libraries, plugins and shared-memory segments (VmHWM of that render
+// as 2 ranks: 53 MB against 43.6 MB alone).
+constexpr double kMpiBase = 10e6;
 
 // Embree 3 (accel/embree_scene.cpp: RTC_BUILD_QUALITY_HIGH, robust scenes), per triangle beyond
 // its copy of the vertices (12 B, and 12 B of transformed normals when the mesh has them) and
@@ -223,6 +227,12 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     p.add("hit-point grid",
           pixels * std::max(1, in.integrator == "ppm" ? in.progressive.eye_samples : 1) * kGridPerPoint);
     if (in.checkpoint) p.add("checkpoint", slots * sizeof(sppm::PixelStats));
+    // Under MPI: the eye-pass exchange's buffers (every slot's point and statistics, and this
+    // rank's share again) and the summed photon sums, kept for the whole render.
+    if (dist::distributed())
+        p.add("rank exchange", slots * (double(sizeof(sppm::VisiblePoint) + sizeof(sppm::PixelStats)) *
+                                            (1 + 1.0 / dist::ranks()) +
+                                        kAccumulatorSlot));
     phases.push_back(p);
 }
 
@@ -267,6 +277,7 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
 
     Phase base;
     base.add("base", kBase);
+    if (dist::distributed()) base.add("MPI", kMpiBase);
     base.add("scene", sm.scene);
     base.add("accelerator", sm.geometry + kPerGeometry * sm.other_geometries);
 
