@@ -1,6 +1,8 @@
 // The option tables of RenderOptions (see options.h and core/option_table.h).
 #include "integrators/options.h"
 
+#include "scene/scene.h"
+
 namespace phos::integrators {
 
 using options::at_least;
@@ -17,18 +19,20 @@ const std::vector<std::string>& aov_names() {
 const options::Table& image_options() {
     static const options::Table table = [] {
         options::TableBuilder<RenderOptions> b("Image", "image size, component layers and auxiliary images");
-        b.number("width", &RenderOptions::width, "W", between(1, 65536),
+        b.number("width", &RenderOptions::width, "W", between(1, scene::RenderSettings::kMaxResolution),
                  "image width in pixels; given alone, the height follows the scene's aspect ratio")
             .default_text = "the scene file's, else 512";
-        b.number("height", &RenderOptions::height, "H", between(1, 65536),
+        b.number("height", &RenderOptions::height, "H", between(1, scene::RenderSettings::kMaxResolution),
                  "image height in pixels; given alone, the width follows the scene's aspect ratio")
             .default_text = "the scene file's, else 512";
         b.custom(
              "resolution", "W H", 2, "image size (the seed's -resolution)",
              [](RenderOptions& o, const std::vector<std::string>& v) {
                  const long long w = options::parse_integer(v.at(0)), h = options::parse_integer(v.at(1));
-                 options::TableBuilder<RenderOptions>::check_range(double(w), between(1, 65536));
-                 options::TableBuilder<RenderOptions>::check_range(double(h), between(1, 65536));
+                 options::TableBuilder<RenderOptions>::check_range(
+                     double(w), between(1, scene::RenderSettings::kMaxResolution));
+                 options::TableBuilder<RenderOptions>::check_range(
+                     double(h), between(1, scene::RenderSettings::kMaxResolution));
                  o.width = int(w);
                  o.height = int(h);
              },

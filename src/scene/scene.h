@@ -26,6 +26,7 @@ struct IntegratorParameter {
 
 // Render settings a scene file may carry (pbrt's Film/Sampler/Integrator); the CLI wins.
 struct RenderSettings {
+    static constexpr int kMaxResolution = 65536;  // pixels on a side, for files and --width/--height
     std::optional<int> width, height;
     std::optional<int> spp;
     std::optional<std::string> integrator;  // phos integrator name

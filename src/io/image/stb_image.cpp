@@ -184,7 +184,7 @@ bool decodes_as_tga(std::span<const unsigned char> b) {
 }
 
 // The whole file: stb decodes from memory. Its file reader keeps only the first 128 bytes for the
-// rewinds between its format tests, so a test that reads further (a JPEG after 136 fill bytes, the
+// rewinds between its format tests, so a test that reads further (a JPEG after 137 fill bytes, the
 // image fuzzer's finding) leaves it decoding a stream that is not the file, one the checks above
 // cannot see: a Huffman table whose counts came from stale buffer bytes overran stb's size list.
 std::vector<unsigned char> read_file_bytes(const std::string& path) {

@@ -176,7 +176,10 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
     if (type != "rgb" && type != "gbuffer" && type != "spectral")
         warn(loc, d + " is not a pbrt-v4 film type; treated as \"rgb\"");
     const int w = params.get_int("xresolution", 1280), h = params.get_int("yresolution", 720);
-    if (w <= 0 || h <= 0) loc.fail(d + ": resolution must be positive");
+    constexpr int kMax = scene::RenderSettings::kMaxResolution;
+    if (w <= 0 || h <= 0 || w > kMax || h > kMax)
+        loc.fail(d + ": resolution " + std::to_string(w) + " x " + std::to_string(h) + " is not in [1, " +
+                 std::to_string(kMax) + "] on each side");
     scene_.settings.width = w;
     scene_.settings.height = h;
     const std::string out = params.get_string("filename", "");

@@ -33,8 +33,9 @@ void Reader::scene_command(const Line& l) {
     } else if (k == "resolution") {
         const std::vector<double> v = numbers(l, 2, "w h");
         for (size_t i = 0; i < 2; ++i)
-            if (!(v[i] >= 1 && v[i] <= 65536 && v[i] == std::floor(v[i])))
-                fail(l.args[i], "resolution: expected a whole number of pixels in [1, 65536], got '" +
+            if (!(v[i] >= 1 && v[i] <= scene::RenderSettings::kMaxResolution && v[i] == std::floor(v[i])))
+                fail(l.args[i], "resolution: expected a whole number of pixels in [1, " +
+                                    std::to_string(scene::RenderSettings::kMaxResolution) + "], got '" +
                                     l.args[i].text + "'");
         if (scene_.settings.width) log::warn(where(l.keyword) + ": a second resolution replaces the first");
         scene_.settings.width = int(v[0]);

@@ -33,6 +33,8 @@ INSTANTIATE_TEST_SUITE_P(
         Case{"MissingBracket", W + "Shape \"sphere\" \"float radius\" [ 1\nAttributeBegin\n", 2, 31,
              "missing ']'"},
         Case{"MissingBracketAtEof", W + "Shape \"sphere\" \"float radius\" [ 1", 2, 31, "missing ']'"},
+        Case{"FilmTooLarge", "Film \"rgb\" \"integer xresolution\" [ 2000000000 ]\nWorldBegin\n", 1, 1,
+             "resolution 2000000000 x 720 is not in [1, 65536]"},
         Case{"UnknownDirective", W + "  Shpe \"sphere\"\n", 2, 3, "unknown directive 'Shpe'"},
         Case{"WrongParamType", W + "Shape \"sphere\" \"string radius\" \"big\"\n", 2, 16, "should be float"},
         Case{"UnknownParamType", W + "Shape \"sphere\" \"flot radius\" 1\n", 2, 16, "unknown parameter type"},
