@@ -43,9 +43,8 @@ int say_gone_ranks() {
         while ((v /= 10) > 0);
         say(gone++ == 0 ? "\nphos: rank " : "phos: rank ");
         say(d);
-        say(" has stopped running (killed, crashed or out of memory): the job ends without writing; images "
-            "and "
-            "checkpoints already written are intact\n");
+        say(" has stopped running (killed, crashed or out of memory): the job ends without writing; "
+            "images and checkpoints already written are intact\n");
     }
     errno = saved_errno;
     return gone;

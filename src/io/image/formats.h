@@ -2,8 +2,11 @@
 // but tests use it to reach format-specific options such as greyscale PFM.
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 #include "core/image.h"
 #include "io/image/image_io.h"
@@ -30,6 +33,10 @@ std::string bmp_truncation(std::span<const unsigned char> bytes);
 
 // "cannot read 'path': reason" — the one wording all readers use.
 [[noreturn]] void throw_read_error(const std::string& path, const std::string& reason);
+
+// The whole file at `path`, for readers that decode from memory; refuses (throw_read_error) a file
+// that cannot be read or holds more than `max_bytes`.
+std::vector<unsigned char> read_file_bytes(const std::string& path, size_t max_bytes = SIZE_MAX);
 
 // Refuses (throw_read_error) a header that claims more pixels than a file of `file_bytes` bytes
 // can plausibly encode, before anything is allocated for them. The bound, kMaxPixelsPerByte, is

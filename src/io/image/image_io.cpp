@@ -4,7 +4,12 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <filesystem>
+#include <memory>
+#include <vector>
 
 #include "core/error.h"
 #include "io/image/atomic_write.h"
@@ -26,6 +31,21 @@ namespace detail {
 
 void throw_read_error(const std::string& path, const std::string& reason) {
     throw InputError("cannot read '" + path + "': " + reason);
+}
+
+std::vector<unsigned char> read_file_bytes(const std::string& path, size_t max_bytes) {
+    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
+    if (!f) throw_read_error(path, std::strerror(errno));
+    std::vector<unsigned char> bytes;
+    unsigned char buf[1 << 16];
+    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f.get())) > 0;) {
+        bytes.insert(bytes.end(), buf, buf + n);
+        if (bytes.size() > max_bytes)
+            throw_read_error(path,
+                             "file too large for its decoder (over " + std::to_string(max_bytes) + " bytes)");
+    }
+    if (std::ferror(f.get())) throw_read_error(path, std::strerror(errno));
+    return bytes;
 }
 
 void check_pixel_count(const std::string& path, long long width, long long height,

@@ -6,8 +6,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <memory>
 #include <string>
 #include <vector>
@@ -59,11 +57,7 @@ bool parse_int(const std::string& s, long long& out) {
 }  // namespace
 
 Image read_pfm(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw_read_error(path, "cannot open file");
-    const std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                           std::istreambuf_iterator<char>());
-    if (in.bad()) throw_read_error(path, "read error");
+    const std::vector<unsigned char> bytes = read_file_bytes(path);
 
     Scanner sc{bytes};
     const std::string magic = sc.token();

@@ -14,12 +14,10 @@
 #pragma GCC diagnostic pop
 
 #include <algorithm>
-#include <cerrno>
 #include <climits>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
-#include <filesystem>
 #include <memory>
 #include <span>
 #include <string>
@@ -107,7 +105,7 @@ std::string jpeg_huffman_problem(std::span<const unsigned char> b) {
 
 // stb_image 2.27 decodes a run-length encoded Radiance HDR scanline with a loop that never ends when
 // a "dump" count is 0, which is also what it reads at the end of the file: a truncated or corrupt
-// file hangs it. This walks the scanlines of the `width` x `height` HDR in `f` as stb does and
+// file hangs it. This walks the scanlines of the `width` x `height` HDR file `b` as stb does and
 // returns a reason when it would meet such a count, else "".
 std::string hdr_rle_problem(std::span<const unsigned char> b, int width, int height) {
     if (width < 8 || width >= 32768) return "";  // stb reads flat pixels then, which always ends
@@ -155,7 +153,7 @@ std::string hdr_rle_problem(std::span<const unsigned char> b, int width, int hei
 // reads a byte of it: a 92-byte file claiming a 1.9 GB chunk made it allocate 2 GB (the image
 // fuzzer's out-of-memory finding). This walks the chunks (8-byte signature, then length, type,
 // data, CRC each) up to IEND and returns a reason when a chunk claims more bytes than the file
-// has left, else "" (also for files that are not PNG). Keeps `f`'s position.
+// has left, else "" (also for files that are not PNG).
 std::string png_chunk_problem(std::span<const unsigned char> b) {
     static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (b.size() < 8 || std::memcmp(b.data(), kSignature, 8) != 0) return "";
@@ -183,28 +181,15 @@ bool decodes_as_tga(std::span<const unsigned char> b) {
            stbi__tga_test(&s);
 }
 
-// The whole file: stb decodes from memory. Its file reader keeps only the first 128 bytes for the
-// rewinds between its format tests, so a test that reads further (a JPEG after 137 fill bytes, the
-// image fuzzer's finding) leaves it decoding a stream that is not the file, one the checks above
-// cannot see: a Huffman table whose counts came from stale buffer bytes overran stb's size list.
-std::vector<unsigned char> read_file_bytes(const std::string& path) {
-    std::unique_ptr<FILE, int (*)(FILE*)> f(std::fopen(path.c_str(), "rb"), &std::fclose);
-    if (!f) throw_read_error(path, std::strerror(errno));
-    std::vector<unsigned char> bytes;
-    unsigned char buf[1 << 16];
-    for (size_t n; (n = std::fread(buf, 1, sizeof buf, f.get())) > 0;) {
-        bytes.insert(bytes.end(), buf, buf + n);
-        if (bytes.size() > size_t(INT_MAX))  // stb's lengths are ints
-            throw_read_error(path, "file too large for PNG/JPEG/TGA/BMP/HDR decoding (over 2 GB)");
-    }
-    if (std::ferror(f.get())) throw_read_error(path, std::strerror(errno));
-    return bytes;
-}
-
 }  // namespace
 
 Image read_stb(const std::string& path, bool srgb) {
-    const std::vector<unsigned char> bytes = read_file_bytes(path);
+    // stb decodes from memory, the bytes every check below walks. Its file reader keeps only the
+    // first 128 bytes for the rewinds between its format tests, so a test that reads further (a
+    // JPEG after 137 fill bytes, the image fuzzer's finding) left it decoding a stream that is not
+    // the file, one the checks could not see: a Huffman table whose counts came from stale buffer
+    // bytes overran stb's size list. stb's lengths are ints.
+    const std::vector<unsigned char> bytes = read_file_bytes(path, size_t(INT_MAX));
     const unsigned char* const data_in = bytes.data();
     const int size = int(bytes.size());
     if (const std::string reason = bmp_truncation(bytes); !reason.empty()) throw_read_error(path, reason);
@@ -213,19 +198,20 @@ Image read_stb(const std::string& path, bool srgb) {
     if (const std::string reason = png_chunk_problem(bytes); !reason.empty()) throw_read_error(path, reason);
     // stb allocates the whole image from the header before reading any pixel (and for TGA then
     // loops over every pixel even when the file ends), so a corrupt size is refused first.
+    const bool hdr = stbi_is_hdr_from_memory(data_in, size);
     int w = 0, h = 0, n = 0;
     if (stbi_info_from_memory(data_in, size, &w, &h, &n)) {
         // TGA: stb fills the pixels a truncated run-length file lacks, however many its header
         // claims, so the bound is what run-length packets can encode.
         check_pixel_count(path, w, h, bytes.size(),
                           decodes_as_tga(bytes) ? kMaxTgaPixelsPerByte : kMaxPixelsPerByte);
-        if (stbi_is_hdr_from_memory(data_in, size))
+        if (hdr)
             if (const std::string reason = hdr_rle_problem(bytes, w, h); !reason.empty())
                 throw_read_error(path, reason);
     }
     Image image;
 
-    if (stbi_is_hdr_from_memory(data_in, size)) {
+    if (hdr) {
         // Radiance HDR holds linear floats already; stb would not alter them for .hdr input.
         std::unique_ptr<float, StbFree> data(stbi_loadf_from_memory(data_in, size, &w, &h, &n, 3));
         if (!data || w <= 0 || h <= 0) throw_read_error(path, stb_reason());
