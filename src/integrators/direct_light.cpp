@@ -77,6 +77,11 @@ Rgb sample_one_light(const Prepared& P, const accel::SurfaceHit& hit, const shad
                      Sampler& sampler, RayCounts& rays, bool mis, int medium) {
     const float u_choose = sampler.next();
     const Vec2 u = sampler.next2();
+    return sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, rays, mis, medium);
+}
+
+Rgb sample_one_light(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
+                     float u_choose, Vec2 u, Sampler& sampler, RayCounts& rays, bool mis, int medium) {
     if (P.lights.size() == 0) return Rgb(0.0f);
     float pmf = 0;
     const size_t i = P.lights.choose(u_choose, pmf);

@@ -14,6 +14,10 @@ namespace phos::integrators {
 // arrived in: shadow rays are attenuated by the media they cross (shadow_transmittance).
 Rgb sample_one_light(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
                      Sampler& sampler, RayCounts& rays, bool mis, int medium = -1);
+// The same with the light choice `u_choose` and the point on the light `u` given (stratified
+// sequences); `sampler` serves only media along the shadow ray.
+Rgb sample_one_light(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
+                     float u_choose, Vec2 u, Sampler& sampler, RayCounts& rays, bool mis, int medium = -1);
 
 // Every light, one sample each (no MIS): the classic Whitted / photon-map direct term.
 Rgb sample_all_lights(const Prepared& P, const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,

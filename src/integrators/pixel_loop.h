@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "core/low_discrepancy.h"
 #include "core/progress.h"
 #include "core/rng.h"
 #include "core/stats.h"
@@ -70,21 +71,12 @@ void render_layers(const Prepared& prepared, film::Film& film, const RenderBudge
                    const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
                    const PartsFn& parts, const std::function<void(std::string& payload)>& payload = {});
 
-// Position of camera sample `s` inside its pixel, in [0, 1)^2: point s of the (0,2)-sequence in
-// base 2 (van der Corput's radical inverse and Sobol's second dimension), XOR-scrambled by the
-// pixel's own random `scramble` bits (random digit scrambling keeps the (0,2) property and makes
-// each point uniform in the pixel). Every first 2^k samples are stratified in each elementary
-// interval of area 2^-k, and every prefix is evenly spread, so an image stopped after any number
-// of samples (a time budget, an interrupt) is as well stratified as one planned for that count.
-// Kocis & Whiten 1997; Kollig & Keller 2002 ("Efficient multidimensional sampling").
-inline Vec2 pixel_sample_position(uint32_t s, uint64_t scramble) {
-    uint32_t x = 0, y = 0;
-    for (uint32_t i = s, v = 0x80000000u; i != 0; i >>= 1, v ^= v >> 1)
-        if (i & 1u) y ^= v;
-    for (uint32_t i = s, v = 0x80000000u; i != 0; i >>= 1, v >>= 1)
-        if (i & 1u) x ^= v;
-    return {bits_to_unit_float(x ^ uint32_t(scramble)), bits_to_unit_float(y ^ uint32_t(scramble >> 32))};
-}
+// Position of camera sample `s` inside its pixel, in [0, 1)^2: point s of the (0,2)-sequence,
+// scrambled by the pixel's own random `scramble` bits (core/low_discrepancy.h). Every first 2^k
+// samples are stratified in each elementary interval of area 2^-k, and every prefix is evenly
+// spread, so an image stopped after any number of samples (a time budget, an interrupt) is as well
+// stratified as one planned for that count. Kollig & Keller 2002.
+inline Vec2 pixel_sample_position(uint32_t s, uint64_t scramble) { return sobol02_point(s, scramble); }
 
 // Film position of sample `s` of `n` in a square: jittered on a sqrt(n) x sqrt(n) grid for the
 // first floor(sqrt(n))^2 samples, uniform for the rest (final-gather directions, PPM hit points).

@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include "core/low_discrepancy.h"
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/path_recorder.h"
@@ -45,14 +46,21 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
     photon::HitPointGrid grid;
     const auto tiles = film::make_tiles(ro.width, ro.height);
     EyePassExchange exchange;  // under MPI: the ranks' eye passes
-    // Pixel (x, y)'s eye path of iteration `it`, keyed by (seed, pixel, iteration).
+    // Pixel (x, y)'s eye path of iteration `it`, keyed by (seed, pixel, iteration). Its position
+    // in the pixel, on the lens and its light samples are points `it` (`it` × direct_samples + k)
+    // of the pixel's padded stratified sequences (core/low_discrepancy.h): over the iterations
+    // they cover the pixel, the lens and the lights evenly; the rest is independent random.
     const auto eye_path = [&](int x, int y, uint64_t it, VisiblePoint& vp, RayCounts& rays) {
-        Sampler sampler(ro.seed, 0x65796570617373ULL, size_t(y) * size_t(ro.width) + size_t(x), it);
-        const Vec2 jitter = sampler.next2();
-        const Vec2 lens = sampler.next2();
+        const uint64_t pixel = size_t(y) * size_t(ro.width) + size_t(x);
+        Sampler sampler(ro.seed, 0x65796570617373ULL, pixel, it);
+        const uint64_t key = Sampler(ro.seed, 0x6579657365717563ULL, pixel).next_bits();
+        const Vec2 jitter = padded_point2(uint32_t(it), hash_combine(key, 1));
+        const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
         const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
         ++rays.camera;
-        return trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+        const LightSampleSequence lights{uint32_t(it) * uint32_t(std::max(1, direct_samples)),
+                                         hash_combine(key, 3)};
+        return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &lights);
     };
     // --trace-pixel: that pixel's eye paths run again, recorded, and its slots' photons.
     PathRecorder* trace = requested_trace();

@@ -50,8 +50,21 @@ struct VisiblePoint {
 // hit stores `vp` and adds the average of `direct_samples` light samples. Mixed materials choose
 // between their non-specular part (visible point) and specular part (continue) at random, in
 // proportion to the lobes' albedos. Returns emission + direct light (throughput included).
+// With `light_sequence`, the light samples come from stratified per-pixel sequences instead of
+// `sampler` (see LightSampleSequence).
+struct LightSampleSequence;
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
-                   RayCounts& rays);
+                   RayCounts& rays, const LightSampleSequence* light_sequence = nullptr);
+
+// Light sample k of an eye path as point `first` + k of two padded dimensions of its pixel
+// (core/low_discrepancy.h), keyed by `key`: the light choice (1D) and the point on the light
+// (2D). SPPM sets first = iteration × samples per iteration, so a pixel's light samples over all
+// iterations are one stratified sequence: soft shadows converge faster than with independent
+// samples while every iteration stays unbiased.
+struct LightSampleSequence {
+    uint32_t first = 0;
+    uint64_t key = 0;
+};
 
 // The automatic or explicit initial radius of a visible point, before any photon pass: `radius`
 // (--radius) when > 0, else `radius_pixels` pixel footprints at the point's path length.

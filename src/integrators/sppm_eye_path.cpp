@@ -4,6 +4,7 @@
 // scattering event in the medium: a volume visible point (multiple scattering and volume caustics
 // from the photons); single scattering is integrated along the camera ray's stretches in media.
 #include "core/error.h"
+#include "core/low_discrepancy.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/path_recorder.h"
@@ -15,7 +16,7 @@ namespace phos::integrators::sppm {
 using shading::Bsdf;
 
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
-                   RayCounts& rays) {
+                   RayCounts& rays, const LightSampleSequence* light_sequence) {
     vp.bsdf.reset();
     vp.medium = -1;
     Rgb L(0.0f), beta(1.0f);
@@ -78,8 +79,19 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
             const Rgb w = beta * (1 / p_ns);
             Rgb direct(0.0f);
             const int n = std::max(1, direct_samples);
-            for (int k = 0; k < n; ++k)
-                direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false, walk.medium());
+            if (light_sequence) {
+                const uint64_t choose_key = hash_combine(light_sequence->key, 0);
+                const uint64_t point_key = hash_combine(light_sequence->key, 1);
+                for (int k = 0; k < n; ++k) {
+                    const uint32_t s = light_sequence->first + uint32_t(k);
+                    direct +=
+                        sample_one_light(P, hit, bsdf, wo, padded_point1(s, choose_key),
+                                         padded_point2(s, point_key), sampler, rays, false, walk.medium());
+                }
+            } else {
+                for (int k = 0; k < n; ++k)
+                    direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false, walk.medium());
+            }
             add(w * direct * (1.0f / float(n)), TraceTerm::Light);
             vp.p = hit.p;
             vp.wo = wo;
