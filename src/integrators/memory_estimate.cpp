@@ -226,6 +226,7 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     // One visible point per pixel and eye sample (with media, in one of the pixel's two slots).
     p.add("hit-point grid",
           pixels * std::max(1, in.integrator == "ppm" ? in.progressive.eye_samples : 1) * kGridPerPoint);
+    p.add("pending photon hits", sppm::PhotonAccumulator::pending_bytes(in.progressive.photons_per_iter));
     if (in.checkpoint) p.add("checkpoint", slots * sizeof(sppm::PixelStats));
     // Under MPI: the eye-pass exchange's buffers (every slot's point and statistics, and this
     // rank's share again) and the summed photon sums, kept for the whole render.

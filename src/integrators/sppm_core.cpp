@@ -1,10 +1,13 @@
 // Shared machinery of PPM and SPPM (see sppm_core.h).
 #include "integrators/sppm_core.h"
 
+#include <immintrin.h>
+#include <tbb/blocked_range.h>
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -62,6 +65,38 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
 }
 }  // namespace
 
+namespace {
+// What a photon arriving along wi with `power` after `bounces` adds to point i's sums (f(wo, wi)
+// × power; phase(wo, wi) × power for a volume point), or black when it adds nothing.
+Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi, const Rgb& power,
+                 int bounces) {
+    if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
+    if (g.kind == GatherPoint::kVolume) return power * shading::henyey_greenstein(dot(-vp.wo, wi), g.kd_pi.r);
+    if (g.kind == GatherPoint::kLambert)  // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side
+        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? g.kd_pi * power : Rgb(0.0f);
+    return vp.bsdf->eval(vp.wo, wi) * power;
+}
+}  // namespace
+
+PhotonAccumulator::LocalSlot* PhotonAccumulator::local_slots() {
+    if (!locals_) return nullptr;
+    std::vector<LocalSlot>& v = locals_->per_thread.local();
+    if (v.size() != count_) v.assign(count_, LocalSlot{});
+    return v.data();
+}
+
+void PhotonAccumulator::add(LocalSlot* local, uint32_t i, const int64_t q[3], uint64_t m) {
+    if (local) {
+        LocalSlot& s = local[i];
+        for (int k = 0; k < 3; ++k) s.phi[k] += q[k];
+        s.m += m;
+    } else {
+        Slot& s = slots_[i];
+        for (int k = 0; k < 3; ++k) s.phi[k].fetch_add(q[k], std::memory_order_relaxed);
+        s.m.fetch_add(m, std::memory_order_relaxed);
+    }
+}
+
 uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
                                         const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass,
                                         uint64_t count) {
@@ -73,80 +108,143 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     gather_.resize(vps.size());
     tbb::parallel_for(size_t(0), vps.size(),
                       [&](size_t i) { gather_[i] = make_gather_point(vps[i], max_depth, P); });
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
-    const photon::PhotonPathOptions popt{max_depth - 1};
-    constexpr uint64_t kBlock = 4096;
     // Under MPI each rank traces its share of the photon indices; update() sums the ranks' integer
-    // sums, so the result is the single process's exactly.
+    // sums, so the result is the single process's exactly. Chunks bound the pending hits' memory.
     const auto [lo, hi] = dist::share(count);
-    const uint64_t blocks = (hi - lo + kBlock - 1) / kBlock;
+    uint64_t rays = 0;
+    for (uint64_t first = lo; first < hi; first += kChunk) {
+        const uint64_t n = std::min(kChunk, hi - first);
+        rays += trace_chunk(P, vps, grid, seed, pass, first, n);
+        for (size_t l = 0; l < grid.level_count(); ++l) gather_level(vps, grid, l);
+    }
+    return rays;
+}
+
+uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<VisiblePoint>& vps,
+                                        const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass,
+                                        uint64_t first, uint64_t count) {
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
+    const photon::PhotonPathOptions popt{P.options.max_depth - 1};
+    const uint64_t blocks = (count + kBlock - 1) / kBlock;
+    if (pending_.size() < blocks) pending_.resize(blocks);
     std::atomic<uint64_t> total_rays{0};
     const double scale = scale_;
+    // --trace-pixel: what the traced slots gather is recorded as the photon arrives (in the
+    // photon's own order of hits), by a search of its own (path_recorder.h).
+    const auto record = [&](uint64_t idx, Vec3 p, bool volume, Vec3 wi, const Rgb& power, int bounces) {
+        grid.query(p, [&](uint32_t i) {
+            if (size_t(i) - trace_first_ >= trace_count_) return;
+            const Rgb c = contribution(gather_[i], vps[i], volume, wi, power, bounces);
+            if (!c.is_black() && c.is_finite()) trace_->photon(i, {idx, p, power, wi, c});
+        });
+    };
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
+        std::vector<PendingHit>& hits = pending_[blk];
+        hits.clear();
         LocalSlot* local = nullptr;
-        if (locals_) {
-            std::vector<LocalSlot>& v = locals_->per_thread.local();
-            if (v.size() != count_) v.assign(count_, LocalSlot{});
-            local = v.data();
-        }
         uint64_t rays = 0;
-        const uint64_t end = std::min(hi, lo + (blk + 1) * kBlock);
-        // Adds contribution c of a photon to point i's sums.
-        const auto add = [&](uint32_t i, const Rgb& c) {
-            if (c.is_black() || !c.is_finite()) return;
-            int64_t q[3];
-            for (int k = 0; k < 3; ++k) q[k] = int64_t(std::min(double(c[k]) * scale, 0x1p52) + 0.5);
-            if (local) {
-                LocalSlot& s = local[i];
-                for (int k = 0; k < 3; ++k) s.phi[k] += q[k];
-                ++s.m;
-            } else {
-                Slot& s = slots_[i];
-                for (int k = 0; k < 3; ++k) s.phi[k].fetch_add(q[k], std::memory_order_relaxed);
-                s.m.fetch_add(1, std::memory_order_relaxed);
-            }
-        };
-        // --trace-pixel: what the traced slots gather is recorded too (path_recorder.h).
-        const auto record = [&](uint32_t i, uint64_t idx, Vec3 p, Rgb power, Vec3 wi, const Rgb& c) {
-            if (size_t(i) - trace_first_ >= trace_count_ || c.is_black() || !c.is_finite()) return;
-            trace_->photon(i, {idx, p, power, wi, c});
-        };
-        for (uint64_t idx = lo + blk * kBlock; idx < end; ++idx) {
+        for (uint64_t idx = first + blk * kBlock, end = std::min(first + count, idx + kBlock); idx < end;
+             ++idx) {
             // Photons scattering in a medium (not straight from a light: single scattering is
-            // sampled at the visible point) reach the volume points whose ball holds them.
+            // sampled at the visible point) reach the volume points whose ball holds them; few,
+            // so they search the grid one by one.
             const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
                 if (h.bounces == 0) return;
+                if (!local) local = local_slots();
                 grid.query(h.p, [&](uint32_t i) {
-                    const GatherPoint& g = gather_[i];
-                    if (g.kind != GatherPoint::kVolume || h.bounces > g.max_bounces) return;
-                    const Rgb c = h.power * shading::henyey_greenstein(dot(-vps[i].wo, h.wi), g.kd_pi.r);
-                    add(i, c);
-                    record(i, idx, h.p, h.power, h.wi, c);
+                    const Rgb c = contribution(gather_[i], vps[i], true, h.wi, h.power, h.bounces);
+                    int64_t q[3];
+                    if (quantize(c, scale, q)) add(local, i, q, 1);
                 });
+                if (trace_count_) record(idx, h.p, true, h.wi, h.power, h.bounces);
             };
+            // Surface photons wait for the binned gather.
             const auto on_surface = [&](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
-                grid.query(h.hit.p, [&](uint32_t i) {
-                    const GatherPoint& g = gather_[i];
-                    if (g.kind == GatherPoint::kVolume || h.bounces > g.max_bounces) return;
-                    Rgb c;
-                    if (g.kind == GatherPoint::kLambert) {
-                        // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side of ng and ns.
-                        if (!(dot(h.wi, g.ng) > 0 && dot(h.wi, g.ns) > 0)) return;
-                        c = g.kd_pi * h.power;
-                    } else {
-                        const VisiblePoint& vp = vps[i];
-                        c = vp.bsdf->eval(vp.wo, h.wi) * h.power;
-                    }
-                    add(i, c);
-                    record(i, idx, h.hit.p, h.power, h.wi, c);
-                });
+                hits.push_back({h.hit.p, h.wi, h.power, h.bounces});
+                if (trace_count_) record(idx, h.hit.p, false, h.wi, h.power, h.bounces);
             };
             rays += photon::trace_photon(ps, seed, pass, idx, popt, photon::Visitor{on_surface, on_volume});
         }
         total_rays.fetch_add(rays, std::memory_order_relaxed);
     });
+    pending_blocks_ = blocks;
     return total_rays.load();
+}
+
+void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const photon::HitPointGrid& grid,
+                                     size_t level) {
+    // Bin the chunk's surface hits by their bucket in this level (a counting sort): positions in
+    // three arrays (four distance tests per SSE instruction), the rest beside them.
+    const uint32_t buckets = grid.bucket_count(level);
+    bin_start_.assign(size_t(buckets) + 1, 0);
+    tbb::parallel_for(size_t(0), pending_blocks_, [&](size_t blk) {
+        for (PendingHit& h : pending_[blk]) h.bucket = grid.bucket_of(level, h.p);
+    });
+    for (size_t blk = 0; blk < pending_blocks_; ++blk)
+        for (const PendingHit& h : pending_[blk])
+            if (h.bucket != photon::HitPointGrid::kNoBucket) ++bin_start_[h.bucket + 1];
+    for (uint32_t b = 0; b < buckets; ++b) bin_start_[b + 1] += bin_start_[b];
+    const size_t binned = bin_start_[buckets];
+    for (auto* v : {&bin_x_, &bin_y_, &bin_z_}) v->resize(binned);
+    binned_.resize(binned);
+    {
+        std::vector<uint32_t> fill(bin_start_.begin(), bin_start_.end() - 1);
+        for (size_t blk = 0; blk < pending_blocks_; ++blk)
+            for (const PendingHit& h : pending_[blk]) {
+                if (h.bucket == photon::HitPointGrid::kNoBucket) continue;
+                const uint32_t to = fill[h.bucket]++;
+                bin_x_[to] = h.p.x, bin_y_[to] = h.p.y, bin_z_[to] = h.p.z;
+                binned_[to] = {h.wi, h.power, h.bounces};
+            }
+    }
+    // Each bucket's entries against its hits: a point's sums are added up in registers and
+    // written once per bucket, and the bucket's entries are read once for all its hits.
+    const double scale = scale_;
+    tbb::parallel_for(
+        tbb::blocked_range<uint32_t>(0, buckets, 256), [&](const tbb::blocked_range<uint32_t>& r) {
+            LocalSlot* local = local_slots();
+            const float *bx = bin_x_.data(), *by = bin_y_.data(), *bz = bin_z_.data();
+            for (uint32_t b = r.begin(); b < r.end(); ++b) {
+                const uint32_t h0 = bin_start_[b], h1 = bin_start_[b + 1];
+                if (h0 == h1) continue;
+                for (const auto *en = grid.bucket_begin(level, b), *end = grid.bucket_end(level, b);
+                     en != end; ++en) {
+                    const GatherPoint& g = gather_[en->index];
+                    if (g.kind == GatherPoint::kVolume) continue;
+                    int64_t sum[3] = {0, 0, 0};
+                    uint64_t m = 0;
+                    const auto match = [&](uint32_t h) {
+                        const BinnedHit& bh = binned_[h];
+                        const Rgb c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
+                        int64_t q[3];
+                        if (!quantize(c, scale, q)) return;
+                        for (int k = 0; k < 3; ++k) sum[k] += q[k];
+                        ++m;
+                    };
+                    // The distance test of HitPointGrid::query, operation for operation, four hits at
+                    // a time: |p - e|² = (dx² + dy²) + dz² <= r².
+                    const __m128 ex = _mm_set1_ps(en->x), ey = _mm_set1_ps(en->y), ez = _mm_set1_ps(en->z);
+                    const __m128 er2 = _mm_set1_ps(en->r2);
+                    uint32_t h = h0;
+                    for (; h + 4 <= h1; h += 4) {
+                        const __m128 dx = _mm_sub_ps(_mm_loadu_ps(bx + h), ex);
+                        const __m128 dy = _mm_sub_ps(_mm_loadu_ps(by + h), ey);
+                        const __m128 dz = _mm_sub_ps(_mm_loadu_ps(bz + h), ez);
+                        const __m128 d2 = _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)),
+                                                     _mm_mul_ps(dz, dz));
+                        for (unsigned mask = unsigned(_mm_movemask_ps(_mm_cmple_ps(d2, er2))); mask != 0;
+                             mask &= mask - 1)
+                            match(h + uint32_t(std::countr_zero(mask)));
+                    }
+                    for (; h < h1; ++h) {
+                        const float dx = bx[h] - en->x, dy = by[h] - en->y, dz = bz[h] - en->z;
+                        if (dx * dx + dy * dy + dz * dz <= en->r2) match(h);
+                    }
+                    if (m > 0) add(local, en->index, sum, m);
+                }
+            }
+        });
 }
 
 // Calls f(i, m, sum) with each point's photon count and fixed-point flux sums, clearing them.

@@ -112,6 +112,13 @@ public:
     // The pilot pass instead of update(): sets each visible point's r2 (the pilot's gathering disc)
     // by pilot_r2 from the photon count alone and clears the sums; N and τ stay 0 (see PilotRadius).
     void pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, const PilotRadius& a);
+    // Memory the pending surface hits of a photon pass take (the memory check's estimate): a chunk
+    // of at most kChunk photons, about 0.9 hits each after the first on cornell-diffuse (2
+    // assumed), each held pending and again binned.
+    static double pending_bytes(uint64_t photons_per_pass) {
+        return double(std::min(photons_per_pass, kChunk)) * 2 *
+               double(sizeof(PendingHit) + 3 * sizeof(float) + sizeof(BinnedHit));
+    }
     // --trace-pixel: the photons slots [first, first + count) gather also go to `trace`.
     void record(PathRecorder* trace, size_t first, size_t count) {
         trace_ = trace;
@@ -130,7 +137,43 @@ private:
         int64_t phi[3] = {0, 0, 0};
         uint64_t m = 0;
     };
-    struct Locals;  // per-thread LocalSlot arrays (tbb::enumerable_thread_specific)
+    // A photon's surface hit after at least one bounce, waiting for the binned gather.
+    struct PendingHit {
+        Vec3 p;
+        Vec3 wi;
+        Rgb power;
+        int bounces;
+        uint32_t bucket = 0;  // in the grid level being gathered
+    };
+    // Photons are traced in chunks (bounding the pending hits' memory), in blocks of kBlock.
+    static constexpr uint64_t kChunk = uint64_t(1) << 19, kBlock = 4096;
+    // Traces photons [first, first + count) of the pass: surface hits go to pending_ (per block),
+    // volume hits are added at once. Returns the rays traced.
+    uint64_t trace_chunk(const Prepared& P, const std::vector<VisiblePoint>& vps,
+                         const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass, uint64_t first,
+                         uint64_t count);
+    // Adds the pending hits to the points of one grid level they reach, bucket by bucket.
+    void gather_level(const std::vector<VisiblePoint>& vps, const photon::HitPointGrid& grid, size_t level);
+    LocalSlot* local_slots();  // this thread's sums, or null (atomics)
+    void add(LocalSlot* local, uint32_t i, const int64_t q[3], uint64_t m);
+    // c in fixed point (what one photon adds); false when c is black or not finite.
+    static bool quantize(const Rgb& c, double scale, int64_t q[3]) {
+        if (c.is_black() || !c.is_finite()) return false;
+        for (int k = 0; k < 3; ++k) q[k] = int64_t(std::min(double(c[k]) * scale, 0x1p52) + 0.5);
+        return true;
+    }
+    std::vector<std::vector<PendingHit>> pending_;  // per block of the chunk
+    size_t pending_blocks_ = 0;
+    struct BinnedHit {
+        Vec3 wi;
+        Rgb power;
+        int bounces;
+    };
+    // The chunk's hits in bucket order: positions (one array per axis) and the rest.
+    std::vector<float> bin_x_, bin_y_, bin_z_;
+    std::vector<BinnedHit> binned_;
+    std::vector<uint32_t> bin_start_;  // bucket b's hits: binned_[bin_start_[b], bin_start_[b + 1])
+    struct Locals;                     // per-thread LocalSlot arrays (tbb::enumerable_thread_specific)
     std::unique_ptr<Slot[]> slots_;
     std::unique_ptr<Locals> locals_;  // null: atomics
     std::vector<GatherPoint> gather_;

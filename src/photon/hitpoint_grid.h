@@ -28,17 +28,39 @@ public:
     // Calls visit(index) for every point i with |p - positions[i]|² <= r2[i], each exactly once.
     template <class Visitor>
     void query(Vec3 p, Visitor&& visit) const {
-        for (const Level& l : levels_) {
-            const Vec3 c = (p - l.lo) * l.inv_cell;
-            if (!(c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < l.dims.x && c.y < l.dims.y && c.z < l.dims.z))
-                continue;
-            const uint32_t h = bucket(int(c.x), int(c.y), int(c.z), l.mask);
-            for (uint32_t e = l.start[h], end = l.start[h + 1]; e < end; ++e) {
-                const Entry& en = l.entries[e];
-                const float dx = p.x - en.x, dy = p.y - en.y, dz = p.z - en.z;
-                if (dx * dx + dy * dy + dz * dz <= en.r2) visit(en.index);
+        for (size_t l = 0; l < levels_.size(); ++l) {
+            const uint32_t b = bucket_of(l, p);
+            if (b == kNoBucket) continue;
+            for (const Entry *en = bucket_begin(l, b), *end = bucket_end(l, b); en != end; ++en) {
+                const float dx = p.x - en->x, dy = p.y - en->y, dz = p.z - en->z;
+                if (dx * dx + dy * dy + dz * dz <= en->r2) visit(en->index);
             }
         }
+    }
+
+    // The same search for many query points at once: bin them by bucket_of(level, p) and test
+    // each bin's points against that bucket's entries (what query() does per point, level by
+    // level), so a bucket's entries are read once for all the points in it.
+    struct Entry {
+        float x, y, z, r2;
+        uint32_t index;
+    };
+    static constexpr uint32_t kNoBucket = ~0u;
+    size_t level_count() const { return levels_.size(); }
+    uint32_t bucket_count(size_t level) const { return levels_[level].mask + 1; }
+    // The bucket holding p's cell in `level`, or kNoBucket when p lies outside the level's cells.
+    uint32_t bucket_of(size_t level, Vec3 p) const {
+        const Level& l = levels_[level];
+        const Vec3 c = (p - l.lo) * l.inv_cell;
+        if (!(c.x >= 0 && c.y >= 0 && c.z >= 0 && c.x < l.dims.x && c.y < l.dims.y && c.z < l.dims.z))
+            return kNoBucket;
+        return bucket(int(c.x), int(c.y), int(c.z), l.mask);
+    }
+    const Entry* bucket_begin(size_t level, uint32_t b) const {
+        return levels_[level].entries.data() + levels_[level].start[b];
+    }
+    const Entry* bucket_end(size_t level, uint32_t b) const {
+        return levels_[level].entries.data() + levels_[level].start[b + 1];
     }
 
     // Cell edge in units of the largest radius (default 2: each point in at most 8 cells; smaller
@@ -54,15 +76,10 @@ public:
         for (const Level& l : levels_) n += l.entries.size();
         return n;
     }
-    size_t level_count() const { return levels_.size(); }
     // Cell edge of the coarsest level (the largest radius's class).
     float cell_size() const { return levels_.empty() ? 0 : 1 / levels_.front().inv_cell; }
 
 private:
-    struct Entry {
-        float x, y, z, r2;
-        uint32_t index;
-    };
     struct Level {
         Vec3 lo{0.0f};
         float inv_cell = 0;

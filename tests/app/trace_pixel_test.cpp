@@ -241,6 +241,17 @@ TEST(TracePixel, SppmReportsVisiblePointsPhotonsAndTheFinalValue) {
     const Json& pass = last["visible_point"]["passes"][0];
     EXPECT_EQ(pass["found"].num, double(pass["photons"].items.size()));
     EXPECT_GT(pass["photons"].items.size(), 0u);
+    // The trace lists the photons each pass gathered by a search of its own, photon by photon;
+    // the statistics come from the photon pass's binned gather. Each pass after the pilot adds
+    // alpha = 0.7 of its photon count to N (eq. 9): both must have found the same photons.
+    const double alpha = double(0.7f);  // --alpha's default, a float
+    double n_before = 0;
+    for (size_t it = 1; it < 3; ++it) {
+        const Json& p = t.json["paths"][it]["visible_point"]["passes"][0];
+        const double m = double(p["photons"].items.size());
+        EXPECT_NEAR(p["n"].num, n_before + alpha * m, 1e-9 * (1 + m)) << "iteration " << it;
+        n_before = p["n"].num;
+    }
     for (int c = 0; c < 3; ++c) {
         const double v = pass["direct_sum"][size_t(c)].num / 3 +
                          pass["tau"][size_t(c)].num / (M_PI * pass["r2"].num * pass["photons_emitted"].num);
