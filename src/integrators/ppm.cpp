@@ -75,10 +75,9 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     ProgressiveBudget budget(ro, budget_, state, film, progress);
     while (budget.next()) {
         // Photon pass: photons within each hit point's current radius add M_i and Φ_i.
-        build_grid(grid, vps, state.slots);
         if (trace) trace->begin_pass(state.iterations, false, [&](size_t s) { return state.slots[s].r2; });
         RayCounts prays;
-        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, state.iterations, photons);
+        prays.photon = acc.photon_pass(P, vps, state.slots, grid, ro.seed, state.iterations, photons);
         P.stats.add_rays(prays);
         // Update: N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + Φ) R²_new/R²_old.
         state.photons_emitted += photons;

@@ -120,9 +120,8 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         }
 
         // Photon pass: photons within each visible point's radius add M_i and Φ_i.
-        build_grid(grid, vps, state.slots);
         RayCounts prays;
-        prays.photon = acc.photon_pass(P, vps, grid, ro.seed, it, photons);
+        prays.photon = acc.photon_pass(P, vps, state.slots, grid, ro.seed, it, photons);
         P.stats.add_rays(prays);
 
         if (is_pilot) {

@@ -6,6 +6,7 @@
 #include <tbb/enumerable_thread_specific.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <tbb/task_group.h>
 
 #include <bit>
 #include <cmath>
@@ -98,10 +99,14 @@ void PhotonAccumulator::add(LocalSlot* local, uint32_t i, const int64_t q[3], ui
 }
 
 uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
-                                        const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass,
-                                        uint64_t count) {
+                                        const std::vector<PixelStats>& stats, photon::HitPointGrid& grid,
+                                        uint64_t seed, uint64_t pass, uint64_t count) {
     const int max_depth = P.options.max_depth;
-    if (max_depth < 1 || grid.entry_count() == 0) return 0;
+    tbb::task_group building;
+    if (P.active_media() || trace_count_ > 0)  // volume photons and the trace search the grid
+        build_grid(grid, vps, stats);
+    else
+        building.run([&] { build_grid(grid, vps, stats); });
     // Fixed point: 2^32 units per (total light power). Photon powers are of the order of the total
     // power times albedos, so contributions keep ~30 significant bits and sums cannot overflow.
     scale_ = 0x1p32 / std::max(double(P.lights.total_power().average()), 1e-30);
@@ -112,11 +117,13 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     // sums, so the result is the single process's exactly. Chunks bound the pending hits' memory.
     const auto [lo, hi] = dist::share(count);
     uint64_t rays = 0;
-    for (uint64_t first = lo; first < hi; first += kChunk) {
+    for (uint64_t first = lo; first < hi && max_depth >= 1; first += kChunk) {
         const uint64_t n = std::min(kChunk, hi - first);
         rays += trace_chunk(P, vps, grid, seed, pass, first, n);
+        building.wait();
         for (size_t l = 0; l < grid.level_count(); ++l) gather_level(vps, grid, l);
     }
+    building.wait();
     return rays;
 }
 

@@ -103,9 +103,12 @@ public:
     // Traces photons [0, count) of pass `pass` on all cores, adding f(wo, wi) × power to each hit
     // point within its radius (photons straight from a light excluded: direct light is computed by
     // shadow rays); photons scattering in media add phase(wo, wi) × power to the volume points
-    // whose ball holds them. Returns the number of photon rays traced.
+    // whose ball holds them. Builds `grid` over the points with their radii in `stats` first
+    // (build_grid), or while the first photons are traced where tracing does not read it (no
+    // media, no --trace-pixel): the build is serial. Returns the number of photon rays traced.
     uint64_t photon_pass(const Prepared& P, const std::vector<VisiblePoint>& vps,
-                         const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass, uint64_t count);
+                         const std::vector<PixelStats>& stats, photon::HitPointGrid& grid, uint64_t seed,
+                         uint64_t pass, uint64_t count);
     // Applies progressive_update (eq. 9-11; the 3D form for volume points) to `stats` (one per
     // visible point) with each point's M_i and β Φ_i, and clears the sums.
     void update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
