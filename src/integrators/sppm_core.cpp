@@ -132,6 +132,7 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
                                         uint64_t first, uint64_t count) {
     const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
     const photon::PhotonPathOptions popt{P.options.max_depth - 1};
+    const bool packets = photon::packets_possible(ps);
     const uint64_t blocks = (count + kBlock - 1) / kBlock;
     if (pending_.size() < blocks) pending_.resize(blocks);
     std::atomic<uint64_t> total_rays{0};
@@ -149,13 +150,14 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
         std::vector<PendingHit>& hits = pending_[blk];
         hits.clear();
         LocalSlot* local = nullptr;
-        uint64_t rays = 0;
-        for (uint64_t idx = first + blk * kBlock, end = std::min(first + count, idx + kBlock); idx < end;
-             ++idx) {
+        const uint64_t block_first = first + blk * kBlock;
+        // Photon block_first + j's visitor (16 photons in flight where only surfaces stop them).
+        const auto visitor_of = [&](uint64_t j) {
+            const uint64_t idx = block_first + j;
             // Photons scattering in a medium (not straight from a light: single scattering is
             // sampled at the visible point) reach the volume points whose ball holds them; few,
             // so they search the grid one by one.
-            const auto on_volume = [&](const photon::PhotonVolumeHit& h) {
+            const auto on_volume = [&, idx](const photon::PhotonVolumeHit& h) {
                 if (h.bounces == 0) return;
                 if (!local) local = local_slots();
                 grid.query(h.p, [&](uint32_t i) {
@@ -166,13 +168,16 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
                 if (trace_count_) record(idx, h.p, true, h.wi, h.power, h.bounces);
             };
             // Surface photons wait for the binned gather.
-            const auto on_surface = [&](const photon::PhotonHit& h) {
+            const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
                 hits.push_back({h.hit.p, h.wi, h.power, h.bounces});
                 if (trace_count_) record(idx, h.hit.p, false, h.wi, h.power, h.bounces);
             };
-            rays += photon::trace_photon(ps, seed, pass, idx, popt, photon::Visitor{on_surface, on_volume});
-        }
+            return photon::Visitor{on_surface, on_volume};
+        };
+        const uint64_t rays =
+            photon::trace_photons(ps, seed, pass, block_first, std::min(kBlock, first + count - block_first),
+                                  popt, packets, visitor_of);
         total_rays.fetch_add(rays, std::memory_order_relaxed);
     });
     pending_blocks_ = blocks;

@@ -4,6 +4,17 @@
 #include <algorithm>
 #include <cmath>
 
+namespace phos::photon {
+
+bool packets_possible(const PhotonScene& ps) {
+    if (ps.media && ps.media->active()) return false;
+    for (const scene::Material& m : ps.scene.materials)
+        if (m.interface_only) return false;
+    return true;
+}
+
+}  // namespace phos::photon
+
 namespace phos::photon::detail {
 
 bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power, int& medium) {

@@ -75,6 +75,20 @@ template <class Visitor>
 uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
                       const PhotonPathOptions& options, Visitor&& visit);
 
+// Whether photons can travel 16 at a time (trace_photons' packets): only surfaces stop them (no
+// active media, no interface-only surfaces), so a photon's walk is one closest hit per event.
+bool packets_possible(const PhotonScene& ps);
+
+// Traces photons first + j, j in [0, count), of pass `pass`, each as trace_photon does, with
+// visitor_of(j) as photon first + j's visitor; returns the rays traced. With `packets` (only where
+// packets_possible) 16 photons are in flight, one rtcIntersect16 per step for all of them, and a
+// finished photon's lane is refilled with the next emission: each photon's random numbers and
+// events are those of trace_photon (the same helpers, and packet hits equal single hits), only
+// the interleaving of different photons' visits differs.
+template <class VisitorOf>
+uint64_t trace_photons(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t first, uint64_t count,
+                       const PhotonPathOptions& options, bool packets, VisitorOf&& visitor_of);
+
 // ---- implementation ----
 
 namespace detail {
@@ -189,6 +203,52 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
         walk.leave(hit, wi);
     }
     return walk.rays();
+}
+
+template <class VisitorOf>
+uint64_t trace_photons(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t first, uint64_t count,
+                       const PhotonPathOptions& options, bool packets, VisitorOf&& visitor_of) {
+    uint64_t total = 0;
+    if (!packets || options.max_bounces < 0) {
+        for (uint64_t j = 0; j < count; ++j)
+            total += trace_photon(ps, seed, pass, first + j, options, visitor_of(j));
+        return total;
+    }
+    detail::PhotonState lane[16];
+    uint64_t photon[16];
+    uint32_t rays[16] = {};
+    bool live[16] = {};
+    accel::Ray ray[16];
+    accel::SurfaceHit hit[16];
+    bool found[16];
+    uint64_t next = 0;
+    while (true) {
+        int n_live = 0;
+        for (int k = 0; k < 16; ++k) {
+            while (!live[k] && next < count) {
+                photon[k] = next++;
+                rays[k] = 0;
+                live[k] = detail::start_photon(ps, seed, pass, first + photon[k], options, lane[k]);
+            }
+            n_live += live[k];
+        }
+        if (n_live == 0) break;
+        int n = 16;
+        while (n > 0 && !live[n - 1]) --n;
+        for (int k = 0; k < n; ++k)
+            ray[k] = live[k] ? lane[k].ray : accel::Ray{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};  // not traced
+        ps.accel.intersect16(ray, n, hit, found);
+        for (int k = 0; k < n; ++k) {
+            if (!live[k]) continue;
+            ++rays[k];
+            Vec3 wi;
+            auto visit = visitor_of(photon[k]);
+            if (found[k] && detail::surface_step(ps, options, hit[k], lane[k], visit, wi)) continue;
+            total += rays[k];  // escaped, absorbed or stopped
+            live[k] = false;
+        }
+    }
+    return total;
 }
 
 }  // namespace phos::photon

@@ -88,12 +88,9 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
     }
 }
 
-// Whether photons can travel 16 at a time (the wavefront in trace_batch): only surfaces stop them,
-// so trace_photon's walk is one closest hit per event.
+// Whether photons travel 16 at a time (trace_photons' packets) in trace_batch.
 bool packets_apply(const PhotonScene& ps, const TraceOptions& o) {
-    bool packets = o.packets && o.max_depth >= 0 && !(ps.media && ps.media->active());
-    for (const scene::Material& m : ps.scene.materials) packets = packets && !m.interface_only;
-    return packets;
+    return o.packets && o.max_depth >= 0 && packets_possible(ps);
 }
 
 void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active[kMapCount], uint64_t pass,
@@ -128,58 +125,19 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
                    (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
         };
     };
-    if (packets) {
-        // The wavefront: 16 photons in flight, one rtcIntersect16 per step for all of them, a
-        // finished photon's lane refilled with the next emission. Each photon's random numbers
-        // and events are those of trace_photon (the same helpers, and packet hits equal single
-        // hits), so after sorting by emission the slice is the one the loop below stores.
-        detail::PhotonState lane[16];
-        uint64_t photon[16];
-        uint32_t rays[16] = {};
-        bool live[16] = {};
-        accel::Ray ray[16];
-        accel::SurfaceHit hit[16];
-        bool found[16];
-        uint64_t next = 0;
-        while (true) {
-            int n_live = 0;
-            for (int k = 0; k < 16; ++k) {
-                while (!live[k] && next < count) {
-                    photon[k] = next++;
-                    rays[k] = 0;
-                    live[k] = detail::start_photon(ps, o.seed, pass, first + photon[k], po, lane[k]);
-                }
-                n_live += live[k];
-            }
-            if (n_live == 0) break;
-            int n = 16;
-            while (n > 0 && !live[n - 1]) --n;
-            for (int k = 0; k < n; ++k)
-                ray[k] =
-                    live[k] ? lane[k].ray : accel::Ray{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};  // not traced
-            ps.accel.intersect16(ray, n, hit, found);
-            for (int k = 0; k < n; ++k) {
-                if (!live[k]) continue;
-                ++rays[k];
-                Vec3 wi;
-                auto visit = Visitor{on_surface_of(photon[k])};
-                if (found[k] && detail::surface_step(ps, po, hit[k], lane[k], visit, wi)) continue;
-                s.rays += rays[k];  // escaped, absorbed or stopped
-                live[k] = false;
-            }
-        }
-        sort_by_emission(s, count, o.record_bounces);
-        return;
-    }
-    for (uint64_t j = 0; j < count; ++j) {
-        const auto on_volume = [&](const PhotonVolumeHit& h) {
+    // Photon j's visitor; in packets (no media) only its surface visits are made. After sorting
+    // by emission the slice is the one one photon after another would store.
+    const auto visitor_of = [&](uint64_t j) {
+        const auto on_volume = [&, j](const PhotonVolumeHit& h) {
             const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
             store(Photon(h.p, h.power, h.wi, Vec3(0.0f)), into, j, h.bounces);
             // After a scattering in a medium the path can only feed the non-caustic maps.
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
         };
-        s.rays += trace_photon(ps, o.seed, pass, first + j, po, Visitor{on_surface_of(j), on_volume});
-    }
+        return Visitor{on_surface_of(j), on_volume};
+    };
+    s.rays += trace_photons(ps, o.seed, pass, first, count, po, packets, visitor_of);
+    if (packets) sort_by_emission(s, count, o.record_bounces);
 }
 
 }  // namespace
