@@ -50,7 +50,7 @@ const options::Table& progressive_options() {
             prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
                           "light samples per visible point (0 = the integrator's default)"));
         ds.aliases = {"ppm-direct-samples"};
-        ds.default_text = "sppm 4 per iteration, ppm 16 once";
+        ds.default_text = "sppm 2 per iteration, ppm 16 once";
         prog(b.number("ppm-eye-samples", &ProgressiveOptions::eye_samples, "N", between(1, 4096),
                       "hit points per pixel"),
              "ppm");

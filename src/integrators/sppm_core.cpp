@@ -226,9 +226,17 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                     if (g.kind == GatherPoint::kVolume) continue;
                     int64_t sum[3] = {0, 0, 0};
                     uint64_t m = 0;
+                    const bool lambert = g.kind == GatherPoint::kLambert;
                     const auto match = [&](uint32_t h) {
                         const BinnedHit& bh = binned_[h];
-                        const Rgb c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
+                        Rgb c;
+                        if (lambert) {  // contribution()'s Lambert case, inline: most points
+                            if (bh.bounces > g.max_bounces || !(dot(bh.wi, g.ng) > 0 && dot(bh.wi, g.ns) > 0))
+                                return;
+                            c = g.kd_pi * bh.power;
+                        } else {
+                            c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
+                        }
                         int64_t q[3];
                         if (!quantize(c, scale, q)) return;
                         for (int k = 0; k < 3; ++k) sum[k] += q[k];
