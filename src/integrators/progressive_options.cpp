@@ -46,6 +46,11 @@ const options::Table& progressive_options() {
                  "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
                  "automatic radius so its disc holds about K photons, within 1-8 pixel footprints (0 = off)"),
              "sppm");
+        prog(b.flag("edge-aware-radius", &ProgressiveOptions::edge_aware_radius,
+                    "after the pilot, bound each pixel's radius by its distance to the nearest visible point "
+                    "on another surface or off its plane (an edge, corner or contact), at most halving it",
+                    true, "no-edge-aware-radius"),
+             "sppm");
         auto& ds =
             prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
                           "light samples per visible point (0 = the integrator's default)"));

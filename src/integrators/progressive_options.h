@@ -18,6 +18,7 @@ struct ProgressiveOptions {
     float radius_pixels = 4;             // automatic radius in pixel footprints at the hit distance
     double radius_photons = 64;          // sppm: photons a pixel's disc should hold, from a pilot photon
                                          // pass (per-pixel radius from density); 0 = off
+    bool edge_aware_radius = true;       // sppm: bound the pilot's radii at geometric edges
     int direct_samples = 0;              // light samples per visible point per eye pass; 0 = the
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)

@@ -128,6 +128,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
             // The pilot: its photons choose the radii, then are dropped (not in N_emitted either);
             // its direct light is kept. A resumed run has it behind it (r2 is in the checkpoint).
             acc.pilot(state.slots, vps, pilot);
+            if (opt_.edge_aware_radius) bound_radii_at_edges(vps, state.slots, initial.footprint);
         } else {
             // Update: N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old (eq. 9-11).
             state.photons_emitted += photons;

@@ -21,6 +21,7 @@
 #include "dist/ranks.h"
 #include "integrators/direct_light.h"
 #include "integrators/progressive_budget.h"
+#include "integrators/sppm.h"
 #include "photon/photon_path.h"
 #include "shading/phase.h"
 
@@ -376,6 +377,50 @@ void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, si
     }
     if (vp.present())
         trace.visible_point(slot + (volume_slot && vp.volume() ? 1 : 0), vp.p, vp.medium, vp.beta);
+}
+
+void bound_radii_at_edges(const std::vector<Vec3>& p, const std::vector<Vec3>& n, std::vector<double>& r2,
+                          const std::vector<double>& r2_min) {
+    const size_t count = p.size();
+    std::vector<float> r2f(count);
+    for (size_t i = 0; i < count; ++i) r2f[i] = float(std::max(r2[i], 0.0));
+    photon::HitPointGrid grid;  // the points j whose disc holds point i: its neighbours
+    grid.build(p, r2f);
+    std::vector<double> bounded(r2);
+    tbb::parallel_for(size_t(0), count, [&](size_t i) {
+        if (!(r2[i] > 0)) return;
+        double nearest = r2[i];  // squared distance to the nearest edge point found so far
+        grid.query(p[i], [&](uint32_t j) {
+            const Vec3 d = p[j] - p[i];
+            const float d2 = dot(d, d);
+            if (j == i || !(double(d2) < nearest)) return;
+            if (std::fabs(dot(n[i], n[j])) < kEdgeNormalCos ||
+                std::fabs(dot(d, n[i])) > kEdgePlaneSlope * std::sqrt(d2))
+                nearest = d2;
+        });
+        const double floor = std::max(kEdgeMinShrink * kEdgeMinShrink * r2[i], r2_min[i]);
+        bounded[i] = std::min(r2[i], std::max(nearest, floor));
+    });
+    r2.swap(bounded);
+}
+
+void bound_radii_at_edges(const std::vector<VisiblePoint>& vps, std::vector<PixelStats>& stats,
+                          const CameraModel::Footprint& footprint) {
+    std::vector<size_t> surface;
+    for (size_t i = 0; i < vps.size(); ++i)
+        if (vps[i].bsdf && stats[i].r2 > 0) surface.push_back(i);
+    std::vector<Vec3> p(surface.size()), n(surface.size());
+    std::vector<double> r2(surface.size()), r2_min(surface.size());
+    for (size_t k = 0; k < surface.size(); ++k) {
+        const VisiblePoint& vp = vps[surface[k]];
+        p[k] = vp.p;
+        n[k] = vp.bsdf->geometric_normal();
+        r2[k] = stats[surface[k]].r2;
+        const double r_min = kPilotRadiusMinPixels * double(footprint.at(vp.path_length));
+        r2_min[k] = r_min * r_min;
+    }
+    bound_radii_at_edges(p, n, r2, r2_min);
+    for (size_t k = 0; k < surface.size(); ++k) stats[surface[k]].r2 = r2[k];
 }
 
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
