@@ -65,9 +65,7 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
     g.kd_pi = b.diffuse_albedo() * float(1 / M_PI);
     return g;
 }
-}  // namespace
 
-namespace {
 // What a photon arriving along wi with `power` after `bounces` adds to point i's sums (f(wo, wi)
 // × power; phase(wo, wi) × power for a volume point), or black when it adds nothing.
 Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi, const Rgb& power,
@@ -118,11 +116,16 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
     // sums, so the result is the single process's exactly. Chunks bound the pending hits' memory.
     const auto [lo, hi] = dist::share(count);
     uint64_t rays = 0;
-    for (uint64_t first = lo; first < hi && max_depth >= 1; first += kChunk) {
-        const uint64_t n = std::min(kChunk, hi - first);
-        rays += trace_chunk(P, vps, grid, seed, pass, first, n);
-        building.wait();
-        for (size_t l = 0; l < grid.level_count(); ++l) gather_level(vps, grid, l);
+    try {
+        for (uint64_t first = lo; first < hi && max_depth >= 1; first += kChunk) {
+            const uint64_t n = std::min(kChunk, hi - first);
+            rays += trace_chunk(P, vps, grid, seed, pass, first, n);
+            building.wait();
+            for (size_t l = 0; l < grid.level_count(); ++l) gather_level(vps, grid, l);
+        }
+    } catch (...) {
+        building.wait();  // the build reads vps and stats and writes grid: let it finish first
+        throw;
     }
     building.wait();
     return rays;
