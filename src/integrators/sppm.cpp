@@ -58,8 +58,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
         const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
         ++rays.camera;
-        const LightSampleSequence lights{uint32_t(it) * uint32_t(std::max(1, direct_samples)),
-                                         hash_combine(key, 3)};
+        const LightSampleSequence lights{uint32_t(it), hash_combine(key, 3)};
         return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &lights);
     };
     // --trace-pixel: that pixel's eye paths run again, recorded, and its slots' photons.

@@ -66,15 +66,21 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
     return g;
 }
 
-// What a photon arriving along wi with `power` after `bounces` adds to point i's sums (f(wo, wi)
-// × power; phase(wo, wi) × power for a volume point), or black when it adds nothing.
-Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi, const Rgb& power,
-                 int bounces) {
-    if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
+// contribution() at a volume point or a surface point that is not Lambert-only.
+Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi, const Rgb& power) {
     if (g.kind == GatherPoint::kVolume) return power * shading::henyey_greenstein(dot(-vp.wo, wi), g.kd_pi.r);
+    return vp.bsdf->eval(vp.wo, wi) * power;
+}
+
+// What a photon arriving along wi with `power` after `bounces` adds to point i's sums (f(wo, wi)
+// × power; phase(wo, wi) × power for a volume point), or black when it adds nothing. Small, so
+// the gather's loop inlines it: most points are Lambert-only.
+inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi,
+                        const Rgb& power, int bounces) {
+    if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
     if (g.kind == GatherPoint::kLambert)  // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side
         return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? g.kd_pi * power : Rgb(0.0f);
-    return vp.bsdf->eval(vp.wo, wi) * power;
+    return contribution_evaluated(g, vp, wi, power);
 }
 }  // namespace
 
@@ -230,17 +236,9 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                     if (g.kind == GatherPoint::kVolume) continue;
                     int64_t sum[3] = {0, 0, 0};
                     uint64_t m = 0;
-                    const bool lambert = g.kind == GatherPoint::kLambert;
                     const auto match = [&](uint32_t h) {
                         const BinnedHit& bh = binned_[h];
-                        Rgb c;
-                        if (lambert) {  // contribution()'s Lambert case, inline: most points
-                            if (bh.bounces > g.max_bounces || !(dot(bh.wi, g.ng) > 0 && dot(bh.wi, g.ns) > 0))
-                                return;
-                            c = g.kd_pi * bh.power;
-                        } else {
-                            c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
-                        }
+                        const Rgb c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
                         int64_t q[3];
                         if (!quantize(c, scale, q)) return;
                         for (int k = 0; k < 3; ++k) sum[k] += q[k];

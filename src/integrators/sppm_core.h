@@ -56,13 +56,13 @@ struct LightSampleSequence;
 Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays, const LightSampleSequence* light_sequence = nullptr);
 
-// Light sample k of an eye path as point `first` + k of two padded dimensions of its pixel
-// (core/low_discrepancy.h), keyed by `key`: the light choice (1D) and the point on the light
-// (2D). SPPM sets first = iteration × samples per iteration, so a pixel's light samples over all
-// iterations are one stratified sequence: soft shadows converge faster than with independent
-// samples while every iteration stays unbiased.
+// Light sample k of iteration i's eye path (n samples per path) as point i × n + k of two padded
+// dimensions of its pixel (core/low_discrepancy.h), keyed by `key`: the light choice (1D) and the
+// point on the light (2D). A pixel's light samples over all iterations are then one stratified
+// sequence: soft shadows converge faster than with independent samples while every iteration
+// stays unbiased.
 struct LightSampleSequence {
-    uint32_t first = 0;
+    uint32_t iteration = 0;
     uint64_t key = 0;
 };
 

@@ -79,18 +79,19 @@ Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int dire
             const Rgb w = beta * (1 / p_ns);
             Rgb direct(0.0f);
             const int n = std::max(1, direct_samples);
-            if (light_sequence) {
-                const uint64_t choose_key = hash_combine(light_sequence->key, 0);
-                const uint64_t point_key = hash_combine(light_sequence->key, 1);
-                for (int k = 0; k < n; ++k) {
-                    const uint32_t s = light_sequence->first + uint32_t(k);
-                    direct +=
-                        sample_one_light(P, hit, bsdf, wo, padded_point1(s, choose_key),
-                                         padded_point2(s, point_key), sampler, rays, false, walk.medium());
+            for (int k = 0; k < n; ++k) {
+                float u_choose;
+                Vec2 u;
+                if (light_sequence) {  // sample iteration × n + k of the pixel's sequences
+                    const uint32_t s = light_sequence->iteration * uint32_t(n) + uint32_t(k);
+                    u_choose = padded_point1(s, hash_combine(light_sequence->key, 0));
+                    u = padded_point2(s, hash_combine(light_sequence->key, 1));
+                } else {
+                    u_choose = sampler.next();
+                    u = sampler.next2();
                 }
-            } else {
-                for (int k = 0; k < n; ++k)
-                    direct += sample_one_light(P, hit, bsdf, wo, sampler, rays, false, walk.medium());
+                direct +=
+                    sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, rays, false, walk.medium());
             }
             add(w * direct * (1.0f / float(n)), TraceTerm::Light);
             vp.p = hit.p;
