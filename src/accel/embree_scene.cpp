@@ -3,6 +3,8 @@
 #include "accel/embree_scene.h"
 
 #include <embree3/rtcore.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -28,6 +30,17 @@ namespace {
 // Unit roundoff of float; error bounds below are small multiples of it times coordinate magnitudes.
 constexpr double kUlp = 0x1p-24;
 
+// What mesh_local computes from a triangle's vertices (and uvs) alone, with the same operations:
+// kept per triangle so that a hit only does the work that depends on where it landed.
+struct TriangleFacts {
+    D3 n;                       // unit counter-clockwise normal (flipped with MeshGeom::flip)
+    D3 dpdu;                    // unit tangent, before the fallback for one along n
+    double area2 = 0;           // |(p1 - p0) x (p2 - p0)|
+    double error = 0;           // position error bound of a point on the triangle
+    double edge_bound = 0;      // error x the longest edge: inset_point's test for "far from every edge"
+    bool dpdu_along_n = false;  // |dpdu . n| >= 0.999: the hit takes a tangent from its normal instead
+};
+
 struct MeshGeom {
     const float* vertices = nullptr;  // Embree's vertex buffer, 3 floats per vertex, geometry space
     const uint32_t* indices = nullptr;
@@ -36,8 +49,12 @@ struct MeshGeom {
     bool flip = false;  // reverse_orientation XOR transform swaps handedness
     const scene::Shape* source = nullptr;
     int shape = -1;
+    std::vector<TriangleFacts> facts;  // per triangle, or empty (too many triangles to keep them)
     D3 vertex(uint32_t i) const { return {vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2]}; }
 };
+
+// The facts of triangle `prim` (defined with mesh_local below).
+TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim);
 
 // What an Embree geomID stands for.
 struct Geom {
@@ -130,6 +147,10 @@ struct EmbreeScene::Impl {
     RTCScene top = nullptr;
     std::vector<RTCScene> object_scenes;
     std::deque<MeshGeom> meshes;  // deques: Embree keeps pointers to the Analytic records
+    // Triangles whose TriangleFacts are kept (80 bytes each): the first 2^20 of the scene's, so
+    // that huge meshes do not double the accelerator's memory; the others compute them per hit.
+    static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
+    size_t cached_triangles = 0;
     std::deque<Analytic> analytics;
     std::vector<InstanceData> instances;
     std::vector<Geom> top_geoms;                  // by geomID in `top`
@@ -219,6 +240,15 @@ struct EmbreeScene::Impl {
                 log::warn(where(shape) + ": uv count differs from vertex count; uvs ignored");
             else if (!mesh.uvs.empty())
                 mg.uvs = &mesh.uvs;
+        }
+        if (cached_triangles + nt <= kMaxCachedTriangles) {
+            cached_triangles += nt;
+            mg.facts.resize(nt);
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, nt, 4096),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  for (size_t t = r.begin(); t < r.end(); ++t)
+                                      mg.facts[t] = triangle_facts(mg, unsigned(t));
+                              });
         }
         meshes.push_back(std::move(mg));
         attach(s, g, ids, {Geom::Mesh, int(meshes.size() - 1)});
@@ -398,19 +428,18 @@ struct Local {
 // interior) when that is a small move. Near an edge shared with another
 // face, the rounding of p to float could otherwise put it on the wrong side of the neighbour's
 // plane, and a ray spawned from there would slip out through the edge (a leak at box corners).
-D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, double area2, double inset) {
+D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, const TriangleFacts& t) {
     const D3 p = p0 * b0 + p1 * b1 + p2 * b2;
-    const D3 opposite[3] = {p2 - p1, p0 - p2, p1 - p0};
-    double len2[3];
-    for (int i = 0; i < 3; ++i) len2[i] = detail::dot(opposite[i], opposite[i]);
     // Fast path (almost every hit): the distance to each edge, b_i * area2 / len_i, exceeds inset.
     const double bmin = std::min({b0, b1, b2});
-    if (bmin * area2 >= inset * std::sqrt(std::max({len2[0], len2[1], len2[2]}))) return p;
+    const double area2 = t.area2, inset = t.error;
+    if (bmin * area2 >= t.edge_bound) return p;
     if (!(area2 > 0)) return p;
+    const D3 opposite[3] = {p2 - p1, p0 - p2, p1 - p0};
     double need[3], sum = 0;
     for (int i = 0; i < 3; ++i) {
         // Barycentric coordinate i at distance `inset` from the opposite edge: inset / altitude.
-        need[i] = inset * std::sqrt(len2[i]) / area2;
+        need[i] = inset * std::sqrt(detail::dot(opposite[i], opposite[i])) / area2;
         sum += need[i];
     }
     if (!(sum < 1)) return p;  // smaller than the inset: leave it
@@ -422,7 +451,38 @@ D3 inset_point(D3 p0, D3 p1, D3 p2, double b0, double b1, double b2, double area
     return detail::dot(dq, dq) <= 16 * inset * inset ? q : p;
 }
 
+TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim) {
+    const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
+    const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
+    TriangleFacts t;
+    const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
+    t.error = 16 * kUlp * mag;
+    const D3 cr = detail::cross(p1 - p0, p2 - p0);  // counter-clockwise = front
+    t.area2 = std::sqrt(detail::dot(cr, cr));
+    const D3 opposite[3] = {p2 - p1, p0 - p2, p1 - p0};
+    double len2[3];
+    for (int i = 0; i < 3; ++i) len2[i] = detail::dot(opposite[i], opposite[i]);
+    t.edge_bound = t.error * std::sqrt(std::max({len2[0], len2[1], len2[2]}));
+    t.n = t.area2 > 0 ? cr * (1.0 / t.area2) : cr;
+    if (m.flip) t.n = t.n * -1.0;
+    D3 dpdu;
+    if (m.uvs) {
+        const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
+        const double du02 = double(t0.x) - t2.x, dv02 = double(t0.y) - t2.y;
+        const double du12 = double(t1.x) - t2.x, dv12 = double(t1.y) - t2.y;
+        const double det = du02 * dv12 - dv02 * du12;
+        if (std::fabs(det) > 1e-12) dpdu = ((p0 - p2) * dv12 - (p1 - p2) * dv02) * (1.0 / det);
+    } else {
+        dpdu = p1 - p0;
+    }
+    t.dpdu = normalized(dpdu);
+    // |dpdu . n| does not depend on n's sign (a hit with shading normals may flip n).
+    t.dpdu_along_n = !(std::fabs(detail::dot(t.dpdu, t.n)) < 0.999);
+    return t;
+}
+
 Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
+    const TriangleFacts t = m.facts.empty() ? triangle_facts(m, prim) : m.facts[prim];
     const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
     const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
     // Clamp to the triangle (Embree's robust test can report barycentrics a hair outside): p is
@@ -435,14 +495,9 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
     }
     const double b0 = std::max(0.0, 1.0 - b1 - b2);
     Local L;
-    const double mag = std::max({max_abs(p0), max_abs(p1), max_abs(p2)});
-    L.error = 16 * kUlp * mag;
-    const D3 cr = detail::cross(p1 - p0, p2 - p0);  // counter-clockwise = front
-    const double area2 = std::sqrt(detail::dot(cr, cr));
-    L.p = inset_point(p0, p1, p2, b0, b1, b2, area2, L.error);
-    D3 n = area2 > 0 ? cr * (1.0 / area2) : cr;
-    if (m.flip) n = n * -1.0;
-    L.ng = L.ns = n;
+    L.error = t.error;
+    L.p = inset_point(p0, p1, p2, b0, b1, b2, t);
+    L.ng = L.ns = t.n;
     if (!m.normals.empty()) {
         const Vec3 ns = m.normals[i0] * float(b0) + m.normals[i1] * float(b1) + m.normals[i2] * float(b2);
         if (length_squared(ns) > 0) {
@@ -451,24 +506,17 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
             if (detail::dot(L.ng, L.ns) < 0) L.ng = L.ng * -1.0;
         }
     }
-    D3 dpdu;
     if (m.uvs) {
         const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
         L.uv = t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
-        const double du02 = double(t0.x) - t2.x, dv02 = double(t0.y) - t2.y;
-        const double du12 = double(t1.x) - t2.x, dv12 = double(t1.y) - t2.y;
-        const double det = du02 * dv12 - dv02 * du12;
-        if (std::fabs(det) > 1e-12) dpdu = ((p0 - p2) * dv12 - (p1 - p2) * dv02) * (1.0 / det);
     } else {
         L.uv = {float(b1), float(b2)};
-        dpdu = p1 - p0;
     }
-    dpdu = normalized(dpdu);
-    if (!(std::fabs(detail::dot(dpdu, L.ng)) < 0.999)) {
+    L.dpdu = t.dpdu;
+    if (t.dpdu_along_n) {
         const Frame f(L.ng.to_float());
-        dpdu = D3(f.s);
+        L.dpdu = D3(f.s);
     }
-    L.dpdu = dpdu;
     return L;
 }
 
@@ -593,6 +641,10 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
     hit.media = shape->media;
     // Also cover the rounding of p itself to float.
     hit.error = float(L.error + 2 * kUlp * max_abs(L.p)) * 1.0001f;
+}
+
+double EmbreeScene::triangle_constants_bytes(double triangles) {
+    return std::min(triangles, double(Impl::kMaxCachedTriangles)) * double(sizeof(TriangleFacts));
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {

@@ -59,6 +59,10 @@ public:
     bool occluded(const Ray& ray) const;
     // World-space bounds of all geometry.
     Bounds bounds() const;
+    // Bytes the accelerator keeps beside Embree's BVH for a scene of `triangles` mesh triangles:
+    // each triangle's constants (normal, tangent, error bounds), for the first 2^20 of them, so
+    // that a hit only computes what depends on where it landed.
+    static double triangle_constants_bytes(double triangles);
     const scene::Scene& scene() const { return scene_; }
 
 private:

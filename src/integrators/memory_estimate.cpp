@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <set>
 
+#include "accel/embree_scene.h"
 #include "core/memory.h"
 #include "dist/ranks.h"
 #include "integrators/bidirectional_path.h"
@@ -284,12 +285,14 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
 
     Phase prepare = base;
     prepare.name = "BVH build";
-    prepare.add("accelerator", kBvhBuildPerTriangle * sm.triangles);
+    prepare.add("accelerator", kBvhBuildPerTriangle * sm.triangles +
+                                   accel::EmbreeScene::triangle_constants_bytes(sm.triangles));
     phases.push_back(prepare);
 
     // From the render on: the BVH, and the film with its layers and AOVs.
     Phase common = base;
-    common.add("accelerator", kBvhPerTriangle * sm.triangles);
+    common.add("accelerator",
+               kBvhPerTriangle * sm.triangles + accel::EmbreeScene::triangle_constants_bytes(sm.triangles));
     const size_t layers = ro.layers ? integrator_layers(in.integrator).size() : 0;
     const size_t extra = layers + ro.aovs.size();
     const double film = kFilmPerPixel * pixels * double(1 + extra + (extra > 0 ? 1 : 0));

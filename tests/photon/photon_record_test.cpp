@@ -145,15 +145,25 @@ TEST(Octahedral, AxesAndSeamsAreExact) {
     EXPECT_NEAR(length(decode_octahedral<8>(encode_octahedral<8>(Vec3(0.0f)))), 1.0f, 1e-6f);
 }
 
-// The four-lane encoder must give the reference's code for every input: random unit and
+// The four-lane encoders (four lattice points of one direction, or four directions) must give
+// the reference's code for every input: random unit and
 // non-unit vectors, the axes, the fold lines and the lattice's own directions (ties between
 // neighbouring lattice points), for the direction (8) and normal (7) widths and a wide one.
 template <int Bits>
 void expect_same_codes_as_reference(uint64_t seed) {
     Sampler rng(seed);
     int mismatches = 0;
+    // The batch encoder sees each direction in a different lane, beside earlier directions.
+    Vec3 lanes[4] = {Vec3(0, 0, 1), Vec3(0.0f), Vec3(1, -2, 3), Vec3(-0.5f, 0.25f, -1)};
+    int lane = 0;
     const auto check = [&](Vec3 d) {
-        if (encode_octahedral<Bits>(d) != encode_octahedral_reference<Bits>(d)) ++mismatches;
+        const uint32_t want = encode_octahedral_reference<Bits>(d);
+        if (encode_octahedral<Bits>(d) != want) ++mismatches;
+        lanes[lane] = d;
+        uint32_t codes[4];
+        encode_octahedral4<Bits>(lanes, codes);
+        if (codes[lane] != want) ++mismatches;
+        lane = (lane + 1) & 3;
     };
     for (int i = 0; i < 400000; ++i) {
         const Vec3 d = uniform_sphere(rng.next2());
