@@ -223,6 +223,7 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
                                              TransportMode mode) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return std::nullopt;
+    if (lobes_ == 1u << kLambert) return sample_lambert(lobe_mask, s, u);
     Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
     float w[kNumLobes];
@@ -319,6 +320,42 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     bs.pdf = pdf_local(wo_l, bs.wi, s, w);
     if (!(bs.pdf > 0) || bs.f.is_black()) return std::nullopt;
     bs.weight = bs.f * (abs_cos / bs.pdf);
+    return bs;
+}
+
+}  // namespace phos::shading
+
+namespace phos::shading {
+
+// sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
+// on a diffuse wall), without the lobe selection and with wi taken to the local frame once: each
+// operation that the general code does on this path, in its order, so the sample is the same to
+// the bit (bsdf_test.cpp compares the two).
+std::optional<BsdfSample> Bsdf::sample_lambert(uint32_t lobe_mask, float s, Vec2 u) const {
+    if (!(lobe_mask & kKind[kLambert])) return std::nullopt;
+    const float w = std::max(kd_.average(), 0.0f);  // the selection weight, and the total
+    if (!(w > 0)) return std::nullopt;
+    BsdfSample bs;
+    const Vec3 wi_l = warp::cosine_hemisphere(u);
+    bs.flags = kDiffuse | kReflection;
+    Vec3 wi_world = wi_l;
+    wi_world.z *= s;
+    bs.wi = frame_.to_world(wi_world);
+    const float gi = dot(bs.wi, ng_) * s;
+    if (!(gi > 0)) return std::nullopt;
+    const float abs_cos = std::fabs(wi_l.z);
+    if (!(abs_cos > 0)) return std::nullopt;
+    // eval_local and pdf_local: wi back in the local frame, reflection only.
+    Vec3 wi_back = frame_.to_local(bs.wi);
+    wi_back.z *= s;
+    if (!(wi_back.z > 0)) return std::nullopt;  // f = 0
+    Rgb f(0.0f);
+    f += kd_ * kInvPi;
+    const float pdf = (0.0f + w * warp::cosine_hemisphere_pdf(wi_back.z)) / w;
+    if (!(pdf > 0) || f.is_black()) return std::nullopt;
+    bs.f = f;
+    bs.pdf = pdf;
+    bs.weight = f * (abs_cos / pdf);
     return bs;
 }
 

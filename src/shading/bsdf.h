@@ -141,6 +141,7 @@ private:
     MicrofacetDistribution dist_;
 
     Rgb specular_reflectance(float cos_o) const;
+    std::optional<BsdfSample> sample_lambert(uint32_t lobe_mask, float side, Vec2 u) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
     Rgb eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;

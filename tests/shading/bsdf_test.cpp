@@ -546,6 +546,43 @@ TEST(BsdfLobes, AlbedosAndMaskedSampling) {
     }
 }
 
+// sample_lobes takes a short path for a single Lambert lobe; it must give what the general
+// definitions give, to the bit: wi from the cosine warp in the shading frame, f = eval(wo, wi),
+// pdf = pdf(wo, wi) (both through the general code) and weight = f |cos| / pdf, on either side,
+// with a tilted shading normal and tangent, and nothing for masks without the diffuse kind.
+TEST(BsdfLambert, ShortPathEqualsTheGeneralDefinitionsToTheBit) {
+    accel::SurfaceHit h = flat_hit(Vec3(0, 0, 1), normalize(Vec3(0.1f, 0.2f, 1)));
+    h.dpdu = Vec3(2, 0, 0.5f);
+    Material m = lambert(0.6f);
+    m.diffuse = Rgb(0.7f, 0.3f, 0.05f);
+    const Bsdf b(m, h, empty_scene());
+    Sampler rng(5);
+    int produced = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 wo = sph(175.0f * rng.next() + 2.5f, 360.0f * rng.next());
+        const Vec2 u = rng.next2();
+        const float ul = rng.next();
+        ASSERT_FALSE(b.sample_lobes(kGlossy | kSpecular | kTransmission, wo, ul, u));
+        const auto bs = b.sample_lobes(kDiffuse, wo, ul, u, TransportMode::Importance);
+        const auto all = b.sample(wo, ul, u);
+        ASSERT_EQ(bool(bs), bool(all));
+        if (!bs) continue;
+        ++produced;
+        const float side = dot(wo, b.geometric_normal()) > 0 ? 1.0f : -1.0f;
+        Vec3 wi_l = warp::cosine_hemisphere(u);
+        const float cos = std::fabs(wi_l.z);
+        wi_l.z *= side;
+        ASSERT_EQ(bs->wi, b.frame().to_world(wi_l));
+        ASSERT_EQ(bs->f, b.eval(wo, bs->wi));
+        ASSERT_EQ(bs->pdf, b.pdf(wo, bs->wi));
+        ASSERT_EQ(bs->weight, bs->f * (cos / bs->pdf));
+        ASSERT_EQ(bs->flags, uint32_t(kDiffuse | kReflection));
+        ASSERT_EQ(bs->eta, 1.0f);
+        ASSERT_EQ(all->weight, bs->weight);
+    }
+    EXPECT_GT(produced, 15000);
+}
+
 TEST(BsdfFrame, UsesDpduForTangent) {
     accel::SurfaceHit h = flat_hit(Vec3(0, 0, 1), normalize(Vec3(0, 0.2f, 1)));
     h.dpdu = Vec3(2, 0, 0.5f);
