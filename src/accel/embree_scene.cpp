@@ -39,6 +39,10 @@ struct TriangleFacts {
     double error = 0;           // position error bound of a point on the triangle
     double edge_bound = 0;      // error x the longest edge: inset_point's test for "far from every edge"
     bool dpdu_along_n = false;  // |dpdu . n| >= 0.999: the hit takes a tangent from its normal instead
+    // Without per-vertex normals, ng, ns and dpdu are the same for every hit of a top-level
+    // triangle, and so is the BSDF's frame built from them (SurfaceHit::shading).
+    bool flat = false;
+    ShadingFrame shading;
 };
 
 struct MeshGeom {
@@ -147,7 +151,7 @@ struct EmbreeScene::Impl {
     RTCScene top = nullptr;
     std::vector<RTCScene> object_scenes;
     std::deque<MeshGeom> meshes;  // deques: Embree keeps pointers to the Analytic records
-    // Triangles whose TriangleFacts are kept (80 bytes each): the first 2^20 of the scene's, so
+    // Triangles whose TriangleFacts are kept (128 bytes each): the first 2^20 of the scene's, so
     // that huge meshes do not double the accelerator's memory; the others compute them per hit.
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
     size_t cached_triangles = 0;
@@ -478,11 +482,19 @@ TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim) {
     t.dpdu = normalized(dpdu);
     // |dpdu . n| does not depend on n's sign (a hit with shading normals may flip n).
     t.dpdu_along_n = !(std::fabs(detail::dot(t.dpdu, t.n)) < 0.999);
+    t.flat = m.normals.empty();
+    if (t.flat) {
+        // What finish_hit stores in a hit on this triangle, and what the BSDF builds from it.
+        const Vec3 ng = t.n.to_float();
+        const Vec3 dpdu_f = t.dpdu_along_n ? Frame(ng).s : t.dpdu.to_float();
+        t.shading = shading_frame(ng, ng, dpdu_f);
+    }
     return t;
 }
 
 Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
-    const TriangleFacts t = m.facts.empty() ? triangle_facts(m, prim) : m.facts[prim];
+    TriangleFacts computed;
+    const TriangleFacts& t = m.facts.empty() ? (computed = triangle_facts(m, prim)) : m.facts[prim];
     const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
     const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
     // Clamp to the triangle (Embree's robust test can report barycentrics a hair outside): p is
@@ -608,12 +620,16 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
         shape = m.source;
         shape_index = m.shape;
         hit.primitive = int(raw.prim);
+        // (Under an instance the world-space vectors differ per instance.)
+        hit.shading =
+            !inst && !m.facts.empty() && m.facts[raw.prim].flat ? &m.facts[raw.prim].shading : nullptr;
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];
         L = analytic_local(a, canonical, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);
         shape = a.source;
         shape_index = a.shape;
         hit.primitive = 0;
+        hit.shading = nullptr;
     }
 
     if (inst) {

@@ -1,6 +1,7 @@
 // Rays, surface hits and robust ray spawning shared by every integrator and the photon tracer.
 #pragma once
 
+#include "core/frame.h"
 #include "core/vec.h"
 #include "scene/medium.h"
 
@@ -28,6 +29,10 @@ struct SurfaceHit {
     int area_light = -1;  // index into Scene::lights when the surface emits
     scene::MediumInterface media;
     float error = 0.0f;  // conservative bound on the position error of p, for spawning
+    // shading_frame(ng, ns, dpdu) where the accelerator keeps it for the primitive (flat
+    // triangles: the same for every hit on them), else null. Whoever changes ng, ns or dpdu of a
+    // hit must reset it.
+    const ShadingFrame* shading = nullptr;
 };
 
 // Offsets `p` off the surface along the geometric normal towards the side `dir` points to, far

@@ -17,8 +17,6 @@ enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kNumLobes 
 // The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to.
 constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse};
 
-bool usable(Vec3 v) { return is_finite(v) && length_squared(v) > 1e-20f; }
-
 // +1 when w is on the side ng points to, -1 on the other, 0 exactly in the tangent plane.
 float side_of(Vec3 w, Vec3 ng) {
     const float d = dot(w, ng);
@@ -33,18 +31,9 @@ float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z
 
 Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
            const BsdfOptions& options) {
-    const Vec3 ng = usable(hit.ng) ? normalize(hit.ng) : Vec3(0, 0, 1);
-    Vec3 n = usable(hit.ns) ? normalize(hit.ns) : ng;
-    if (dot(n, ng) < 0) n = -n;  // ns is specified on ng's side; guard against loaders that flip
-    ng_ = ng;
-    frame_ = Frame(n);
-    if (usable(hit.dpdu)) {
-        const Vec3 s = hit.dpdu - n * dot(n, hit.dpdu);
-        if (length_squared(s) > 1e-12f * length_squared(hit.dpdu)) {
-            const Vec3 su = normalize(s);
-            frame_ = Frame(su, cross(n, su), n);
-        }
-    }
+    const ShadingFrame f = hit.shading ? *hit.shading : shading_frame(hit.ng, hit.ns, hit.dpdu);
+    ng_ = f.ng;
+    frame_ = f.frame;
     if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
 
     kd_ = m.diffuse;

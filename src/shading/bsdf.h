@@ -66,7 +66,8 @@ struct BsdfOptions {
 class Bsdf {
 public:
     // Builds the BSDF of `material` at `hit` (textures looked up in `scene`). The shading frame is
-    // ns with dpdu made orthogonal to it (Gram-Schmidt) when dpdu is usable. A material with no
+    // ns with dpdu made orthogonal to it (Gram-Schmidt) when dpdu is usable: shading_frame() of
+    // core/frame.h, or hit.shading where the accelerator keeps it. A material with no
     // non-black lobe gets a black Lambert lobe, so it is opaque (flags() != 0); only
     // `interface_only` materials have flags() == 0 and scatter nothing. A thin dielectric is always
     // smooth, as is a dielectric with ior == 1 (there is nothing to bend light).

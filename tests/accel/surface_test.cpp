@@ -167,6 +167,49 @@ TEST(Surface, MeshUvAndTangent) {
     EXPECT_LT(h.primitive, 2);
 }
 
+// Hits on flat top-level triangles carry the BSDF's shading frame, kept per triangle: it must be
+// the frame shading_frame() builds from the hit's own ng, ns and dpdu, to the bit (the BSDF uses
+// it instead); meshes with normals, analytic shapes and instanced triangles carry none.
+TEST(Surface, FlatTrianglesCarryTheirShadingFrame) {
+    scene::Scene sc;
+    Shape b = box({-1, -1, -1}, {1, 1, 1});
+    b.to_world = Transform::rotate(30, {1, 2, 3}) * Transform::scale({-2, 1, 0.5f});
+    b.reverse_orientation = true;
+    sc.shapes.push_back(b);
+    Shape q = quad({-3, -2, -3}, {-3, -2, 3}, {3, -2.5f, 3}, {3, -2, -3});
+    q.mesh.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0.2f}};
+    sc.shapes.push_back(q);
+    sc.shapes.push_back(mesh_sphere({0, 2.5f, 0}, 0.7f, 12, 8, true));
+    sc.shapes.push_back(sphere({2.5f, 0, 0}, 0.5f));
+    scene::Object obj;
+    obj.shapes.push_back(box({-0.3f, -0.3f, -0.3f}, {0.3f, 0.3f, 0.3f}));
+    sc.objects.push_back(obj);
+    sc.instances.push_back({0, Transform::translate({-2.5f, 0, 0})});
+    const accel::EmbreeScene es(sc);
+    Sampler rng(17);
+    int with = 0, without = 0;
+    for (int i = 0; i < 20000; ++i) {
+        const Vec3 o = random_unit(rng) * 8.0f;
+        const Vec3 to = random_in(rng, {-3, -3, -3}, {3, 3, 3});
+        accel::SurfaceHit h;
+        if (!es.intersect({o, to - o}, h)) continue;
+        const bool flat_mesh = h.instance < 0 && h.shape <= 1;
+        ASSERT_EQ(h.shading != nullptr, flat_mesh) << "shape " << h.shape << " instance " << h.instance;
+        if (!h.shading) {
+            ++without;
+            continue;
+        }
+        ++with;
+        const ShadingFrame f = shading_frame(h.ng, h.ns, h.dpdu);
+        ASSERT_EQ(h.shading->ng, f.ng);
+        ASSERT_EQ(h.shading->frame.s, f.frame.s);
+        ASSERT_EQ(h.shading->frame.t, f.frame.t);
+        ASSERT_EQ(h.shading->frame.n, f.frame.n);
+    }
+    EXPECT_GT(with, 2000);
+    EXPECT_GT(without, 800);
+}
+
 TEST(Surface, DiskCylinderConeParameters) {
     // Annulus: the hole is empty, v runs from the outer edge (0) to the inner edge (1).
     const scene::Scene dsc = single(disk({0, 0, 0}, {0, 0, 1}, 2, 1));
