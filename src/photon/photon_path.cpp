@@ -35,6 +35,25 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& 
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
                     bool& specular) {
     using namespace shading;
+    if (bsdf.is_lambertian()) {
+        // One Lambert lobe: the code below with its three absent kinds left out (their
+        // probabilities are 0, so they neither change the total nor catch u).
+        Rgb albedo(0.0f);
+        albedo += bsdf.diffuse_albedo();
+        float p = std::max(albedo.average(), 0.0f);
+        if (!(p > 0)) return false;
+        if (p > 1) p /= p;
+        const float u = sampler.next();
+        const float u_lobe = sampler.next();
+        const Vec2 u_dir = sampler.next2();
+        if (u >= p) return false;  // absorbed
+        const auto s = bsdf.sample_lobes(kDiffuse, wo, u_lobe, u_dir, TransportMode::Importance);
+        if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
+        power = power * s->weight * (1.0f / p);
+        wi_out = s->wi;
+        specular = false;
+        return true;
+    }
     const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
     // Probability of each lobe kind = its albedo averaged over channels (Jensen). If the material
     // reflects more than it receives, the probabilities are scaled down so they sum to 1 and the

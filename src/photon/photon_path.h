@@ -128,8 +128,12 @@ struct PhotonState {
 // Photon `index` of pass `pass`: its sampler, then its emission. False when no light emits it.
 inline bool start_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint64_t index,
                          const PhotonPathOptions& options, PhotonState& st) {
-    st = PhotonState{};
+    // Field by field: assigning a whole PhotonState{} went through a stack temporary whose
+    // overlapping partial stores stalled the copy (5 % of the tracer's time).
     st.sampler = Sampler(seed, 0x70686f746f6eULL ^ pass, index);
+    st.medium = -1;
+    st.bounces = 0;
+    st.after_diffuse = st.after_specular = false;
     return options.projection
                ? emit_projected(*options.projection, ps, st.sampler, st.ray, st.power, st.medium)
                : emit_photon(ps, st.sampler, st.ray, st.power, st.medium);
