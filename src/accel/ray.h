@@ -1,6 +1,8 @@
 // Rays, surface hits and robust ray spawning shared by every integrator and the photon tracer.
 #pragma once
 
+#include <cmath>
+
 #include "core/frame.h"
 #include "core/vec.h"
 #include "scene/medium.h"
@@ -37,10 +39,29 @@ struct SurfaceHit {
 
 // Offsets `p` off the surface along the geometric normal towards the side `dir` points to, far
 // enough that a ray from the result does not re-hit the same surface (no acne) and close enough not
-// to skip touching geometry (no leaks).
-Vec3 offset_origin(const SurfaceHit& hit, Vec3 dir);
+// to skip touching geometry (no leaks). (Inline with spawn_ray: every bounce of every path.)
+inline Vec3 offset_origin(const SurfaceHit& hit, Vec3 dir) {
+    // pbrt: distance = dot(|n|, error vector); with an isotropic bound that is error * |n|_1.
+    const float d = hit.error * (std::fabs(hit.ng.x) + std::fabs(hit.ng.y) + std::fabs(hit.ng.z));
+    Vec3 offset = hit.ng * d;
+    if (dot(dir, hit.ng) < 0) offset = -offset;
+    Vec3 po = hit.p + offset;
+    // Round away from p so that the float addition cannot land back on the surface.
+    for (int i = 0; i < 3; ++i) {
+        if (offset[i] > 0)
+            po[i] = next_float(po[i], kInf);
+        else if (offset[i] < 0)
+            po[i] = next_float(po[i], -kInf);
+    }
+    return po;
+}
 // A ray leaving the surface in direction `dir`.
-Ray spawn_ray(const SurfaceHit& hit, Vec3 dir);
+inline Ray spawn_ray(const SurfaceHit& hit, Vec3 dir) {
+    Ray r;
+    r.origin = offset_origin(hit, dir);
+    r.dir = dir;
+    return r;
+}
 // A shadow ray from the surface towards point `target` (stops just short of it).
 Ray spawn_ray_to(const SurfaceHit& hit, Vec3 target);
 // A shadow ray between two surface points, offset at both ends.

@@ -11,29 +11,6 @@ namespace {
 constexpr float kShadowEpsilon = 1e-4f;
 }  // namespace
 
-Vec3 offset_origin(const SurfaceHit& hit, Vec3 dir) {
-    // pbrt: distance = dot(|n|, error vector); with an isotropic bound that is error * |n|_1.
-    const float d = hit.error * (std::fabs(hit.ng.x) + std::fabs(hit.ng.y) + std::fabs(hit.ng.z));
-    Vec3 offset = hit.ng * d;
-    if (dot(dir, hit.ng) < 0) offset = -offset;
-    Vec3 po = hit.p + offset;
-    // Round away from p so that the float addition cannot land back on the surface.
-    for (int i = 0; i < 3; ++i) {
-        if (offset[i] > 0)
-            po[i] = std::nextafter(po[i], kInf);
-        else if (offset[i] < 0)
-            po[i] = std::nextafter(po[i], -kInf);
-    }
-    return po;
-}
-
-Ray spawn_ray(const SurfaceHit& hit, Vec3 dir) {
-    Ray r;
-    r.origin = offset_origin(hit, dir);
-    r.dir = dir;
-    return r;
-}
-
 Ray spawn_ray_to(const SurfaceHit& hit, Vec3 target) {
     Ray r;
     r.origin = offset_origin(hit, target - hit.p);

@@ -5,12 +5,26 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 
 namespace phos {
 
 inline constexpr float kPi = 3.14159265358979323846f;
 inline constexpr float kInvPi = 0.31830988618379067154f;
 inline constexpr float kInf = 1e30f;
+
+// std::nextafter(x, toward) for floats without the library call (hot in ray spawning): the same
+// value for every input, NaN and signed zeros included.
+inline float next_float(float x, float toward) {
+    if (x == toward) return toward;
+    if (x != x || toward != toward) return x + toward;
+    if (x == 0) return toward > 0 ? 0x1p-149f : -0x1p-149f;
+    uint32_t b;
+    std::memcpy(&b, &x, 4);
+    b = (x < toward) == (x > 0) ? b + 1 : b - 1;  // away from zero, or towards it
+    std::memcpy(&x, &b, 4);
+    return x;
+}
 
 struct Vec2 {
     float x = 0, y = 0;
