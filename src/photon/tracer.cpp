@@ -36,13 +36,13 @@ struct Slice {
 
 // Octahedral encoding of the stored normal costs four decodes and dot products per photon, a
 // sixth of the tracing time on box-like scenes; most photons land on a handful of flat surfaces,
-// so the last encoding of each of 16 hash slots is remembered (keyed by the exact normal bits).
+// so the last encoding of each of 64 hash slots is remembered (keyed by the exact normal bits).
 class NormalCodes {
 public:
     uint16_t get(Vec3 n) {
         uint32_t b[3];
         std::memcpy(b, &n, sizeof b);
-        const uint32_t h = ((b[0] * 0x9e3779b1u) ^ (b[1] * 0x85ebca6bu) ^ (b[2] * 0xc2b2ae35u)) >> 28;
+        const uint32_t h = ((b[0] * 0x9e3779b1u) ^ (b[1] * 0x85ebca6bu) ^ (b[2] * 0xc2b2ae35u)) >> 26;
         Entry& e = entries_[h];
         if (!e.valid || std::memcmp(e.bits, b, sizeof b) != 0) {
             Photon p;
@@ -60,7 +60,7 @@ private:
         uint16_t code = 0;
         bool valid = false;
     };
-    Entry entries_[16];
+    Entry entries_[64];
 };
 
 // Writes the direction codes of a slice's photons, four per call of the four-lane encoder: one
