@@ -109,6 +109,20 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
     }
 }
 
+// Faults in the pages of a map's reserved but unused capacity on all cores: resize() would
+// otherwise take every page fault of the final array (one per 4 kB) in one thread between rounds
+// (33 ms of the 0.70 s that 4 M photons take on 2 threads; 3 ms after this). Writing raw bytes
+// to storage that holds no objects yet is allowed; resize() constructs the photons there.
+void fault_in_capacity(std::vector<Photon>& v) {
+    constexpr size_t kPage = 4096, kChunk = size_t(1) << 20;
+    auto* begin = reinterpret_cast<unsigned char*>(v.data() + v.size());
+    const size_t bytes = (v.capacity() - v.size()) * sizeof(Photon);
+    tbb::parallel_for(size_t(0), (bytes + kChunk - 1) / kChunk, [&](size_t c) {
+        const size_t end = std::min(bytes, (c + 1) * kChunk);
+        for (size_t i = c * kChunk; i < end; i += kPage) begin[i] = 0;
+    });
+}
+
 // Whether photons travel 16 at a time (trace_photons' packets) in trace_batch.
 bool packets_apply(const PhotonScene& ps, const TraceOptions& o) {
     return o.packets && o.max_depth >= 0 && packets_possible(ps);
@@ -247,6 +261,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
         if (active[m] && o.target[m] > 0) {
             const size_t most = size_t(o.target[m]) + size_t(o.max_depth) + 2;
             out.photons[m].reserve(most);
+            fault_in_capacity(out.photons[m]);
             if (o.record_bounces) out.bounces[m].reserve(most);
         }
     }
@@ -302,6 +317,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
                 const size_t expect =
                     size_t(per_emission * double(cap - std::min(cap, next + n_round)) * 1.05);
                 out.photons[m].reserve(size + expect);
+                fault_in_capacity(out.photons[m]);
                 if (o.record_bounces) out.bounces[m].reserve(size + expect);
             }
             out.photons[m].resize(size);
