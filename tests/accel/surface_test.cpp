@@ -210,6 +210,53 @@ TEST(Surface, FlatTrianglesCarryTheirShadingFrame) {
     EXPECT_GT(without, 800);
 }
 
+// The accelerator keeps per-triangle constants for the scene's first 2^20 triangles only; a mesh
+// beyond them computes the same constants at each hit, so its hits must equal those of the same
+// mesh kept (every field but the shading frame, which only kept triangles carry).
+TEST(Surface, TrianglesBeyondTheKeptOnesGiveTheSameHits) {
+    Shape filler;  // 2^20 - 1 triangles, far away from the rays below
+    filler.kind = Shape::Kind::Mesh;
+    const uint32_t n = (1u << 20) - 1;
+    for (uint32_t i = 0; i < n; ++i) {
+        const float x = 100 + float(i % 1024) * 0.01f, z = float(i / 1024) * 0.01f;
+        filler.mesh.positions.insert(filler.mesh.positions.end(),
+                                     {{x, 0, z}, {x + 0.01f, 0, z}, {x, 0, z + 0.01f}});
+        filler.mesh.indices.insert(filler.mesh.indices.end(), {3 * i, 3 * i + 2, 3 * i + 1});
+    }
+    Shape target = mesh_sphere({0, 0, 0}, 1, 16, 12, false);
+    target.mesh.uvs.clear();
+    Shape target_uv = quad({-3, -2, -3}, {-3, -2, 3}, {3, -2.5f, 3}, {3, -2, -3});
+    target_uv.mesh.uvs = {{0, 0}, {0, 1}, {1, 1}, {1, 0.2f}};
+    scene::Scene beyond, kept;
+    beyond.shapes = {filler, target, target_uv};
+    kept.shapes = {Shape(), target, target_uv};  // the same shape indices, without the filler
+    kept.shapes[0] = sphere({100, 100, 100}, 0.1f);
+    const accel::EmbreeScene a(beyond), b(kept);
+    Sampler rng(23);
+    int hits = 0;
+    for (int i = 0; i < 5000; ++i) {
+        const Vec3 o = random_unit(rng) * 6.0f;
+        const Vec3 to = random_in(rng, {-2, -2.5f, -2}, {2, 1, 2});
+        accel::SurfaceHit ha, hb;
+        const bool fa = a.intersect({o, to - o}, ha), fb = b.intersect({o, to - o}, hb);
+        ASSERT_EQ(fa, fb);
+        if (!fa || ha.shape == 0) continue;
+        ++hits;
+        EXPECT_EQ(ha.shading, nullptr);
+        ASSERT_NE(hb.shading, nullptr);
+        ASSERT_EQ(ha.p, hb.p);
+        ASSERT_EQ(ha.ng, hb.ng);
+        ASSERT_EQ(ha.ns, hb.ns);
+        ASSERT_EQ(ha.dpdu, hb.dpdu);
+        ASSERT_EQ(ha.uv, hb.uv);
+        ASSERT_EQ(ha.t, hb.t);
+        ASSERT_EQ(ha.error, hb.error);
+        ASSERT_EQ(ha.primitive, hb.primitive);
+        ASSERT_EQ(ha.shape, hb.shape);
+    }
+    EXPECT_GT(hits, 3000);
+}
+
 TEST(Surface, DiskCylinderConeParameters) {
     // Annulus: the hole is empty, v runs from the outer edge (0) to the inner edge (1).
     const scene::Scene dsc = single(disk({0, 0, 0}, {0, 0, 1}, 2, 1));
