@@ -31,9 +31,14 @@ float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z
 
 Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
            const BsdfOptions& options) {
-    const ShadingFrame f = hit.shading ? *hit.shading : shading_frame(hit.ng, hit.ns, hit.dpdu);
-    ng_ = f.ng;
-    frame_ = f.frame;
+    if (hit.shading) {  // copied straight from the accelerator's (no stack temporary)
+        ng_ = hit.shading->ng;
+        frame_ = hit.shading->frame;
+    } else {
+        const ShadingFrame f = shading_frame(hit.ng, hit.ns, hit.dpdu);
+        ng_ = f.ng;
+        frame_ = f.frame;
+    }
     if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
 
     kd_ = m.diffuse;
