@@ -39,9 +39,8 @@ struct TriangleFacts {
     double error = 0;           // position error bound of a point on the triangle
     double edge_bound = 0;      // error x the longest edge: inset_point's test for "far from every edge"
     bool dpdu_along_n = false;  // |dpdu . n| >= 0.999: the hit takes a tangent from its normal instead
-    // Without per-vertex normals, ng, ns and dpdu are the same for every hit of a top-level
-    // triangle, and so is the BSDF's frame built from them (SurfaceHit::shading).
-    bool flat = false;
+    // Without per-vertex normals (MeshGeom::normals empty), ng, ns and dpdu are the same for every
+    // hit of a top-level triangle, and so is the BSDF's frame built from them (SurfaceHit::shading).
     ShadingFrame shading;
 };
 
@@ -482,8 +481,7 @@ TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim) {
     t.dpdu = normalized(dpdu);
     // |dpdu . n| does not depend on n's sign (a hit with shading normals may flip n).
     t.dpdu_along_n = !(std::fabs(detail::dot(t.dpdu, t.n)) < 0.999);
-    t.flat = m.normals.empty();
-    if (t.flat) {
+    if (m.normals.empty()) {
         // What finish_hit stores in a hit on this triangle, and what the BSDF builds from it.
         const Vec3 ng = t.n.to_float();
         const Vec3 dpdu_f = t.dpdu_along_n ? Frame(ng).s : t.dpdu.to_float();
@@ -621,8 +619,7 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
         shape_index = m.shape;
         hit.primitive = int(raw.prim);
         // (Under an instance the world-space vectors differ per instance.)
-        hit.shading =
-            !inst && !m.facts.empty() && m.facts[raw.prim].flat ? &m.facts[raw.prim].shading : nullptr;
+        hit.shading = !inst && !m.facts.empty() && m.normals.empty() ? &m.facts[raw.prim].shading : nullptr;
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];
         L = analytic_local(a, canonical, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);

@@ -317,10 +317,6 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     return bs;
 }
 
-}  // namespace phos::shading
-
-namespace phos::shading {
-
 // sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
 // on a diffuse wall), without the lobe selection and with wi taken to the local frame once: each
 // operation that the general code does on this path, in its order, so the sample is the same to
