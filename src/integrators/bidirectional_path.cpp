@@ -74,7 +74,7 @@ Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const 
 }
 
 bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta) {
+                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta) {
     float pdf = 0, pdf_rev = 0;
     delta = false;
     if (v.in_medium) {
@@ -94,7 +94,7 @@ bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mo
     if (delta)
         scatter_delta(mis, cos_at(v, wi));
     else
-        scatter(mis, cos_at(v, wi), pdf, pdf_rev, v.mergeable, f);
+        scatter(mis, cos_at(v, wi), pdf, pdf_rev, merge_here, f);
     return true;
 }
 
@@ -115,7 +115,7 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
 }
 
 bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
-                      int merge_from, std::vector<Vertex>& out, RayCounts& rays) {
+                      int merge_from, bool merge_terms, std::vector<Vertex>& out, RayCounts& rays) {
     if (P.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = P.lights.choose(sampler.next(), pmf);
@@ -159,7 +159,9 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
         // Scatter: the phase function or the BSDF (importance transport).
         Vec3 wi;
         bool delta = false;
-        if (!continue_from(P, v, shading::TransportMode::Importance, f, sampler, mis, beta, wi, delta)) break;
+        if (!continue_from(P, v, shading::TransportMode::Importance, f, v.mergeable && merge_terms, sampler,
+                           mis, beta, wi, delta))
+            break;
         delta_chain = delta_chain && delta;
         if (!survives(segments, beta, beta0, sampler)) break;
         from = v.p;

@@ -64,9 +64,10 @@ inline float cos_at(const Vertex& v, Vec3 w) {
 }
 // The subpath goes on from v: samples a direction (the BSDF in `mode`, the phase function in a
 // medium), multiplies beta by its weight and updates the MIS state `mis` (scatter or
-// scatter_delta); sets wi and whether the lobe was a delta. False when nothing was sampled.
+// scatter_delta, with merging at v a strategy when `merge_here`); sets wi and whether the lobe was
+// a delta. False when nothing was sampled.
 bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta);
+                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta);
 // The ray leaving v in direction wi; the walk follows the medium change at a surface.
 accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 
@@ -83,8 +84,11 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler);
 // The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk of
 // at most `max_segments` segments. Appends the vertices connections and merging can use (those
 // with a non-delta lobe, and medium vertices) to `out`; surface vertices at least
-// `merge_from` segments from the light are mergeable (0: none). Returns false when no light emits.
+// `merge_from` segments from the light are mergeable (0: none). With `merge_terms`, merging at
+// them is a strategy of the paths the subpath continues into (vcm merging at every camera vertex);
+// without, a light vertex merges only as the camera's first non-delta vertex, which no longer
+// light subpath reaches (vcm_mis.h). Returns false when no light emits.
 bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
-                      int merge_from, std::vector<Vertex>& out, RayCounts& rays);
+                      int merge_from, bool merge_terms, std::vector<Vertex>& out, RayCounts& rays);
 
 }  // namespace phos::integrators::vcm

@@ -41,6 +41,10 @@ const options::Table& progressive_options() {
                       "light subpaths per pixel per iteration for merging (connections and light tracing "
                       "use one)"),
              "vcm");
+        prog(b.choice("vcm-merge", &ProgressiveOptions::vcm_merge, {"first", "every"},
+                      "where camera subpaths merge: at their first non-delta vertex only, as SPPM gathers "
+                      "(first), or at every vertex (every, Georgiev et al.'s VCM)"),
+             "vcm");
         prog(b.number(
                  "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
                  "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
@@ -53,9 +57,11 @@ const options::Table& progressive_options() {
              "sppm");
         auto& ds =
             prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
-                          "light samples per visible point (0 = the integrator's default)"));
+                          "light samples per visible point (bdpt, vcm: at the camera subpath's first vertex; "
+                          "0 = the integrator's default)"),
+                 "ppm sppm bdpt vcm");
         ds.aliases = {"ppm-direct-samples"};
-        ds.default_text = "sppm 2 per iteration, ppm 16 once";
+        ds.default_text = "sppm, bdpt and vcm 2 per iteration, ppm 16 once";
         prog(b.number("ppm-eye-samples", &ProgressiveOptions::eye_samples, "N", between(1, 4096),
                       "hit points per pixel"),
              "ppm");

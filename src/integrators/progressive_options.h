@@ -23,7 +23,8 @@ struct ProgressiveOptions {
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
     std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
-    int vcm_light_paths = 1;             // vcm: light subpaths per pixel per iteration for merging
+    int vcm_light_paths = 2;             // vcm: light subpaths per pixel per iteration for merging
+    std::string vcm_merge = "first";     // vcm: merge at the camera's first non-delta vertex or every one
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.
@@ -39,6 +40,11 @@ struct ProgressiveOptions {
 // direct light's noise dominant on area-lit scenes and 4 were chosen.)
 inline int direct_samples_for(const ProgressiveOptions& o, bool ppm) {
     return o.direct_samples > 0 ? o.direct_samples : ppm ? 16 : 2;
+}
+// bdpt and vcm: light samples at the camera subpath's first vertex per iteration (deeper vertices
+// take one), stratified over the iterations like SPPM's (vcm.cpp).
+inline int bidirectional_direct_samples(const ProgressiveOptions& o) {
+    return o.direct_samples > 0 ? o.direct_samples : 2;
 }
 
 // The "Progressive photon mapping" option table over ProgressiveOptions.

@@ -13,6 +13,7 @@
 #include <span>
 
 #include "core/byte_buffer.h"
+#include "core/low_discrepancy.h"
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/bidirectional_path.h"
@@ -100,6 +101,14 @@ struct Iteration {
     // Merging at the vertex next to the light (direct light): ppm only, where nothing else finds
     // it; vcm leaves direct light to light sampling, emitter hits and light tracing (vcm_mis.h).
     bool merge_direct = false;
+    // Light samples at the camera subpath's first vertex (--direct-samples; deeper vertices take
+    // one): the light-sampling strategy of paths with one vertex between camera and light has n
+    // times the density in every weight (direct_light_sample, the emitter hit at depth 2, light
+    // tracing of a light subpath's first vertex).
+    int direct_samples = 1;
+    // Merging at every camera vertex (Georgiev et al.) or only at the camera subpath's first
+    // non-delta vertex (--vcm-merge first, as SPPM gathers): vcm_mis.h.
+    bool merge_everywhere = true;
     float radius = 0;
     vcm::MisFactors factors;
     float merge_norm = 0;  // 1 / (pi r^2 N_light)
@@ -115,6 +124,11 @@ struct Context {
     const VertexGrid* grid;
     RayCounts& rays;
     Rgb* parts;  // the camera subpath's estimate per Part
+    // The pixel's stratified sequences (core/low_discrepancy.h), keyed per pixel: over the
+    // iterations, its first vertex's light samples (sample iteration x direct_samples + k) cover
+    // the lights evenly, as SPPM's do.
+    uint64_t sequence_key;
+    uint32_t iteration;
 };
 
 // Light tracing (t = 1): light vertex `v` seen by the camera, splatted onto the film.
@@ -124,9 +138,13 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     const Scattering s = vcm::evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
     if (s.f.is_black()) return;
     const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
+    // A light subpath's first vertex seen by the camera makes a path whose light-sampling strategy
+    // is at the camera's first vertex: its ratio (all of dVCM before any scattering) counts the
+    // direct_samples samples taken there.
+    SubpathMis mis = v.mis;
+    if (v.length == 1) mis.dVCM *= vcm::mis(float(C.it.direct_samples));
     const float w =
-        C.it.lt ? 1.0f
-                : 1 / (1 + vcm::connect_side(v.mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
+        C.it.lt ? 1.0f : 1 / (1 + vcm::connect_side(mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(C.P, v, c.lens, sampler);
     if (T.is_black()) return;
@@ -135,11 +153,12 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     C.film.add(pixel, value, part_at_first_vertex(v));
 }
 
-// Direct light sampling at camera vertex `v` (s = 1).
-Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
+// One light sample at camera vertex `v` (s = 1) from the random numbers (u_light, u), weighted
+// against the other strategies with the light sampling density scaled by `n`, the light samples
+// taken at this vertex (multi-sample MIS, Veach 1997 sec. 9.2.2: the n samples together are one
+// strategy of density n p).
+Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u, float n, Sampler& sampler) {
     const Prepared& P = C.P;
-    const float u_light = sampler.next();
-    const Vec2 u = sampler.next2();
     if (P.lights.size() == 0) return Rgb(0.0f);
     float pmf = 0;
     const size_t li = P.lights.choose(u_light, pmf);
@@ -156,7 +175,7 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
     const float cos_light = area ? std::fabs(dot(ls.n_light, ls.wi)) : 1.0f;
     const float d2 = at_infinity ? 1.0f : ls.distance * ls.distance;
     // BSDF sampling competes with area and infinite lights only (vcm_mis.h: direct_density).
-    const float direct_pdf_a = vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
+    const float direct_pdf_a = n * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
     const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
     const float w =
         vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
@@ -164,7 +183,24 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(P, v, ls.p_light, sampler);
     if (T.is_black()) return Rgb(0.0f);
-    return s.f * ls.L * T * (w * s.cos / (pmf * ls.pdf));
+    return s.f * ls.L * T * (w * s.cos / (n * pmf * ls.pdf));
+}
+
+// Direct light sampling at camera vertex `v` (s = 1): at the first vertex, C.it.direct_samples
+// samples from the pixel's stratified sequences; deeper, one independent sample.
+Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
+    if (v.length != 1) {
+        const float u_light = sampler.next();
+        return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, sampler);
+    }
+    const int n = C.it.direct_samples;
+    Rgb sum(0.0f);
+    for (int k = 0; k < n; ++k) {
+        const uint32_t i = C.iteration * uint32_t(n) + uint32_t(k);
+        sum += direct_light_sample(C, v, padded_point1(i, hash_combine(C.sequence_key, 3)),
+                                   padded_point2(i, hash_combine(C.sequence_key, 4)), float(n), sampler);
+    }
+    return sum;
 }
 
 // Connections of camera vertex `v` (depth d) with every vertex of its light subpath (s, t >= 2).
@@ -183,8 +219,9 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
         const float camera_pdf_a = sc.pdf_dir * sl.cos / dist2;  // v's BSDF reaching l
         const float light_pdf_a = sl.pdf_dir * sc.cos / dist2;   // l's BSDF reaching v
         const float w =
-            1 / (vcm::connect_side(l.mis, camera_pdf_a, sl.pdf_rev, l.mergeable, C.it.factors) + 1 +
-                 vcm::connect_side(v.mis, light_pdf_a, sc.pdf_rev, v.mergeable, C.it.factors));
+            1 / (vcm::connect_side(l.mis, camera_pdf_a, sl.pdf_rev, l.mergeable && C.it.merge_everywhere,
+                                   C.it.factors) +
+                 1 + vcm::connect_side(v.mis, light_pdf_a, sc.pdf_rev, v.mergeable, C.it.factors));
         ++C.rays.shadow;
         const Rgb T = vcm::transmittance_between(C.P, v, l, sampler);
         if (T.is_black()) continue;
@@ -198,8 +235,16 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
 void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
     const int max_length = C.P.options.max_depth + 1 - v.length;
     const std::vector<MergeVertex>& lights = *C.merge_vertices;
+    // A light vertex next to the light (merged only with merge_direct) completes a path whose
+    // light-sampling strategy is at the camera's first vertex, with its direct_samples samples.
+    const float direct_scale = vcm::mis(float(C.it.direct_samples));
     const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
-        const float w = C.it.ppm ? 1.0f : vcm::merge_weight(v.mis, l.mis, pdf_dir, pdf_rev, C.it.factors);
+        float w = 1;
+        if (!C.it.ppm) {
+            SubpathMis lm = l.mis;
+            if (l.length == 1) lm.dVCM *= direct_scale;
+            w = vcm::merge_weight(v.mis, lm, pdf_dir, pdf_rev, C.it.factors);
+        }
         sum[l.part] += f * l.beta * (w * C.it.merge_norm);
     };
     const shading::Bsdf& b = *v.bsdf;
@@ -228,21 +273,24 @@ void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
 }
 
 // The emitter the camera subpath hit (s = 0): area light `li` at a point with normal n, seen along wo.
-float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3 n, Vec3 wo,
-                     bool at_infinity) {
+// `depth`: the segments of the camera subpath up to the emitter (at depth 2 the light-sampling
+// strategy at the first vertex took C.it.direct_samples samples).
+float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3 n, Vec3 wo, bool at_infinity,
+                     int depth) {
     float pdf_pos = 0, pdf_dir = 0;
     C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
-    return vcm::emitter_hit_weight(camera, vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
+    const float samples = depth == 2 ? float(C.it.direct_samples) : 1.0f;
+    return vcm::emitter_hit_weight(camera, samples * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
                                    pmf * pdf_pos * pdf_dir, C.it.merge_direct);
 }
 
 // One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its
 // estimate for the pixel to C.parts (light tracing adds to other pixels itself).
-void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
+void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler) {
     const Prepared& P = C.P;
     const scene::Scene& scene = P.scene;
-    const accel::Ray first = P.camera.generate_ray(fx, fy, sampler.next2());
+    const accel::Ray first = P.camera.generate_ray(fx, fy, lens);
     ++C.rays.camera;
     accel::Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
@@ -279,7 +327,7 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
-                const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true);
+                const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true, depth);
                 parts[found_part(depth)] += beta * Le * w;
             }
             break;
@@ -293,9 +341,9 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
             // s = 0: the surface's own emission, and the .scn glow on the camera's specular chain.
             const Rgb Le = P.emitted(hit, v.wo);
             if (!Le.is_black() && (!C.it.ppm || specular_chain)) {
-                const float w = depth == 1 || C.it.ppm
-                                    ? 1.0f
-                                    : emitter_weight(C, mis, size_t(hit.area_light), hit.ng, v.wo, false);
+                const float w = depth == 1 || C.it.ppm ? 1.0f
+                                                       : emitter_weight(C, mis, size_t(hit.area_light),
+                                                                        hit.ng, v.wo, false, depth);
                 parts[found_part(depth)] += beta * Le * w;
             }
             if (specular_chain) {
@@ -306,7 +354,8 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         }
         if (depth > P.options.max_depth || C.it.lt) break;
         const bool smooth = v.in_medium || v.bsdf->has_non_specular();
-        v.mergeable = C.it.merge && !v.in_medium && smooth;
+        // Merging here: at every vertex, or only at the first non-delta one.
+        v.mergeable = C.it.merge && !v.in_medium && smooth && (C.it.merge_everywhere || specular_chain);
         if (smooth) {
             if (C.it.connect) {
                 parts[sampled_part(depth)] += beta * direct_light(C, v, sampler);
@@ -325,8 +374,8 @@ void camera_path(const Context& C, float fx, float fy, Sampler& sampler) {
         // Continue the camera subpath (radiance transport).
         Vec3 wi;
         bool delta = false;
-        if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.it.factors, sampler, mis, beta, wi,
-                                delta))
+        if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.it.factors, v.mergeable, sampler,
+                                mis, beta, wi, delta))
             break;
         specular_chain = specular_chain && delta;
         if (depth == 1)
@@ -374,6 +423,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.merge = mode == "ppm" || mode == "vcm";
     it.ppm = mode == "ppm";
     it.merge_direct = it.ppm;
+    it.direct_samples = bidirectional_direct_samples(opt_);
+    it.merge_everywhere = opt_.vcm_merge == "every";
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
     // Light subpaths per iteration: one per pixel for connections and light tracing, and with
@@ -450,7 +501,8 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     }
                     Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
                     traced.clear();
-                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, traced, rays);
+                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, it.merge_everywhere,
+                                          traced, rays);
                     for (const Vertex& v : traced) out[b].push_back(v);  // without the BSDF
                     counts[b].push_back(uint32_t(traced.size()));
                 }
@@ -501,7 +553,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     if (bdpt_) {
                         own.clear();
                         Sampler ls(ro.seed, 0x6c69676874ULL, i, iteration);
-                        vcm::trace_light_path(P, ls, max_depth, it.factors, 0, own, rays);
+                        vcm::trace_light_path(P, ls, max_depth, it.factors, 0, false, own, rays);
                         light = own;
                     } else if (it.connect || it.lt) {
                         own.clear();
@@ -510,12 +562,17 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                         light = own;
                     }
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
-                    Context C{P, it, sums, light, &merge_vertices, &grid, rays, parts};
+                    // The pixel's stratified sequences: point `iteration` gives the position in the
+                    // pixel and on the lens, as in SPPM; the rest is independent random.
+                    const uint64_t key = Sampler(ro.seed, 0x7663707365717563ULL, i).next_bits();
+                    Context C{P,     it,   sums,  light, &merge_vertices,
+                              &grid, rays, parts, key,   uint32_t(iteration)};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
                     if (it.connect || it.lt)  // light tracing
                         for (const Vertex& v : light) connect_to_camera(C, v, sampler);
-                    const Vec2 jitter = sampler.next2();
-                    camera_path(C, float(x) + jitter.x, float(y) + jitter.y, sampler);
+                    const Vec2 jitter = padded_point2(uint32_t(iteration), hash_combine(key, 1));
+                    const Vec2 lens = padded_point2(uint32_t(iteration), hash_combine(key, 2));
+                    camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, sampler);
                     for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
                 }
             P.stats.add_rays(rays);

@@ -3,15 +3,17 @@
 // integrator runs (light subpath from the light, camera subpath from the camera, then the
 // connection, the emitter hit, direct light sampling, light tracing or the merge), and the weights
 // of all of them must add up to 1 (Veach 1997, eq. 9.3's condition for an unbiased combination).
-// Paths have 1 to 5 inner vertices, each on a Lambertian surface or in an isotropic medium, lit
-// by an area or a point light; merging is on (vcm, with and without merging next to the light) or
-// off (bpt). A wrong term in any update, a missing strategy or one counted twice moves the sum
-// away from 1.
+// Paths have 1 to 5 inner vertices, each on a Lambertian surface, a mirror-like delta surface or in
+// an isotropic medium, lit by an area or a point light; merging is on (vcm, with and without
+// merging next to the light, at every camera vertex or only at the camera's first non-delta one)
+// or off (bpt); direct light takes one or several samples at the camera's first vertex. A wrong
+// term in any update, a missing strategy or one counted twice moves the sum away from 1.
 #include "integrators/vcm_mis.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "core/rng.h"
@@ -26,6 +28,16 @@ struct PathVertex {
     Vec3 p;
     Vec3 n;  // unit normal (surfaces); unused in media
     bool medium = false;
+    bool delta = false;  // a delta surface (mirror): no connection, light sample or merge here
+};
+
+// The strategy set under test: the integrator's Iteration in small.
+struct Strategies {
+    bool merge = false;         // vcm (else bpt)
+    float eta = 0;              // pi r^2 N_light
+    bool merge_direct = false;  // merging next to the light
+    bool merge_every = true;    // merging at every camera vertex, else at the first non-delta one
+    int direct_samples = 1;     // light samples at the camera's first vertex
 };
 
 struct TestPath {
@@ -58,9 +70,25 @@ float camera_pdf(const TestPath& t, Vec3 d) {
     return 1 / (t.camera_plane_area * c * c * c);
 }
 
+// Whether x[i] may merge at all: a non-delta surface, and not next to the light (x[1]) unless
+// merging there is on.
+bool can_merge(const TestPath& t, int i, const Strategies& s) {
+    const PathVertex& v = t.x[size_t(i)];
+    return s.merge && !v.medium && !v.delta && (s.merge_direct || i >= 2);
+}
+// Whether x[i] is the camera subpath's first non-delta vertex: every vertex between it and the
+// camera is a delta surface.
+bool first_non_delta(const TestPath& t, int i) {
+    for (size_t j = size_t(i) + 1; j + 1 < t.x.size(); ++j)
+        if (!t.x[j].delta) return false;
+    return true;
+}
+
 // The light subpath's state at x[i] (arrived, before scattering at x[i]), i >= 1. Merging at x[1]
-// (next to the light) only with `merge_direct`, as the integrator marks light vertices.
-SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge, bool merge_direct) {
+// (next to the light) only with `merge_direct`, as the integrator marks light vertices; no merging
+// terms at all on the light side when merging is only at the camera's first non-delta vertex
+// (trace_light_path's merge_terms).
+SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, const Strategies& st) {
     const Vec3 d01 = dir(t.x[0], t.x[1]);
     SubpathMis m = start_light(direct_pdf_a(t), emit_pdf(t, d01), t.point_light ? 1.0f : dot(t.x[0].n, d01),
                                t.point_light, false, f);
@@ -68,16 +96,20 @@ SubpathMis light_state(const TestPath& t, int i, const MisFactors& f, bool merge
         arrive(m, dist(t.x[j - 1], t.x[j]), cos_at(t.x[j], dir(t.x[j], t.x[j - 1])), true);
         if (j == i) break;
         const Vec3 out = dir(t.x[j], t.x[j + 1]), back = dir(t.x[j], t.x[j - 1]);
-        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back),
-                merge && !t.x[j].medium && (merge_direct || j >= 2), f);
+        if (t.x[j].delta)
+            scatter_delta(m, cos_at(t.x[j], out));
+        else
+            scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back),
+                    st.merge_every && can_merge(t, j, st), f);
     }
     return m;
 }
 
 // The camera subpath's state at x[i] (arrived), i <= k - 1; i == 0 reaches the light. Like the
-// integrator, the camera subpath does not know which vertex is next to the light: every surface
-// vertex is mergeable when it scatters (the emitter hit's weight takes the last one out).
-SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, bool merge) {
+// integrator, the camera subpath does not know which vertex is next to the light: every non-delta
+// surface vertex (or only the first one) is mergeable when it scatters (the emitter hit's weight
+// takes the last one out).
+SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, const Strategies& st) {
     const int k = int(t.x.size()) - 1;
     SubpathMis m = start_camera(camera_pdf(t, dir(t.x[k], t.x[k - 1])));
     for (int j = k - 1; j >= i; --j) {
@@ -87,76 +119,101 @@ SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, bool merg
                true);
         if (j == i) break;
         const Vec3 out = dir(t.x[j], t.x[j - 1]), back = dir(t.x[j], t.x[j + 1]);
-        scatter(m, cos_at(t.x[j], out), pdf_at(t.x[j], out), pdf_at(t.x[j], back), merge && !t.x[j].medium,
-                f);
+        const PathVertex& v = t.x[size_t(j)];
+        if (v.delta)
+            scatter_delta(m, cos_at(v, out));
+        else
+            scatter(m, cos_at(v, out), pdf_at(v, out), pdf_at(v, back),
+                    st.merge && !v.medium && (st.merge_every || first_non_delta(t, j)), f);
     }
     return m;
 }
 
-// Sum of the weights of every strategy that makes path t.
-double weight_sum(const TestPath& t, bool merge, float eta, bool merge_direct) {
-    const MisFactors f = MisFactors::of(true, merge, eta);
+// Sum of the weights of every strategy that makes path t; `count` (if given) receives how many
+// strategies there are (none for L S D S E paths with a point light and no merging).
+double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr) {
+    const MisFactors f = MisFactors::of(true, st.merge, st.eta);
     const int k = int(t.x.size()) - 1;  // x[k] is the camera
-    // Merging at x[i]: on surfaces, and next to the light (x[1]) only with merge_direct.
-    const auto mergeable = [&](int i) { return merge && !t.x[size_t(i)].medium && (merge_direct || i >= 2); };
+    const auto delta = [&](int i) { return t.x[size_t(i)].delta; };
+    // Merging at x[i] as a strategy: seen from the camera side (x[i] the camera subpath's last
+    // vertex, or the light subpath's vertex next to the camera in light tracing), and from the
+    // light side of a connection (x[i] the light subpath's last vertex, a camera vertex beyond).
+    const auto merge_camera = [&](int i) {
+        return can_merge(t, i, st) && (st.merge_every || first_non_delta(t, i));
+    };
+    const auto merge_light = [&](int i) { return can_merge(t, i, st) && st.merge_every; };
+    // Light sampling at the camera's first vertex takes direct_samples samples: paths with one
+    // inner vertex count that strategy direct_samples times (multi-sample MIS).
+    const float n = k == 2 ? float(st.direct_samples) : 1.0f;
     double sum = 0;
+    int strategies = 0;
     // s = 0: the camera subpath hits the light (impossible for a point light).
     if (!t.point_light) {
-        const SubpathMis c = camera_state(t, 0, f, merge);
-        sum += emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])), merge_direct);
+        const SubpathMis c = camera_state(t, 0, f, st);
+        ++strategies;
+        sum += emitter_hit_weight(c, n * direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])), st.merge_direct);
     }
     // s = 1: direct light sampling at x[1] from the camera side.
-    {
-        const SubpathMis c = camera_state(t, 1, f, merge);
+    if (!delta(1)) {
+        const SubpathMis c = camera_state(t, 1, f, st);
         const Vec3 to_light = dir(t.x[1], t.x[0]), back = dir(t.x[1], t.x[2]);
         const float d = dist(t.x[0], t.x[1]);
         const float cos_light = t.point_light ? 1.0f : dot(t.x[0].n, -to_light);
-        const float direct_w = t.point_light ? 0.0f : direct_pdf_a(t) * d * d / cos_light;
-        sum += direct_light_weight(c, pdf_at(t.x[1], to_light), pdf_at(t.x[1], back), direct_pdf_a(t),
-                                   emit_pdf(t, -to_light), direct_w, mergeable(1),
+        const float direct_w = t.point_light ? 0.0f : n * direct_pdf_a(t) * d * d / cos_light;
+        ++strategies;
+        sum += direct_light_weight(c, pdf_at(t.x[1], to_light), pdf_at(t.x[1], back), n * direct_pdf_a(t),
+                                   emit_pdf(t, -to_light), direct_w, merge_camera(1),
                                    cos_at(t.x[1], to_light) / (d * d), f);
     }
     // Inner connections: light subpath to x[s-1], camera subpath to x[s], s = 2 .. k - 1.
     for (int s = 2; s <= k - 1; ++s) {
-        const SubpathMis l = light_state(t, s - 1, f, merge, merge_direct), c = camera_state(t, s, f, merge);
+        if (delta(s - 1) || delta(s)) continue;
+        const SubpathMis l = light_state(t, s - 1, f, st), c = camera_state(t, s, f, st);
         const PathVertex &a = t.x[size_t(s - 1)], &b = t.x[size_t(s)];
         const Vec3 ab = dir(a, b);
         const float d2 = dist(a, b) * dist(a, b);
         const float camera_pdf_a = pdf_at(b, -ab) * cos_at(a, ab) / d2;  // b's BSDF reaching a
         const float light_pdf_a = pdf_at(a, ab) * cos_at(b, ab) / d2;    // a's BSDF reaching b
         const float w_l =
-            connect_side(l, camera_pdf_a, pdf_at(a, dir(a, t.x[size_t(s - 2)])), mergeable(s - 1), f);
+            connect_side(l, camera_pdf_a, pdf_at(a, dir(a, t.x[size_t(s - 2)])), merge_light(s - 1), f);
         const float w_c =
-            connect_side(c, light_pdf_a, pdf_at(b, dir(b, t.x[size_t(s + 1)])), mergeable(s), f);
+            connect_side(c, light_pdf_a, pdf_at(b, dir(b, t.x[size_t(s + 1)])), merge_camera(s), f);
+        ++strategies;
         sum += 1 / (w_l + 1 + w_c);
     }
-    // t = 1: light tracing from x[k-1] onto the camera.
-    {
-        const SubpathMis l = light_state(t, k - 1, f, merge, merge_direct);
+    // t = 1: light tracing from x[k-1] onto the camera (x[k-1] is the camera's first vertex).
+    if (!delta(k - 1)) {
+        SubpathMis l = light_state(t, k - 1, f, st);
+        if (k == 2) l.dVCM *= mis(n);
         const PathVertex& a = t.x[size_t(k - 1)];
         const Vec3 to_cam = dir(a, t.x[size_t(k)]);
         const float d = dist(a, t.x[size_t(k)]);
         const float camera_pdf_a = camera_pdf(t, -to_cam) * cos_at(a, to_cam) / (d * d);
         const float rev = pdf_at(a, dir(a, t.x[size_t(k - 2)]));
-        sum += 1 / (1 + connect_side(l, camera_pdf_a, rev, mergeable(k - 1), f));
+        ++strategies;
+        sum += 1 / (1 + connect_side(l, camera_pdf_a, rev, merge_camera(k - 1), f));
     }
-    // Merges at every inner vertex where merging is possible.
-    if (merge)
-        for (int i = merge_direct ? 1 : 2; i <= k - 1; ++i) {
-            if (!mergeable(i)) continue;
-            const SubpathMis l = light_state(t, i, f, merge, merge_direct), c = camera_state(t, i, f, merge);
-            const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
-            const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
-            sum += merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev),
-                                pdf_at(t.x[size_t(i)], to_cam_prev), f);
-        }
+    // Merges at every inner vertex where merging is a strategy.
+    for (int i = 1; i <= k - 1; ++i) {
+        if (!merge_camera(i)) continue;
+        SubpathMis l = light_state(t, i, f, st);
+        if (i == 1 && k == 2) l.dVCM *= mis(n);  // merging next to the light: as light tracing
+        const SubpathMis c = camera_state(t, i, f, st);
+        const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
+        const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
+        ++strategies;
+        sum +=
+            merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev), pdf_at(t.x[size_t(i)], to_cam_prev), f);
+    }
+    if (count) *count = strategies;
     return sum;
 }
 
 // A random path with `inner` inner vertices: points in a box, surface normals facing both
 // neighbours (so every cosine is positive), some vertices in a medium.
-TestPath random_path(uint64_t seed, int inner, bool point_light, bool media) {
-    Sampler rng(seed, 0x6d6973ULL, uint64_t(inner), uint64_t(point_light) * 2 + uint64_t(media));
+TestPath random_path(uint64_t seed, int inner, bool point_light, bool media, bool deltas = false) {
+    Sampler rng(seed, 0x6d6973ULL, uint64_t(inner),
+                uint64_t(point_light) * 2 + uint64_t(media) + (deltas ? 0x100u : 0u));
     TestPath t;
     t.point_light = point_light;
     for (int i = 0; i < inner + 2; ++i) {
@@ -164,6 +221,7 @@ TestPath random_path(uint64_t seed, int inner, bool point_light, bool media) {
         v.p = Vec3(rng.next(), rng.next(), rng.next()) * 2.0f - Vec3(1.0f);
         v.p.z += 3.0f * float(i) / float(inner + 1);  // spread along z: no two points coincide
         v.medium = media && i > 0 && i <= inner && rng.next() < 0.5f;
+        v.delta = deltas && !v.medium && i > 0 && i <= inner && rng.next() < 0.4f;
         t.x.push_back(v);
     }
     for (size_t i = 0; i < t.x.size(); ++i) {
@@ -183,19 +241,60 @@ TEST(VcmMis, WeightsOfAllStrategiesSumToOne) {
             for (int media = 0; media < 2; ++media)
                 for (uint64_t seed = 0; seed < 20; ++seed) {
                     const TestPath t = random_path(seed, inner, point != 0, media != 0);
-                    // bpt: connections only; vcm with a small and a large merging area.
-                    EXPECT_NEAR(weight_sum(t, false, 0.0f, false), 1.0, 2e-4)
-                        << "bpt, inner " << inner << " point " << point << " media " << media << " seed "
-                        << seed;
+                    const auto where = [&] {
+                        return ", inner " + std::to_string(inner) + " point " + std::to_string(point) +
+                               " media " + std::to_string(media) + " seed " + std::to_string(seed);
+                    };
+                    // bpt: connections only, with one and with four light samples at the first vertex.
+                    for (int n : {1, 4})
+                        EXPECT_NEAR(weight_sum(t, {false, 0.0f, false, true, n}), 1.0, 2e-4)
+                            << "bpt, direct samples " << n << where();
+                    // vcm with a small and a large merging area.
                     for (float eta : {1e-3f, 0.5f, 40.0f})
                         for (bool direct : {false, true})
-                            EXPECT_NEAR(weight_sum(t, true, eta, direct), 1.0, 2e-4)
-                                << "vcm eta " << eta << (direct ? ", merging next to the light" : "")
-                                << ", inner " << inner << " point " << point << " media " << media << " seed "
-                                << seed;
+                            for (bool every : {true, false})
+                                for (int n : {1, 3})
+                                    EXPECT_NEAR(weight_sum(t, {true, eta, direct, every, n}), 1.0, 2e-4)
+                                        << "vcm eta " << eta << (direct ? ", merging next to the light" : "")
+                                        << (every ? ", merging everywhere" : ", merging at the first vertex")
+                                        << ", direct samples " << n << where();
                     ++checked;
                 }
     EXPECT_EQ(checked, 400);
+}
+
+// Paths through delta surfaces (mirrors): strategies end only at non-delta vertices, and merging
+// at the camera's first non-delta vertex is found behind a chain of mirrors.
+TEST(VcmMis, WeightsSumToOneThroughDeltaVertices) {
+    int checked = 0, first_behind_mirror = 0, merging_only = 0;
+    for (int inner = 2; inner <= 5; ++inner)
+        for (int point = 0; point < 2; ++point)
+            for (uint64_t seed = 0; seed < 40; ++seed) {
+                const TestPath t = random_path(seed, inner, point != 0, false, true);
+                int deltas = 0;
+                for (const PathVertex& v : t.x) deltas += v.delta ? 1 : 0;
+                if (deltas == 0 || deltas == inner) continue;  // no delta, or nothing can make it
+                first_behind_mirror += t.x[t.x.size() - 2].delta ? 1 : 0;
+                for (int n : {1, 2}) {
+                    int strategies = 0;
+                    const double bpt = weight_sum(t, {false, 0.0f, false, true, n}, &strategies);
+                    if (strategies == 0) {  // only merging makes it: a point light's S D S
+                        ++merging_only;
+                        continue;
+                    }
+                    EXPECT_NEAR(bpt, 1.0, 2e-4)
+                        << "bpt, inner " << inner << " point " << point << " seed " << seed;
+                }
+                for (float eta : {1e-3f, 0.5f, 40.0f})
+                    for (bool every : {true, false})
+                        EXPECT_NEAR(weight_sum(t, {true, eta, false, every, 2}), 1.0, 2e-4)
+                            << "vcm eta " << eta << (every ? " everywhere" : " first") << ", inner " << inner
+                            << " point " << point << " seed " << seed;
+                ++checked;
+            }
+    EXPECT_GT(checked, 150);
+    EXPECT_GT(first_behind_mirror, 40);  // the camera's first vertex is a mirror often enough
+    EXPECT_GT(merging_only, 0);          // and some paths only vcm can make
 }
 
 // The weights are not trivially 1: on a path where light tracing and the emitter hit compete,
@@ -203,7 +302,7 @@ TEST(VcmMis, WeightsOfAllStrategiesSumToOne) {
 TEST(VcmMis, StrategiesShareThePath) {
     const TestPath t = random_path(3, 1, false, false);
     const MisFactors f = MisFactors::of(true, false, 0);
-    const SubpathMis c = camera_state(t, 0, f, false);
+    const SubpathMis c = camera_state(t, 0, f, Strategies{});
     const float w0 = emitter_hit_weight(c, direct_pdf_a(t), emit_pdf(t, dir(t.x[0], t.x[1])));
     EXPECT_GT(w0, 0.001f);
     EXPECT_LT(w0, 0.999f);
