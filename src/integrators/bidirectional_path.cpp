@@ -18,10 +18,11 @@ Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::Transp
         return s;
     }
     const shading::Bsdf& b = *v.bsdf;
-    s.f = b.eval(v.wo, wi, mode);
+    const shading::Bsdf::Evaluation e = b.evaluate(v.wo, wi, mode);
+    s.f = e.f;
     s.cos = std::fabs(dot(b.frame().n, wi));
-    s.pdf_dir = b.pdf(v.wo, wi);
-    s.pdf_rev = b.pdf(wi, v.wo);
+    s.pdf_dir = e.pdf;
+    s.pdf_rev = e.pdf_rev;
     return s;
 }
 

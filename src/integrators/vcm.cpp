@@ -438,10 +438,18 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             for (int y = tiles[t].y0; y < tiles[t].y1; ++y)
                 for (int x = tiles[t].x0; x < tiles[t].x1; ++x)
                     owned_pixel[size_t(y) * size_t(ro.width) + size_t(x)] = 1;
-    std::vector<vcm::VertexCore> light_vertices;  // vcm: the iteration's light subpaths
-    std::vector<Vec3> merge_points;               // the light vertices on surfaces, for the grid
-    std::vector<MergeVertex> merge_vertices;
-    std::vector<uint32_t> path_start;  // light path i's vertices: [path_start[i], path_start[i + 1])
+    // vcm: the iteration's light subpaths, kept from one iteration to the next (no allocation per
+    // iteration). Batch b holds subpaths [b kLightBatch, (b + 1) kLightBatch): the vertices of
+    // those below `pixels` (subpath i's are light_batches[i / kLightBatch][path_begin[i] ..
+    // path_end[i])) and the mergeable vertices of all.
+    constexpr size_t kLightBatch = 4096;
+    const size_t light_batch_count = bdpt_ ? 0 : (light_paths + kLightBatch - 1) / kLightBatch;
+    std::vector<std::vector<vcm::VertexCore>> light_batches(light_batch_count);
+    std::vector<std::vector<MergeVertex>> merge_batches(light_batch_count);
+    std::vector<uint32_t> path_begin(bdpt_ ? 0 : pixels), path_end(bdpt_ ? 0 : pixels);
+    std::vector<MergeVertex> all_mergeable;   // every rank's, in light subpath order
+    std::vector<Vec3> merge_points;           // their positions, for the grid
+    std::vector<MergeVertex> merge_vertices;  // in the grid's order
     VertexGrid grid;
 
     // Pixel = sum / iterations, for the image and each layer.
@@ -484,60 +492,62 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         } else {
             it.factors = vcm::MisFactors::of(true, false, 0);
         }
-        // Light pass (vcm): the iteration's light subpaths, in batches concatenated in order; each
+        // Light pass (vcm): the iteration's light subpaths, in batches of consecutive subpaths; each
         // rank traces those of its own pixels (light subpath j belongs to pixel j mod pixels).
+        // Subpaths j < pixels keep their vertices for the connections and light tracing of pixel
+        // j; every subpath adds its mergeable vertices to the batch's merge list, in order.
         if (!bdpt_) {
-            constexpr size_t kBatch = 4096;
-            const size_t batches = (light_paths + kBatch - 1) / kBatch;
-            std::vector<std::vector<vcm::VertexCore>> out(batches);
-            std::vector<std::vector<uint32_t>> counts(batches);
-            tbb::parallel_for(size_t(0), batches, [&](size_t b) {
+            tbb::parallel_for(size_t(0), light_batches.size(), [&](size_t b) {
                 RayCounts rays;
                 std::vector<Vertex> traced;
-                for (size_t i = b * kBatch; i < std::min(light_paths, (b + 1) * kBatch); ++i) {
-                    if (!owned_pixel[i % pixels]) {
-                        counts[b].push_back(0);
-                        continue;
+                std::vector<vcm::VertexCore>& kept = light_batches[b];
+                std::vector<MergeVertex>& mergeable = merge_batches[b];
+                kept.clear();
+                mergeable.clear();
+                for (size_t i = b * kLightBatch; i < std::min(light_paths, (b + 1) * kLightBatch); ++i) {
+                    if (i < pixels) path_begin[i] = uint32_t(kept.size());
+                    if (owned_pixel[i % pixels]) {
+                        Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
+                        traced.clear();
+                        vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from,
+                                              it.merge_everywhere, traced, rays);
+                        for (const Vertex& v : traced) {
+                            if (i < pixels) kept.push_back(v);  // without the BSDF
+                            if (v.mergeable)
+                                mergeable.push_back({v.p, v.wo, v.beta, v.mis, v.length,
+                                                     part_at_first_vertex(v), uint32_t(i)});
+                        }
                     }
-                    Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
-                    traced.clear();
-                    vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from, it.merge_everywhere,
-                                          traced, rays);
-                    for (const Vertex& v : traced) out[b].push_back(v);  // without the BSDF
-                    counts[b].push_back(uint32_t(traced.size()));
+                    if (i < pixels) path_end[i] = uint32_t(kept.size());
                 }
                 P.stats.add_rays(rays);
             });
-            light_vertices.clear();
-            path_start.assign(1, 0);
-            for (size_t b = 0; b < batches; ++b) {
-                for (uint32_t c : counts[b]) path_start.push_back(path_start.back() + c);
-                light_vertices.insert(light_vertices.end(), std::make_move_iterator(out[b].begin()),
-                                      std::make_move_iterator(out[b].end()));
-            }
             if (it.merge) {
                 // The mergeable vertices (surfaces only; see merge_direct) of every rank, in light
                 // subpath order, then indexed by the grid and stored in its order (a bucket's
                 // vertices side by side).
-                std::vector<MergeVertex> mine;
-                for (size_t j = 0; j + 1 < path_start.size(); ++j)
-                    for (uint32_t k = path_start[j]; k < path_start[j + 1]; ++k) {
-                        const vcm::VertexCore& v = light_vertices[k];
-                        if (v.mergeable)
-                            mine.push_back(
-                                {v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v), uint32_t(j)});
-                    }
+                std::vector<size_t> offset(merge_batches.size() + 1, 0);
+                for (size_t b = 0; b < merge_batches.size(); ++b)
+                    offset[b + 1] = offset[b] + merge_batches[b].size();
+                all_mergeable.resize(offset.back());
+                tbb::parallel_for(size_t(0), merge_batches.size(), [&](size_t b) {
+                    std::copy(merge_batches[b].begin(), merge_batches[b].end(),
+                              all_mergeable.begin() + std::ptrdiff_t(offset[b]));
+                });
                 if (dist::distributed()) {
-                    mine = dist::all_gather(std::span<const MergeVertex>(mine));
+                    all_mergeable = dist::all_gather(std::span<const MergeVertex>(all_mergeable));
                     std::stable_sort(
-                        mine.begin(), mine.end(),
+                        all_mergeable.begin(), all_mergeable.end(),
                         [](const MergeVertex& a, const MergeVertex& b) { return a.path < b.path; });
                 }
-                merge_points.resize(mine.size());
-                for (size_t k = 0; k < mine.size(); ++k) merge_points[k] = mine[k].p;
+                merge_points.resize(all_mergeable.size());
+                tbb::parallel_for(size_t(0), all_mergeable.size(),
+                                  [&](size_t k) { merge_points[k] = all_mergeable[k].p; });
                 grid.build(merge_points, it.radius);
-                merge_vertices.clear();
-                for (uint32_t k : grid.order()) merge_vertices.push_back(mine[k]);
+                merge_vertices.resize(all_mergeable.size());
+                const std::vector<uint32_t>& order = grid.order();
+                tbb::parallel_for(size_t(0), order.size(),
+                                  [&](size_t k) { merge_vertices[k] = all_mergeable[order[k]]; });
             }
         }
         // Camera pass, tile by tile: each pixel's camera subpath with its light subpath.
@@ -557,8 +567,9 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                         light = own;
                     } else if (it.connect || it.lt) {
                         own.clear();
-                        for (uint32_t k = path_start[i]; k < path_start[i + 1]; ++k)
-                            own.push_back(vcm::with_bsdf(P, light_vertices[k]));
+                        const std::vector<vcm::VertexCore>& batch = light_batches[i / kLightBatch];
+                        for (uint32_t k = path_begin[i]; k < path_end[i]; ++k)
+                            own.push_back(vcm::with_bsdf(P, batch[k]));
                         light = own;
                     }
                     Rgb parts[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};

@@ -209,6 +209,26 @@ Rgb Bsdf::eval(Vec3 wo, Vec3 wi, TransportMode mode) const { return eval_masked(
 
 float Bsdf::pdf(Vec3 wo, Vec3 wi) const { return pdf_masked(wo, wi, ~0u); }
 
+Bsdf::Evaluation Bsdf::evaluate(Vec3 wo, Vec3 wi, TransportMode mode) const {
+    if (lobes_ != 1u << kLambert) return {eval(wo, wi, mode), pdf(wo, wi), pdf(wi, wo)};
+    // A lone Lambert lobe: eval_local's and pdf_local's operations for it (reflection only: b on
+    // a's side of ng and of the shading normal; the pdf divides by the selection weight's total).
+    const float w = std::max(kd_.average(), 0.0f);
+    const auto reflects = [&](Vec3 a, Vec3 b, float& cos_b) {
+        const float s = side_of(a, ng_);
+        cos_b = dot(b, frame_.n) * s;
+        return s != 0 && dot(b, ng_) * s > 0 && cos_b > 0;
+    };
+    Evaluation e{Rgb(0.0f), 0, 0};
+    float cos_i = 0, cos_o = 0;
+    if (reflects(wo, wi, cos_i)) {
+        e.f = kd_ * kInvPi;
+        if (w > 0) e.pdf = w * warp::cosine_hemisphere_pdf(cos_i) / w;
+    }
+    if (reflects(wi, wo, cos_o) && w > 0) e.pdf_rev = w * warp::cosine_hemisphere_pdf(cos_o) / w;
+    return e;
+}
+
 std::optional<BsdfSample> Bsdf::sample(Vec3 wo, float u_lobe, Vec2 u, TransportMode mode) const {
     return sample_lobes(~0u, wo, u_lobe, u, mode);
 }

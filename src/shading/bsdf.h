@@ -76,6 +76,13 @@ public:
 
     Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
     float pdf(Vec3 wo, Vec3 wi) const;
+    // eval(wo, wi, mode), pdf(wo, wi) and pdf(wi, wo) at once, as bidirectional methods need them:
+    // the same values as the three calls, with a short path for a lone Lambert lobe.
+    struct Evaluation {
+        Rgb f;
+        float pdf = 0, pdf_rev = 0;
+    };
+    Evaluation evaluate(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
     // `u_lobe` picks the lobe, `u` the direction within it.
     std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u,
                                      TransportMode mode = TransportMode::Radiance) const;
