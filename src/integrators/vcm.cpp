@@ -106,6 +106,7 @@ struct Iteration {
     // times the density in every weight (direct_light_sample, the emitter hit at depth 2, light
     // tracing of a light subpath's first vertex).
     int direct_samples = 1;
+    bool one_delta_light = false;  // the scene's only light is a point-like one (delta position)
     // Merging at every camera vertex (Georgiev et al.) or only at the camera subpath's first
     // non-delta vertex (--vcm-merge first, as SPPM gathers): vcm_mis.h.
     bool merge_everywhere = true;
@@ -194,6 +195,9 @@ Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
         return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, sampler);
     }
     const int n = C.it.direct_samples;
+    // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
+    if (C.it.one_delta_light)
+        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), float(n), sampler) * float(n);
     Rgb sum(0.0f);
     for (int k = 0; k < n; ++k) {
         const uint32_t i = C.iteration * uint32_t(n) + uint32_t(k);
@@ -424,6 +428,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.ppm = mode == "ppm";
     it.merge_direct = it.ppm;
     it.direct_samples = bidirectional_direct_samples(opt_);
+    it.one_delta_light = P.lights.size() == 1 && P.lights[0].is_delta();
     it.merge_everywhere = opt_.vcm_merge == "every";
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
