@@ -239,10 +239,11 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
 }
 
 // bdpt and vcm (vcm.h): the fixed-point sums (image and layers, 24 bytes per pixel each), and for
-// vcm the iteration's light subpaths: their vertices (kLightVerticesPerPath on average, measured
-// 3.3 on the bench scenes at the default depth), the mergeable ones packed twice (gathered, then
-// in grid order) and the grid over them.
-constexpr double kLightVerticesPerPath = 4;
+// vcm the iteration's light subpaths: the vertices of one per pixel (kLightVerticesPerPath on
+// average, measured 3.3 on the bench scenes at the default depth), the mergeable ones of all
+// (kMergeableVerticesPerPath, measured 2.0: surfaces at least two segments from the light) packed
+// twice (in their batches, then in grid order) and the grid over them.
+constexpr double kLightVerticesPerPath = 4, kMergeableVerticesPerPath = 2.5;
 constexpr double kMergeVertexBytes = 64, kVertexGridPerPoint = 12 + 4 + 8;
 void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, std::vector<Phase>& phases) {
     const RenderOptions& ro = in.render;
@@ -253,8 +254,10 @@ void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, st
     p.add("fixed-point sums", pixels * 24 * planes);
     if (in.integrator == "vcm") {
         const double paths = pixels * std::max(1, in.progressive.vcm_light_paths);
-        const double vertices = paths * kLightVerticesPerPath;
-        p.add("light vertices", pixels * kLightVerticesPerPath * sizeof(vcm::VertexCore) + paths * 4);
+        const double vertices = paths * kMergeableVerticesPerPath;
+        // Subpath j < pixels keeps its vertices (and their range, 8 bytes); every subpath its
+        // mergeable ones, in its batch and again in the grid's order.
+        p.add("light vertices", pixels * (kLightVerticesPerPath * sizeof(vcm::VertexCore) + 8));
         if (in.progressive.vcm_mode != "bpt" && in.progressive.vcm_mode != "lt")
             p.add("merging", vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint));
     }

@@ -452,7 +452,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     std::vector<std::vector<vcm::VertexCore>> light_batches(light_batch_count);
     std::vector<std::vector<MergeVertex>> merge_batches(light_batch_count);
     std::vector<uint32_t> path_begin(bdpt_ ? 0 : pixels), path_end(bdpt_ ? 0 : pixels);
-    std::vector<MergeVertex> all_mergeable;   // every rank's, in light subpath order
+    std::vector<MergeVertex> all_mergeable;   // under MPI: every rank's, in light subpath order
     std::vector<Vec3> merge_points;           // their positions, for the grid
     std::vector<MergeVertex> merge_vertices;  // in the grid's order
     VertexGrid grid;
@@ -534,25 +534,34 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                 std::vector<size_t> offset(merge_batches.size() + 1, 0);
                 for (size_t b = 0; b < merge_batches.size(); ++b)
                     offset[b + 1] = offset[b] + merge_batches[b].size();
-                all_mergeable.resize(offset.back());
-                tbb::parallel_for(size_t(0), merge_batches.size(), [&](size_t b) {
-                    std::copy(merge_batches[b].begin(), merge_batches[b].end(),
-                              all_mergeable.begin() + std::ptrdiff_t(offset[b]));
-                });
                 if (dist::distributed()) {
+                    all_mergeable.resize(offset.back());
+                    tbb::parallel_for(size_t(0), merge_batches.size(), [&](size_t b) {
+                        std::copy(merge_batches[b].begin(), merge_batches[b].end(),
+                                  all_mergeable.begin() + std::ptrdiff_t(offset[b]));
+                    });
                     all_mergeable = dist::all_gather(std::span<const MergeVertex>(all_mergeable));
                     std::stable_sort(
                         all_mergeable.begin(), all_mergeable.end(),
                         [](const MergeVertex& a, const MergeVertex& b) { return a.path < b.path; });
                 }
-                merge_points.resize(all_mergeable.size());
-                tbb::parallel_for(size_t(0), all_mergeable.size(),
-                                  [&](size_t k) { merge_points[k] = all_mergeable[k].p; });
+                // Mergeable vertex k of the iteration: from the gathered list, or (one process) in
+                // place in its batch.
+                const size_t count = dist::distributed() ? all_mergeable.size() : offset.back();
+                const auto mergeable_vertex = [&](size_t k) -> const MergeVertex& {
+                    if (dist::distributed()) return all_mergeable[k];
+                    const size_t b =
+                        size_t(std::upper_bound(offset.begin(), offset.end(), k) - offset.begin()) - 1;
+                    return merge_batches[b][k - offset[b]];
+                };
+                merge_points.resize(count);
+                tbb::parallel_for(size_t(0), count,
+                                  [&](size_t k) { merge_points[k] = mergeable_vertex(k).p; });
                 grid.build(merge_points, it.radius);
-                merge_vertices.resize(all_mergeable.size());
+                merge_vertices.resize(count);
                 const std::vector<uint32_t>& order = grid.order();
                 tbb::parallel_for(size_t(0), order.size(),
-                                  [&](size_t k) { merge_vertices[k] = all_mergeable[order[k]]; });
+                                  [&](size_t k) { merge_vertices[k] = mergeable_vertex(order[k]); });
             }
         }
         // Camera pass, tile by tile: each pixel's camera subpath with its light subpath.
