@@ -1,5 +1,8 @@
-// The light-vertex hash grid (see vertex_grid.h): a counting sort of the points by bucket.
+// The light-vertex hash grid (see vertex_grid.h): a counting sort of the points by bucket (the
+// buckets and the sorted copy computed in parallel, the count and placement in order).
 #include "integrators/vertex_grid.h"
+
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,17 +23,17 @@ void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
     mask_ = size - 1;
     start_.assign(size + 1, 0);
     std::vector<uint32_t> key(points.size());
-    for (size_t i = 0; i < points.size(); ++i) {
+    tbb::parallel_for(size_t(0), points.size(), [&](size_t i) {
         const Vec3& p = points[i];
         key[i] = bucket(cell(p.x, lo_.x), cell(p.y, lo_.y), cell(p.z, lo_.z));
-        ++start_[key[i] + 1];
-    }
+    });
+    for (uint32_t k : key) ++start_[k + 1];
     for (size_t b = 0; b < size; ++b) start_[b + 1] += start_[b];
     order_.resize(points.size());
     std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
     for (size_t i = 0; i < points.size(); ++i) order_[fill[key[i]]++] = uint32_t(i);
     sorted_.resize(points.size());
-    for (size_t k = 0; k < points.size(); ++k) sorted_[k] = points[order_[k]];
+    tbb::parallel_for(size_t(0), points.size(), [&](size_t k) { sorted_[k] = points[order_[k]]; });
 }
 
 }  // namespace phos::integrators
