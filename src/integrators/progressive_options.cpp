@@ -37,24 +37,36 @@ const options::Table& progressive_options() {
                       "the strategies vcm uses: connections only (bpt), merging only (ppm), both (vcm), "
                       "light tracing alone (lt)"),
              "vcm");
-        prog(b.number("vcm-light-paths", &ProgressiveOptions::vcm_light_paths, "K", between(1, 64),
-                      "light subpaths per pixel per iteration for merging (connections and light tracing "
-                      "use one)"),
-             "vcm");
+        auto& lp = prog(b.number("vcm-light-paths", &ProgressiveOptions::vcm_light_paths, "K", between(0, 64),
+                                 "light subpaths per pixel per iteration for merging (connections and light "
+                                 "tracing use one; 0 = automatic: 2 to 8, enough for about 3 mergeable "
+                                 "vertices per pixel in a pilot light pass)"),
+                        "vcm");
+        lp.default_text = "automatic";
         prog(b.choice("vcm-merge", &ProgressiveOptions::vcm_merge, {"first", "every"},
                       "where camera subpaths merge: at their first non-delta vertex only, as SPPM gathers "
                       "(first), or at every vertex (every, Georgiev et al.'s VCM)"),
              "vcm");
-        prog(b.number(
-                 "radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
-                 "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
-                 "automatic radius so its disc holds about K photons, within 1-8 pixel footprints (0 = off)"),
-             "sppm");
+        prog(b.number("vcm-rr-weight", &ProgressiveOptions::vcm_rr_weight, "W", between(0, 1),
+                      "Russian roulette on the shadow rays of connections, light-tracing splats and light "
+                      "samples whose MIS weight w is below W: cast with probability w / W and counted W / w "
+                      "times (unbiased; 0 = every shadow ray)"),
+             "bdpt vcm");
+        prog(b.number("direct-mis-scale", &ProgressiveOptions::direct_mis_scale, "S", between(1, 1e6),
+                      "the MIS weights count the camera subpath's first-vertex light samples S times over "
+                      "(stratified, they converge faster than the BSDF samples and light-tracing splats "
+                      "they compete with; any S keeps the estimate unbiased)"),
+             "bdpt vcm");
+        prog(b.number("radius-photons", &ProgressiveOptions::radius_photons, "K", between(0, 1e9),
+                      "the first iteration's photons (a pilot, not used in the estimate) set each pixel's "
+                      "automatic radius so its disc holds about K photons, within 1-8 pixel footprints (vcm: "
+                      "light vertices of a pilot light pass, the radius at most --radius-pixels; 0 = off)"),
+             "sppm vcm");
         prog(b.flag("edge-aware-radius", &ProgressiveOptions::edge_aware_radius,
                     "after the pilot, bound each pixel's radius by its distance to the nearest visible point "
                     "on another surface or off its plane (an edge, corner or contact), at most halving it",
                     true, "no-edge-aware-radius"),
-             "sppm");
+             "sppm vcm");
         auto& ds =
             prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
                           "light samples per visible point (bdpt, vcm: at the camera subpath's first vertex; "

@@ -23,8 +23,13 @@ struct ProgressiveOptions {
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
     std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
-    int vcm_light_paths = 2;             // vcm: light subpaths per pixel per iteration for merging
+    int vcm_light_paths = 0;             // vcm: light subpaths per pixel per iteration for merging
+                                         // (0 = automatic, vcm.cpp light_paths_per_pixel)
     std::string vcm_merge = "first";     // vcm: merge at the camera's first non-delta vertex or every one
+    float vcm_rr_weight = 0.1f;          // bdpt, vcm: Russian roulette on shadow rays of strategies whose
+                                         // MIS weight is below this (0 = off)
+    float direct_mis_scale = 8;          // bdpt, vcm: the MIS weights count the first vertex's light
+                                         // samples this many times over
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <cstdio>
 #include <span>
 
 #include "core/byte_buffer.h"
@@ -18,6 +19,8 @@
 #include "film/tiles.h"
 #include "integrators/bidirectional_path.h"
 #include "integrators/progressive_budget.h"
+#include "integrators/sppm.h"
+#include "integrators/sppm_core.h"
 #include "integrators/vertex_grid.h"
 #include "shading/surface_walk.h"
 
@@ -106,13 +109,42 @@ struct Iteration {
     // times the density in every weight (direct_light_sample, the emitter hit at depth 2, light
     // tracing of a light subpath's first vertex).
     int direct_samples = 1;
+    // The count the weights give those samples: direct_samples x --direct-mis-scale. Any positive
+    // count used alike in all three weights keeps them a partition of unity (the estimate unbiased);
+    // a larger one hands more of the direct light to the stratified light samples, which converge
+    // faster than the BSDF samples and light-tracing splats they compete with (on the Cornell
+    // boxes' walls, 8 cut the variance 3.4x at no cost; docs/bidirectional.md).
+    float direct_mis = 1;
     bool one_delta_light = false;  // the scene's only light is a point-like one (delta position)
     // Merging at every camera vertex (Georgiev et al.) or only at the camera subpath's first
     // non-delta vertex (--vcm-merge first, as SPPM gathers): vcm_mis.h.
     bool merge_everywhere = true;
-    float radius = 0;
-    vcm::MisFactors factors;
-    float merge_norm = 0;  // 1 / (pi r^2 N_light)
+    // Merging radii: pixel i's camera subpaths merge within pixel_radius[i] * shrink (first-vertex
+    // merging; null: every pixel `radius`), and the grid is built for the largest, `radius`.
+    float radius = 0, shrink = 1, light_paths = 0;
+    const std::vector<float>* pixel_radius = nullptr;
+    // Strategies whose MIS weight is below this cast their shadow ray by Russian roulette
+    // (weight_roulette; 0: always).
+    float rr_weight = 0;
+    vcm::MisFactors factors;        // bdpt; vcm merging at every vertex (one radius for all)
+    vcm::MisFactors light_factors;  // what the light pass uses (below)
+
+    // What merging needs at the first non-delta vertex of pixel i's camera subpaths. With merging
+    // there only, the merging area eta enters a path's weights at that vertex alone, so each pixel
+    // may have its own: its camera subpaths, and the light-tracing splats that land on it, use
+    // that pixel's factors; the light subpaths carry dVM without 1 / eta^2 (light_factors: vc = 1)
+    // and merging multiplies it in.
+    struct PixelMerge {
+        vcm::MisFactors factors;
+        float merge_norm = 0, radius2 = 0;  // 1 / (pi r^2 N_light), r^2
+    };
+    PixelMerge pixel(size_t i) const {
+        if (!merge || merge_everywhere || !pixel_radius) return {factors, uniform_norm, radius * radius};
+        const float r = (*pixel_radius)[i] * shrink;
+        const float eta = kPi * r * r * light_paths;
+        return {vcm::MisFactors::of(connect, true, eta), 1 / eta, r * r};
+    }
+    float uniform_norm = 0;  // 1 / (pi r^2 N_light) of `radius`
 };
 
 // Everything a camera subpath needs to evaluate its strategies.
@@ -130,7 +162,19 @@ struct Context {
     // the lights evenly, as SPPM's do.
     uint64_t sequence_key;
     uint32_t iteration;
+    Iteration::PixelMerge merge_at;  // merging at the pixel's first non-delta vertex
 };
+
+// Russian roulette on a strategy's shadow ray by its MIS weight w: below it.rr_weight the ray is
+// cast with probability q = w / rr_weight and its contribution counted 1 / q times, so the estimate
+// stays unbiased. Where another strategy makes most of a path (merging, on diffuse surfaces), the
+// connection's few percent of it are not worth a ray each time. Returns 1 / q, or 0 when the ray
+// is not cast.
+float weight_roulette(const Iteration& it, float w, Sampler& sampler) {
+    if (!(w < it.rr_weight)) return 1;
+    const float q = w / it.rr_weight;
+    return sampler.next() < q ? 1 / q : 0.0f;
+}
 
 // Light tracing (t = 1): light vertex `v` seen by the camera, splatted onto the film.
 void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
@@ -143,14 +187,18 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     // is at the camera's first vertex: its ratio (all of dVCM before any scattering) counts the
     // direct_samples samples taken there.
     SubpathMis mis = v.mis;
-    if (v.length == 1) mis.dVCM *= vcm::mis(float(C.it.direct_samples));
-    const float w =
-        C.it.lt ? 1.0f : 1 / (1 + vcm::connect_side(mis, camera_pdf_a, s.pdf_rev, v.mergeable, C.it.factors));
+    if (v.length == 1) mis.dVCM *= vcm::mis(C.it.direct_mis);
+    const size_t pixel = size_t(int(c.fy)) * size_t(C.P.options.width) + size_t(int(c.fx));
+    // Merging at v is the strategy of the camera subpaths of the pixel the splat lands on.
+    float w = C.it.lt ? 1.0f
+                      : 1 / (1 + vcm::connect_side(mis, camera_pdf_a, s.pdf_rev, v.mergeable,
+                                                   C.it.pixel(pixel).factors));
+    w *= weight_roulette(C.it, w, sampler);
+    if (w == 0) return;
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(C.P, v, c.lens, sampler);
     if (T.is_black()) return;
     const Rgb value = v.beta * s.f * T * (w * camera_pdf_a);
-    const size_t pixel = size_t(int(c.fy)) * size_t(C.P.options.width) + size_t(int(c.fx));
     C.film.add(pixel, value, part_at_first_vertex(v));
 }
 
@@ -158,7 +206,8 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
 // against the other strategies with the light sampling density scaled by `n`, the light samples
 // taken at this vertex (multi-sample MIS, Veach 1997 sec. 9.2.2: the n samples together are one
 // strategy of density n p).
-Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u, float n, Sampler& sampler) {
+Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u, float n, float n_mis,
+                        Sampler& sampler) {
     const Prepared& P = C.P;
     if (P.lights.size() == 0) return Rgb(0.0f);
     float pmf = 0;
@@ -176,11 +225,13 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
     const float cos_light = area ? std::fabs(dot(ls.n_light, ls.wi)) : 1.0f;
     const float d2 = at_infinity ? 1.0f : ls.distance * ls.distance;
     // BSDF sampling competes with area and infinite lights only (vcm_mis.h: direct_density).
-    const float direct_pdf_a = n * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
+    const float direct_pdf_a = n_mis * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
     const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
-    const float w =
-        vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
-                                 direct_pdf_w, v.mergeable && C.it.merge_direct, s.cos / d2, C.it.factors);
+    float w = vcm::direct_light_weight(v.mis, s.pdf_dir, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
+                                       direct_pdf_w, v.mergeable && C.it.merge_direct, s.cos / d2,
+                                       C.merge_at.factors);
+    w *= weight_roulette(C.it, w, sampler);
+    if (w == 0) return Rgb(0.0f);
     ++C.rays.shadow;
     const Rgb T = vcm::transmittance_to(P, v, ls.p_light, sampler);
     if (T.is_black()) return Rgb(0.0f);
@@ -192,17 +243,19 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
 Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
     if (v.length != 1) {
         const float u_light = sampler.next();
-        return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, sampler);
+        return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, sampler);
     }
     const int n = C.it.direct_samples;
     // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
     if (C.it.one_delta_light)
-        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), float(n), sampler) * float(n);
+        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), float(n), C.it.direct_mis, sampler) *
+               float(n);
     Rgb sum(0.0f);
     for (int k = 0; k < n; ++k) {
         const uint32_t i = C.iteration * uint32_t(n) + uint32_t(k);
         sum += direct_light_sample(C, v, padded_point1(i, hash_combine(C.sequence_key, 3)),
-                                   padded_point2(i, hash_combine(C.sequence_key, 4)), float(n), sampler);
+                                   padded_point2(i, hash_combine(C.sequence_key, 4)), float(n),
+                                   C.it.direct_mis, sampler);
     }
     return sum;
 }
@@ -222,10 +275,12 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
         if (sc.f.is_black() || sl.f.is_black()) continue;
         const float camera_pdf_a = sc.pdf_dir * sl.cos / dist2;  // v's BSDF reaching l
         const float light_pdf_a = sl.pdf_dir * sc.cos / dist2;   // l's BSDF reaching v
-        const float w =
+        float w =
             1 / (vcm::connect_side(l.mis, camera_pdf_a, sl.pdf_rev, l.mergeable && C.it.merge_everywhere,
-                                   C.it.factors) +
-                 1 + vcm::connect_side(v.mis, light_pdf_a, sc.pdf_rev, v.mergeable, C.it.factors));
+                                   C.merge_at.factors) +
+                 1 + vcm::connect_side(v.mis, light_pdf_a, sc.pdf_rev, v.mergeable, C.merge_at.factors));
+        w *= weight_roulette(C.it, w, sampler);
+        if (w == 0) continue;
         ++C.rays.shadow;
         const Rgb T = vcm::transmittance_between(C.P, v, l, sampler);
         if (T.is_black()) continue;
@@ -241,15 +296,16 @@ void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
     const std::vector<MergeVertex>& lights = *C.merge_vertices;
     // A light vertex next to the light (merged only with merge_direct) completes a path whose
     // light-sampling strategy is at the camera's first vertex, with its direct_samples samples.
-    const float direct_scale = vcm::mis(float(C.it.direct_samples));
+    const float direct_scale = vcm::mis(C.it.direct_mis);
     const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
         float w = 1;
         if (!C.it.ppm) {
             SubpathMis lm = l.mis;
             if (l.length == 1) lm.dVCM *= direct_scale;
-            w = vcm::merge_weight(v.mis, lm, pdf_dir, pdf_rev, C.it.factors);
+            if (C.it.pixel_radius) lm.dVM *= C.merge_at.factors.vc;  // the pixel's 1 / eta^2
+            w = vcm::merge_weight(v.mis, lm, pdf_dir, pdf_rev, C.merge_at.factors);
         }
-        sum[l.part] += f * l.beta * (w * C.it.merge_norm);
+        sum[l.part] += f * l.beta * (w * C.merge_at.merge_norm);
     };
     const shading::Bsdf& b = *v.bsdf;
     if (b.is_lambertian()) {
@@ -260,7 +316,7 @@ void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
         const float cos_o = dot(v.wo, ns) * side;
         const float pdf_rev = cos_o > 0 ? cos_o * kInvPi : 0.0f;
         const Rgb f = b.diffuse_albedo() * kInvPi;
-        C.grid->query(v.p, [&](uint32_t i, float) {
+        C.grid->query(v.p, C.merge_at.radius2, [&](uint32_t i, float) {
             const MergeVertex& l = lights[i];
             const float cos_i = dot(l.wo, ns) * side;
             if (l.length > max_length || !(dot(l.wo, ng) * side > 0) || !(cos_i > 0)) return;
@@ -268,7 +324,7 @@ void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
         });
         return;
     }
-    C.grid->query(v.p, [&](uint32_t i, float) {
+    C.grid->query(v.p, C.merge_at.radius2, [&](uint32_t i, float) {
         const MergeVertex& l = lights[i];
         if (l.length > max_length) return;
         const Scattering s = vcm::evaluate(C.P, v, l.wo, shading::TransportMode::Radiance);
@@ -284,7 +340,7 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
     float pdf_pos = 0, pdf_dir = 0;
     C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
-    const float samples = depth == 2 ? float(C.it.direct_samples) : 1.0f;
+    const float samples = depth == 2 ? C.it.direct_mis : 1.0f;
     return vcm::emitter_hit_weight(camera, samples * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
                                    pmf * pdf_pos * pdf_dir, C.it.merge_direct);
 }
@@ -378,8 +434,8 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         // Continue the camera subpath (radiance transport).
         Vec3 wi;
         bool delta = false;
-        if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.it.factors, v.mergeable, sampler,
-                                mis, beta, wi, delta))
+        if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.merge_at.factors, v.mergeable,
+                                sampler, mis, beta, wi, delta))
             break;
         specular_chain = specular_chain && delta;
         if (depth == 1)
@@ -401,6 +457,108 @@ float base_radius(const Prepared& P, const ProgressiveOptions& o) {
     const float d = b.empty() ? 1.0f : length(b.center() - P.camera.eye());
     const float r = o.radius_pixels * P.camera.pixel_footprint().at(d);
     return r > 0 ? r : 1e-3f * (b.empty() ? 1.0f : length(b.extent()));
+}
+
+std::string two_decimals(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f", v);
+    return buf;
+}
+
+// A pilot light pass (vcm, before the first iteration; its own random numbers, the same on every
+// rank, not part of the image): the mergeable vertices of `paths` light subpaths, in subpath order.
+std::vector<Vec3> pilot_light_vertices(const Prepared& P, size_t paths, int merge_from) {
+    const RenderOptions& ro = P.options;
+    constexpr size_t kBatch = 4096;
+    std::vector<std::vector<Vec3>> batches((paths + kBatch - 1) / kBatch);
+    tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
+        RayCounts rays;
+        std::vector<Vertex> traced;
+        for (size_t i = b * kBatch; i < std::min(paths, (b + 1) * kBatch); ++i) {
+            Sampler sampler(ro.seed, 0x7663706c6f74ULL, i);
+            traced.clear();
+            vcm::trace_light_path(P, sampler, std::max(1, ro.max_depth), vcm::MisFactors{}, merge_from, false,
+                                  traced, rays);
+            for (const Vertex& v : traced)
+                if (v.mergeable) batches[b].push_back(v.p);
+        }
+        P.stats.add_rays(rays);
+    });
+    std::vector<Vec3> points;
+    for (const std::vector<Vec3>& batch : batches) points.insert(points.end(), batch.begin(), batch.end());
+    return points;
+}
+
+// Light subpaths per pixel and iteration for merging (--vcm-light-paths, automatic when 0): where
+// few light subpaths reach a surface that can merge (a point light over an open floor: most
+// leave the scene or end on a mirror or glass), more of them per iteration keep the merging
+// estimate's density up at little cost, those subpaths being short. Automatic: enough subpaths
+// for kMergeablePerPixel mergeable vertices per pixel, from the pilot's `mergeable_per_path`,
+// between 2 and 8. On the bench scenes: 2 on the Cornell boxes (2.0 and 1.65 per subpath; 3 and 4
+// were worse at equal time), 8 on caustic-point (under 0.01 per subpath: its point light's
+// subpaths mostly leave the open scene; 8 gave 0.00107 against 2's 0.00197, docs/bidirectional.md).
+constexpr double kMergeablePerPixel = 3;
+int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path) {
+    if (o.vcm_light_paths > 0) return o.vcm_light_paths;
+    if (!(mergeable_per_path > 0)) return 2;
+    return int(std::clamp(std::ceil(kMergeablePerPixel / mergeable_per_path), 2.0, 8.0));
+}
+
+// The first merging radius of each pixel (merging at the first non-delta camera vertex), from the
+// point a camera ray through the pixel's centre finds first on a non-delta surface (its own random
+// numbers, the same on every rank), as SPPM chooses its radii after its pilot (sppm.cpp):
+//  - --radius if given; else `base` (--radius-pixels footprints at the scene's centre), shrunk
+//    where light vertices are dense: the pilot's mergeable vertices `pilot` (of one light subpath
+//    per pixel; an iteration has `per_pixel` of them) in the base disc count m, and the radius
+//    becomes base sqrt(--radius-photons / m), at least one pixel footprint (a sharp caustic keeps
+//    its edge);
+//  - with --edge-aware-radius, bounded at geometric edges as SPPM's (sppm_core.h: a disc reaching
+//    across a corner, a contact or a light's rim averages light vertices from another surface or
+//    a shadowed strip, and the kernel's bias gathers there).
+// No radius exceeds `base`: the grid's cells are sized by the largest, and a query's cost grows
+// with them. Pixels whose ray finds no such surface take `base`.
+std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, float base,
+                               const std::vector<Vec3>& pilot, int per_pixel) {
+    const RenderOptions& ro = P.options;
+    const size_t pixels = size_t(ro.width) * size_t(ro.height);
+    const CameraModel::Footprint footprint = P.camera.pixel_footprint();
+    std::vector<Vec3> p(pixels), n(pixels);
+    std::vector<double> r2(pixels, 0.0), r2_min(pixels, 0.0);
+    tbb::parallel_for(0, ro.height, [&](int y) {
+        RayCounts rays;
+        for (int x = 0; x < ro.width; ++x) {
+            const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
+            Sampler sampler(ro.seed, 0x7663706966ULL, i);
+            sppm::VisiblePoint vp;
+            const accel::Ray ray = P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f));
+            ++rays.camera;
+            sppm::trace_eye_path(P, ray, sampler, 0, vp, rays);
+            if (!vp.bsdf) continue;
+            p[i] = vp.p;
+            n[i] = vp.bsdf->geometric_normal();
+            r2[i] = double(base) * double(base);
+            const double r_min =
+                std::min(double(base), kPilotRadiusMinPixels * double(footprint.at(vp.path_length)));
+            r2_min[i] = r_min * r_min;
+        }
+        P.stats.add_rays(rays);
+    });
+    if (!(o.radius > 0) && o.radius_photons > 0) {
+        VertexGrid grid;
+        grid.build(pilot, base);
+        tbb::parallel_for(size_t(0), pixels, [&](size_t i) {
+            if (!(r2[i] > 0)) return;
+            uint64_t m = 0;
+            grid.query(p[i], [&](uint32_t, float) { ++m; });
+            const double in_iteration = double(m) * double(per_pixel);
+            if (in_iteration > o.radius_photons)
+                r2[i] = std::max(r2_min[i], r2[i] * o.radius_photons / in_iteration);
+        });
+    }
+    if (o.edge_aware_radius) sppm::bound_radii_at_edges(p, n, r2, r2_min);
+    std::vector<float> r(pixels);
+    for (size_t i = 0; i < pixels; ++i) r[i] = r2[i] > 0 ? std::min(base, float(std::sqrt(r2[i]))) : base;
+    return r;
 }
 
 }  // namespace
@@ -428,13 +586,30 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.ppm = mode == "ppm";
     it.merge_direct = it.ppm;
     it.direct_samples = bidirectional_direct_samples(opt_);
+    it.direct_mis = float(it.direct_samples) * opt_.direct_mis_scale;
     it.one_delta_light = P.lights.size() == 1 && P.lights[0].is_delta();
     it.merge_everywhere = opt_.vcm_merge == "every";
+    it.rr_weight = it.lt ? 0.0f : opt_.vcm_rr_weight;
+
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
+    // Light subpaths per iteration: one per pixel for connections and light tracing, and K per
+    // pixel for merging (eta counts them all), K from the pilot light pass when automatic.
+    std::vector<Vec3> pilot;
+    if (it.merge) pilot = pilot_light_vertices(P, pixels, merge_from);
+    const double mergeable_per_path = double(pilot.size()) / double(pixels);
+    const int per_pixel = bdpt_ || !it.merge ? 1 : light_paths_per_pixel(opt_, mergeable_per_path);
+    const size_t light_paths = pixels * size_t(per_pixel);
+    it.light_paths = float(light_paths);
     const float r0 = it.merge ? base_radius(P, opt_) : 0.0f;
-    // Light subpaths per iteration: one per pixel for connections and light tracing, and with
-    // --vcm-light-paths K, K per pixel for merging (eta counts them all).
-    const size_t light_paths = pixels * size_t(bdpt_ || !it.merge ? 1 : opt_.vcm_light_paths);
+    // Merging at the first non-delta vertex: each pixel's own first radius (pixel_radii).
+    std::vector<float> pixel_radius;
+    if (it.merge && !it.merge_everywhere) {
+        pixel_radius = pixel_radii(P, opt_, r0, pilot, per_pixel);
+        it.pixel_radius = &pixel_radius;
+    }
+    pilot = {};
+    const float r_max =
+        pixel_radius.empty() ? r0 : *std::max_element(pixel_radius.begin(), pixel_radius.end());
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<uint8_t> owned_pixel(pixels, 0);  // under MPI: the pixels of this rank's tiles
@@ -489,13 +664,17 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     while (loop.next()) {
         const uint64_t iteration = state.iterations;
         if (it.merge) {
-            // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2).
-            it.radius = r0 * float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
-            const float eta = kPi * it.radius * it.radius * float(light_paths);
+            // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2), per pixel.
+            it.shrink = float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
+            it.radius = r_max * it.shrink;
+            const float eta = kPi * it.radius * it.radius * it.light_paths;
             it.factors = vcm::MisFactors::of(it.connect, true, eta);
-            it.merge_norm = 1 / eta;
+            it.uniform_norm = 1 / eta;
+            // With per-pixel merging areas the light subpaths carry dVM without 1 / eta^2.
+            const bool per_pixel = it.pixel_radius != nullptr;
+            it.light_factors = per_pixel ? vcm::MisFactors{0, it.connect ? 1.0f : 0.0f} : it.factors;
         } else {
-            it.factors = vcm::MisFactors::of(true, false, 0);
+            it.factors = it.light_factors = vcm::MisFactors::of(true, false, 0);
         }
         // Light pass (vcm): the iteration's light subpaths, in batches of consecutive subpaths; each
         // rank traces those of its own pixels (light subpath j belongs to pixel j mod pixels).
@@ -514,7 +693,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     if (owned_pixel[i % pixels]) {
                         Sampler sampler(ro.seed, 0x6c69676874ULL, i, iteration);
                         traced.clear();
-                        vcm::trace_light_path(P, sampler, max_depth, it.factors, merge_from,
+                        vcm::trace_light_path(P, sampler, max_depth, it.light_factors, merge_from,
                                               it.merge_everywhere, traced, rays);
                         for (const Vertex& v : traced) {
                             if (i < pixels) kept.push_back(v);  // without the BSDF
@@ -590,8 +769,9 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     // The pixel's stratified sequences: point `iteration` gives the position in the
                     // pixel and on the lens, as in SPPM; the rest is independent random.
                     const uint64_t key = Sampler(ro.seed, 0x7663707365717563ULL, i).next_bits();
-                    Context C{P,     it,   sums,  light, &merge_vertices,
-                              &grid, rays, parts, key,   uint32_t(iteration)};
+                    Context C{P,          it,   sums,  light, &merge_vertices,
+                              &grid,      rays, parts, key,   uint32_t(iteration),
+                              it.pixel(i)};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
                     if (it.connect || it.lt)  // light tracing
                         for (const Vertex& v : light) connect_to_camera(C, v, sampler);
@@ -611,8 +791,13 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     resolve_film();
     loop.finish();
     P.stats.add_dropped_samples(sums.rejected());
-    P.stats.add_value(name, std::to_string(state.iterations) + " iterations" +
-                                (it.merge ? ", final radius " + std::to_string(it.radius) : ""));
+    P.stats.add_value(
+        name,
+        std::to_string(state.iterations) + " iterations" +
+            (it.merge ? ", " + std::to_string(per_pixel) +
+                            " light subpaths per pixel (pilot: " + two_decimals(mergeable_per_path) +
+                            " mergeable vertices per subpath), final radius " + std::to_string(it.radius)
+                      : ""));
 }
 
 }  // namespace phos::integrators

@@ -23,7 +23,12 @@ public:
     // Calls visit(slot, distance^2) for every point within the radius of `p` (slot: its place in
     // order()), by bucket then index.
     template <class Visit>
-    void query(Vec3 p, Visit&& visit) const;
+    void query(Vec3 p, Visit&& visit) const {
+        query(p, radius2_, visit);
+    }
+    // The same within a smaller radius, sqrt(radius2) <= the grid's.
+    template <class Visit>
+    void query(Vec3 p, float radius2, Visit&& visit) const;
 
 private:
     uint32_t bucket(int64_t x, int64_t y, int64_t z) const {
@@ -41,7 +46,7 @@ private:
 };
 
 template <class Visit>
-void VertexGrid::query(Vec3 p, Visit&& visit) const {
+void VertexGrid::query(Vec3 p, float radius2, Visit&& visit) const {
     if (order_.empty()) return;
     // The cell holding p and, per axis, the neighbour on the side of p's half of its cell.
     const float fx = (p.x - lo_.x) * inv_cell_, fy = (p.y - lo_.y) * inv_cell_,
@@ -62,7 +67,7 @@ void VertexGrid::query(Vec3 p, Visit&& visit) const {
         for (uint32_t k = start_[buckets[i]]; k < start_[buckets[i] + 1]; ++k) {
             const Vec3 d = sorted_[k] - p;
             const float d2 = dot(d, d);
-            if (d2 <= radius2_) visit(k, d2);
+            if (d2 <= radius2) visit(k, d2);
         }
 }
 
