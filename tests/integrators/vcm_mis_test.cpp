@@ -297,6 +297,45 @@ TEST(VcmMis, WeightsSumToOneThroughDeltaVertices) {
     EXPECT_GT(merging_only, 0);          // and some paths only vcm can make
 }
 
+// With merging at the camera's first non-delta vertex only, the merging area eta enters the light
+// subpath's state only as the factor 1 / eta^2 of dVM (its dVCM and dVC hold no merging term), so
+// vcm.cpp traces light subpaths with vc = 1 and multiplies dVM by the merging pixel's own vc
+// (per-pixel radii). Its merging weights are the ones of the light state traced with that pixel's
+// eta; dVC and dVCM are the same bits.
+TEST(VcmMis, FirstVertexMergingFactorsEtaOutOfTheLightSubpath) {
+    int checked = 0;
+    for (int inner = 1; inner <= 5; ++inner)
+        for (uint64_t seed = 0; seed < 20; ++seed) {
+            const TestPath t = random_path(seed, inner, seed % 2 == 1, seed % 3 == 0);
+            const int k = int(t.x.size()) - 1;
+            for (float eta : {1e-3f, 0.5f, 40.0f}) {
+                const Strategies st{true, eta, false, false, 2};
+                const MisFactors f = MisFactors::of(true, true, eta), unit{0.0f, 1.0f};
+                for (int i = 1; i <= k - 1; ++i) {
+                    const SubpathMis a = light_state(t, i, f, st), b = light_state(t, i, unit, st);
+                    EXPECT_EQ(a.dVCM, b.dVCM);
+                    EXPECT_EQ(a.dVC, b.dVC);
+                    EXPECT_NEAR(b.dVM * f.vc, a.dVM, 1e-5 * std::fabs(a.dVM))
+                        << "eta " << eta << ", vertex " << i;
+                    if (t.x[size_t(i)].medium || t.x[size_t(i)].delta) continue;
+                    // Merging there as the camera's first vertex (the camera state as it arrives).
+                    const SubpathMis c = camera_state(t, i, f, st);
+                    SubpathMis scaled = b;
+                    scaled.dVM *= f.vc;
+                    const Vec3 in = dir(t.x[size_t(i)], t.x[size_t(i - 1)]),
+                               out = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
+                    const float wa =
+                        merge_weight(c, a, pdf_at(t.x[size_t(i)], in), pdf_at(t.x[size_t(i)], out), f);
+                    const float wb =
+                        merge_weight(c, scaled, pdf_at(t.x[size_t(i)], in), pdf_at(t.x[size_t(i)], out), f);
+                    EXPECT_NEAR(wb / wa, 1.0, 1e-5) << "eta " << eta << ", vertex " << i;
+                    ++checked;
+                }
+            }
+        }
+    EXPECT_GT(checked, 300);
+}
+
 // The weights are not trivially 1: on a path where light tracing and the emitter hit compete,
 // neither takes everything (power heuristic, not a winner-takes-all choice).
 TEST(VcmMis, StrategiesShareThePath) {
