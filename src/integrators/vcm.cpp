@@ -507,16 +507,18 @@ int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path
 // The first merging radius of each pixel (merging at the first non-delta camera vertex), from the
 // point a camera ray through the pixel's centre finds first on a non-delta surface (its own random
 // numbers, the same on every rank), as SPPM chooses its radii after its pilot (sppm.cpp):
-//  - --radius if given; else `base` (--radius-pixels footprints at the scene's centre), shrunk
-//    where light vertices are dense: the pilot's mergeable vertices `pilot` (of one light subpath
+//  - --radius if given; else `base` (--radius-pixels footprints at the scene's centre) scaled to
+//    the density of light vertices: the pilot's mergeable vertices `pilot` (of one light subpath
 //    per pixel; an iteration has `per_pixel` of them) in the base disc count m, and the radius
-//    becomes base sqrt(--radius-photons / m), at least one pixel footprint (a sharp caustic keeps
-//    its edge);
+//    becomes base sqrt(--radius-photons / (m per_pixel)), at least one pixel footprint (a sharp
+//    caustic keeps its edge) and at most twice base (where light is sparse: behind glass, in
+//    dim corners);
 //  - with --edge-aware-radius, bounded at geometric edges as SPPM's (sppm_core.h: a disc reaching
 //    across a corner, a contact or a light's rim averages light vertices from another surface or
 //    a shadowed strip, and the kernel's bias gathers there).
-// No radius exceeds `base`: the grid's cells are sized by the largest, and a query's cost grows
-// with them. Pixels whose ray finds no such surface take `base`.
+// The grid's cells stay sized by `base` (a query of a larger radius visits 27 cells instead of 8).
+// Pixels whose ray finds no such surface take `base`.
+constexpr double kMaxRadiusScale2 = 4;  // (largest radius / base)^2
 std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, float base,
                                const std::vector<Vec3>& pilot, int per_pixel) {
     const RenderOptions& ro = P.options;
@@ -551,13 +553,13 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
             uint64_t m = 0;
             grid.query(p[i], [&](uint32_t, float) { ++m; });
             const double in_iteration = double(m) * double(per_pixel);
-            if (in_iteration > o.radius_photons)
-                r2[i] = std::max(r2_min[i], r2[i] * o.radius_photons / in_iteration);
+            const double scale = in_iteration > 0 ? o.radius_photons / in_iteration : kMaxRadiusScale2;
+            r2[i] = std::clamp(r2[i] * scale, r2_min[i], r2[i] * kMaxRadiusScale2);
         });
     }
     if (o.edge_aware_radius) sppm::bound_radii_at_edges(p, n, r2, r2_min);
     std::vector<float> r(pixels);
-    for (size_t i = 0; i < pixels; ++i) r[i] = r2[i] > 0 ? std::min(base, float(std::sqrt(r2[i]))) : base;
+    for (size_t i = 0; i < pixels; ++i) r[i] = r2[i] > 0 ? float(std::sqrt(r2[i])) : base;
     return r;
 }
 
@@ -608,8 +610,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         it.pixel_radius = &pixel_radius;
     }
     pilot = {};
-    const float r_max =
-        pixel_radius.empty() ? r0 : *std::max_element(pixel_radius.begin(), pixel_radius.end());
+    const float r_grid = r0;  // per-pixel radii reach up to twice this (VertexGrid::query)
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<uint8_t> owned_pixel(pixels, 0);  // under MPI: the pixels of this rank's tiles
@@ -666,7 +667,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         if (it.merge) {
             // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2), per pixel.
             it.shrink = float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
-            it.radius = r_max * it.shrink;
+            it.radius = r_grid * it.shrink;
             const float eta = kPi * it.radius * it.radius * it.light_paths;
             it.factors = vcm::MisFactors::of(it.connect, true, eta);
             it.uniform_norm = 1 / eta;
