@@ -253,13 +253,16 @@ void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, st
     const double planes = ro.layers ? 5 : 1;
     p.add("fixed-point sums", pixels * 24 * planes);
     if (in.integrator == "vcm") {
-        const double paths = pixels * std::max(1, in.progressive.vcm_light_paths);
+        // --vcm-light-paths 0 (automatic) takes 2 per pixel, or more where the pilot finds fewer
+        // mergeable vertices per subpath (about 3 per pixel then, vcm.cpp): 2 bounds both.
+        const int k = in.progressive.vcm_light_paths > 0 ? in.progressive.vcm_light_paths : 2;
+        const double paths = pixels * double(k);
         const double vertices = paths * kMergeableVerticesPerPath;
         // Subpath j < pixels keeps its vertices (and their range, 8 bytes); every subpath its
         // mergeable ones, in its batch and again in the grid's order.
         p.add("light vertices", pixels * (kLightVerticesPerPath * sizeof(vcm::VertexCore) + 8));
         if (in.progressive.vcm_mode != "bpt" && in.progressive.vcm_mode != "lt")
-            p.add("merging", vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint));
+            p.add("merging", vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint) + pixels * sizeof(float));
     }
     if (in.checkpoint) p.add("checkpoint", 2 * pixels * 24 * planes);
     phases.push_back(p);
