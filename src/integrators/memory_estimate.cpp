@@ -262,7 +262,8 @@ void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, st
         // mergeable ones, in its batch and again in the grid's order.
         p.add("light vertices", pixels * (kLightVerticesPerPath * sizeof(vcm::VertexCore) + 8));
         if (in.progressive.vcm_mode != "bpt" && in.progressive.vcm_mode != "lt")
-            p.add("merging", vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint) + pixels * sizeof(float));
+            p.add("merging",
+                  vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint) + pixels * sizeof(float));
     }
     if (in.checkpoint) p.add("checkpoint", 2 * pixels * 24 * planes);
     phases.push_back(p);
