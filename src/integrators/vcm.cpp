@@ -466,15 +466,17 @@ std::string two_decimals(double v) {
 }
 
 // A pilot light pass (vcm, before the first iteration; its own random numbers, the same on every
-// rank, not part of the image): the mergeable vertices of `paths` light subpaths, in subpath order.
-std::vector<Vec3> pilot_light_vertices(const Prepared& P, size_t paths, int merge_from) {
+// rank, not part of the image): appends the mergeable vertices of light subpaths [first, end) to
+// `points`, in subpath order.
+void pilot_light_vertices(const Prepared& P, size_t first, size_t end, int merge_from,
+                          std::vector<Vec3>& points) {
     const RenderOptions& ro = P.options;
     constexpr size_t kBatch = 4096;
-    std::vector<std::vector<Vec3>> batches((paths + kBatch - 1) / kBatch);
+    std::vector<std::vector<Vec3>> batches((end - first + kBatch - 1) / kBatch);
     tbb::parallel_for(size_t(0), batches.size(), [&](size_t b) {
         RayCounts rays;
         std::vector<Vertex> traced;
-        for (size_t i = b * kBatch; i < std::min(paths, (b + 1) * kBatch); ++i) {
+        for (size_t i = first + b * kBatch; i < std::min(end, first + (b + 1) * kBatch); ++i) {
             Sampler sampler(ro.seed, 0x7663706c6f74ULL, i);
             traced.clear();
             vcm::trace_light_path(P, sampler, std::max(1, ro.max_depth), vcm::MisFactors{}, merge_from, false,
@@ -484,9 +486,7 @@ std::vector<Vec3> pilot_light_vertices(const Prepared& P, size_t paths, int merg
         }
         P.stats.add_rays(rays);
     });
-    std::vector<Vec3> points;
     for (const std::vector<Vec3>& batch : batches) points.insert(points.end(), batch.begin(), batch.end());
-    return points;
 }
 
 // Light subpaths per pixel and iteration for merging (--vcm-light-paths, automatic when 0): where
@@ -508,19 +508,18 @@ int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path
 // point a camera ray through the pixel's centre finds first on a non-delta surface (its own random
 // numbers, the same on every rank), as SPPM chooses its radii after its pilot (sppm.cpp):
 //  - --radius if given; else `base` (--radius-pixels footprints at the scene's centre) scaled to
-//    the density of light vertices: the pilot's mergeable vertices `pilot` (of one light subpath
-//    per pixel; an iteration has `per_pixel` of them) in the base disc count m, and the radius
-//    becomes base sqrt(--radius-photons / (m per_pixel)), at least one pixel footprint (a sharp
-//    caustic keeps its edge) and at most twice base (where light is sparse: behind glass, in
-//    dim corners);
+//    the density of light vertices: the pilot's mergeable vertices `pilot` (of as many light
+//    subpaths as an iteration has) in the base disc count m, and the radius becomes
+//    base sqrt(--radius-photons / m), at least one pixel footprint (a sharp caustic keeps its
+//    edge) and at most base (radii up to twice base where light is sparse biased the point-light
+//    caustic's window by 20 % at 128 x 128);
 //  - with --edge-aware-radius, bounded at geometric edges as SPPM's (sppm_core.h: a disc reaching
 //    across a corner, a contact or a light's rim averages light vertices from another surface or
 //    a shadowed strip, and the kernel's bias gathers there).
-// The grid's cells stay sized by `base` (a query of a larger radius visits 27 cells instead of 8).
-// Pixels whose ray finds no such surface take `base`.
-constexpr double kMaxRadiusScale2 = 4;  // (largest radius / base)^2
+// The grid's cells are sized by `base`, the largest radius. Pixels whose ray finds no such surface
+// take `base`.
 std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, float base,
-                               const std::vector<Vec3>& pilot, int per_pixel) {
+                               const std::vector<Vec3>& pilot) {
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
     const CameraModel::Footprint footprint = P.camera.pixel_footprint();
@@ -552,9 +551,8 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
             if (!(r2[i] > 0)) return;
             uint64_t m = 0;
             grid.query(p[i], [&](uint32_t, float) { ++m; });
-            const double in_iteration = double(m) * double(per_pixel);
-            const double scale = in_iteration > 0 ? o.radius_photons / in_iteration : kMaxRadiusScale2;
-            r2[i] = std::clamp(r2[i] * scale, r2_min[i], r2[i] * kMaxRadiusScale2);
+            if (double(m) > o.radius_photons)
+                r2[i] = std::max(r2_min[i], r2[i] * o.radius_photons / double(m));
         });
     }
     if (o.edge_aware_radius) sppm::bound_radii_at_edges(p, n, r2, r2_min);
@@ -597,7 +595,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     // Light subpaths per iteration: one per pixel for connections and light tracing, and K per
     // pixel for merging (eta counts them all), K from the pilot light pass when automatic.
     std::vector<Vec3> pilot;
-    if (it.merge) pilot = pilot_light_vertices(P, pixels, merge_from);
+    if (it.merge) pilot_light_vertices(P, 0, pixels, merge_from, pilot);
     const double mergeable_per_path = double(pilot.size()) / double(pixels);
     const int per_pixel = bdpt_ || !it.merge ? 1 : light_paths_per_pixel(opt_, mergeable_per_path);
     const size_t light_paths = pixels * size_t(per_pixel);
@@ -606,11 +604,14 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     // Merging at the first non-delta vertex: each pixel's own first radius (pixel_radii).
     std::vector<float> pixel_radius;
     if (it.merge && !it.merge_everywhere) {
-        pixel_radius = pixel_radii(P, opt_, r0, pilot, per_pixel);
+        // The pilot grows to an iteration's light subpaths, whose density the radii are set for.
+        if (opt_.radius_photons > 0 && !(opt_.radius > 0))
+            pilot_light_vertices(P, pixels, light_paths, merge_from, pilot);
+        pixel_radius = pixel_radii(P, opt_, r0, pilot);
         it.pixel_radius = &pixel_radius;
     }
     pilot = {};
-    const float r_grid = r0;  // per-pixel radii reach up to twice this (VertexGrid::query)
+    const float r_grid = r0;  // the largest per-pixel radius
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<uint8_t> owned_pixel(pixels, 0);  // under MPI: the pixels of this rank's tiles

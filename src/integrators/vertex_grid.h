@@ -26,8 +26,7 @@ public:
     void query(Vec3 p, Visit&& visit) const {
         query(p, radius2_, visit);
     }
-    // The same within another radius, sqrt(radius2) at most twice the grid's: a larger one visits
-    // the up to 27 cells its ball overlaps instead of 8.
+    // The same within a smaller radius, radius2 <= the grid's radius^2.
     template <class Visit>
     void query(Vec3 p, float radius2, Visit&& visit) const;
 
@@ -49,29 +48,6 @@ private:
 template <class Visit>
 void VertexGrid::query(Vec3 p, float radius2, Visit&& visit) const {
     if (order_.empty()) return;
-    if (radius2 > radius2_) {
-        // Every cell the ball overlaps (at most 3 per axis), in a fixed order.
-        const float r = std::sqrt(radius2);
-        const int64_t x0 = cell(p.x - r, lo_.x), x1 = cell(p.x + r, lo_.x), y0 = cell(p.y - r, lo_.y),
-                      y1 = cell(p.y + r, lo_.y), z0 = cell(p.z - r, lo_.z), z1 = cell(p.z + r, lo_.z);
-        uint32_t wide[27];
-        int count = 0;
-        for (int64_t z = z0; z <= z1 && z <= z0 + 2; ++z)
-            for (int64_t y = y0; y <= y1 && y <= y0 + 2; ++y)
-                for (int64_t x = x0; x <= x1 && x <= x0 + 2; ++x) {
-                    const uint32_t b = bucket(x, y, z);
-                    bool seen = false;
-                    for (int j = 0; j < count; ++j) seen |= wide[j] == b;
-                    if (!seen) wide[count++] = b;
-                }
-        for (int i = 0; i < count; ++i)
-            for (uint32_t k = start_[wide[i]]; k < start_[wide[i] + 1]; ++k) {
-                const Vec3 d = sorted_[k] - p;
-                const float d2 = dot(d, d);
-                if (d2 <= radius2) visit(k, d2);
-            }
-        return;
-    }
     // The cell holding p and, per axis, the neighbour on the side of p's half of its cell.
     const float fx = (p.x - lo_.x) * inv_cell_, fy = (p.y - lo_.y) * inv_cell_,
                 fz = (p.z - lo_.z) * inv_cell_;
