@@ -594,8 +594,11 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
     // Light subpaths per iteration: one per pixel for connections and light tracing, and K per
     // pixel for merging (eta counts them all), K from the pilot light pass when automatic.
+    // (The pilot: for the automatic count, and for the per-pixel radii below.)
+    const bool radii_from_pilot = opt_.radius_photons > 0 && !(opt_.radius > 0);
     std::vector<Vec3> pilot;
-    if (it.merge) pilot_light_vertices(P, 0, pixels, merge_from, pilot);
+    if (it.merge && (opt_.vcm_light_paths == 0 || (!it.merge_everywhere && radii_from_pilot)))
+        pilot_light_vertices(P, 0, pixels, merge_from, pilot);
     const double mergeable_per_path = double(pilot.size()) / double(pixels);
     const int per_pixel = bdpt_ || !it.merge ? 1 : light_paths_per_pixel(opt_, mergeable_per_path);
     const size_t light_paths = pixels * size_t(per_pixel);
@@ -605,8 +608,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     std::vector<float> pixel_radius;
     if (it.merge && !it.merge_everywhere) {
         // The pilot grows to an iteration's light subpaths, whose density the radii are set for.
-        if (opt_.radius_photons > 0 && !(opt_.radius > 0))
-            pilot_light_vertices(P, pixels, light_paths, merge_from, pilot);
+        if (radii_from_pilot) pilot_light_vertices(P, pixels, light_paths, merge_from, pilot);
         pixel_radius = pixel_radii(P, opt_, r0, pilot);
         it.pixel_radius = &pixel_radius;
     }
@@ -793,13 +795,14 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     resolve_film();
     loop.finish();
     P.stats.add_dropped_samples(sums.rejected());
-    P.stats.add_value(
-        name,
-        std::to_string(state.iterations) + " iterations" +
-            (it.merge ? ", " + std::to_string(per_pixel) +
-                            " light subpaths per pixel (pilot: " + two_decimals(mergeable_per_path) +
-                            " mergeable vertices per subpath), final radius " + std::to_string(it.radius)
-                      : ""));
+    std::string merging;
+    if (it.merge) {
+        merging = ", " + std::to_string(per_pixel) + " light subpaths per pixel";
+        if (opt_.vcm_light_paths == 0)
+            merging += " (pilot: " + two_decimals(mergeable_per_path) + " mergeable vertices per subpath)";
+        merging += ", largest radius " + std::to_string(it.radius);
+    }
+    P.stats.add_value(name, std::to_string(state.iterations) + " iterations" + merging);
 }
 
 }  // namespace phos::integrators
