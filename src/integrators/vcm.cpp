@@ -104,10 +104,10 @@ struct Iteration {
     // Merging at the vertex next to the light (direct light): ppm only, where nothing else finds
     // it; vcm leaves direct light to light sampling, emitter hits and light tracing (vcm_mis.h).
     bool merge_direct = false;
-    // Light samples at the camera subpath's first vertex (--direct-samples; deeper vertices take
-    // one): the light-sampling strategy of paths with one vertex between camera and light has n
-    // times the density in every weight (direct_light_sample, the emitter hit at depth 2, light
-    // tracing of a light subpath's first vertex).
+    // Light samples at the camera subpath's first non-delta vertex x_f (--direct-samples; deeper
+    // vertices take one): the light-sampling strategy of paths whose vertex next to the light is
+    // x_f has n times the density in every weight (direct_light_sample, the emitter hit right
+    // after x_f, light tracing of a light subpath's first vertex).
     int direct_samples = 1;
     // The count the weights give those samples: direct_samples x --direct-mis-scale. Any positive
     // count used alike in all three weights keeps them a partition of unity (the estimate unbiased);
@@ -158,8 +158,8 @@ struct Context {
     RayCounts& rays;
     Rgb* parts;  // the camera subpath's estimate per Part
     // The pixel's stratified sequences (core/low_discrepancy.h), keyed per pixel: over the
-    // iterations, its first vertex's light samples (sample iteration x direct_samples + k) cover
-    // the lights evenly, as SPPM's do.
+    // iterations, its first non-delta vertex's light samples (sample iteration x direct_samples
+    // + k) cover the lights evenly, as SPPM's do.
     uint64_t sequence_key;
     uint32_t iteration;
     Iteration::PixelMerge merge_at;  // merging at the pixel's first non-delta vertex
@@ -238,10 +238,12 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
     return s.f * ls.L * T * (w * s.cos / (n * pmf * ls.pdf));
 }
 
-// Direct light sampling at camera vertex `v` (s = 1): at the first vertex, C.it.direct_samples
-// samples from the pixel's stratified sequences; deeper, one independent sample.
-Rgb direct_light(const Context& C, const Vertex& v, Sampler& sampler) {
-    if (v.length != 1) {
+// Direct light sampling at camera vertex `v` (s = 1): at the camera subpath's first non-delta vertex
+// (`first`: the first vertex, or the first one seen through mirrors and glass), C.it.direct_samples
+// samples from the pixel's stratified sequences, as SPPM's visible points take them; deeper, one
+// independent sample.
+Rgb direct_light(const Context& C, const Vertex& v, bool first, Sampler& sampler) {
+    if (!first) {
         const float u_light = sampler.next();
         return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, sampler);
     }
@@ -290,13 +292,15 @@ Rgb connect_light_path(const Context& C, const Vertex& v, Sampler& sampler) {
 }
 
 // Merging camera vertex `v` with the light vertices within the radius (vertex merging): the sum
-// per Part of the light vertex (meaningful when v is the camera's first vertex).
-void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
+// per Part of the light vertex (meaningful when v is the camera's first vertex). `first`: v is the
+// camera subpath's first non-delta vertex.
+void merge(const Context& C, const Vertex& v, bool first, Rgb sum[kParts]) {
     const int max_length = C.P.options.max_depth + 1 - v.length;
     const std::vector<MergeVertex>& lights = *C.merge_vertices;
     // A light vertex next to the light (merged only with merge_direct) completes a path whose
-    // light-sampling strategy is at the camera's first vertex, with its direct_samples samples.
-    const float direct_scale = vcm::mis(C.it.direct_mis);
+    // light-sampling strategy is at v, with its direct_samples samples when v is the first
+    // non-delta vertex.
+    const float direct_scale = first ? vcm::mis(C.it.direct_mis) : 1.0f;
     const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
         float w = 1;
         if (!C.it.ppm) {
@@ -333,14 +337,14 @@ void merge(const Context& C, const Vertex& v, Rgb sum[kParts]) {
 }
 
 // The emitter the camera subpath hit (s = 0): area light `li` at a point with normal n, seen along wo.
-// `depth`: the segments of the camera subpath up to the emitter (at depth 2 the light-sampling
-// strategy at the first vertex took C.it.direct_samples samples).
+// `after_first`: the vertex before the emitter was the camera subpath's first non-delta one, whose
+// light-sampling strategy took C.it.direct_samples samples.
 float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3 n, Vec3 wo, bool at_infinity,
-                     int depth) {
+                     bool after_first) {
     float pdf_pos = 0, pdf_dir = 0;
     C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
-    const float samples = depth == 2 ? C.it.direct_mis : 1.0f;
+    const float samples = after_first ? C.it.direct_mis : 1.0f;
     return vcm::emitter_hit_weight(camera, samples * vcm::direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
                                    pmf * pdf_pos * pdf_dir, C.it.merge_direct);
 }
@@ -357,6 +361,8 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
     SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
     Rgb beta(1.0f);
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
+    // The previous vertex was the first non-delta one (its light samples: direct_light's `first`).
+    bool after_first = false;
     // For --layers: whether x1 (the first vertex) was a delta bounce, and whether every vertex
     // after x1 so far was.
     bool x1_delta = false, delta_after_x1 = true;
@@ -387,7 +393,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
-                const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true, depth);
+                const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true, after_first);
                 parts[found_part(depth)] += beta * Le * w;
             }
             break;
@@ -403,7 +409,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
             if (!Le.is_black() && (!C.it.ppm || specular_chain)) {
                 const float w = depth == 1 || C.it.ppm ? 1.0f
                                                        : emitter_weight(C, mis, size_t(hit.area_light),
-                                                                        hit.ng, v.wo, false, depth);
+                                                                        hit.ng, v.wo, false, after_first);
                 parts[found_part(depth)] += beta * Le * w;
             }
             if (specular_chain) {
@@ -418,13 +424,13 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         v.mergeable = C.it.merge && !v.in_medium && smooth && (C.it.merge_everywhere || specular_chain);
         if (smooth) {
             if (C.it.connect) {
-                parts[sampled_part(depth)] += beta * direct_light(C, v, sampler);
+                parts[sampled_part(depth)] += beta * direct_light(C, v, specular_chain, sampler);
                 if (!C.light_path.empty())
                     parts[x1_delta ? kSpecular : kIndirect] += beta * connect_light_path(C, v, sampler);
             }
             if (v.mergeable) {
                 Rgb merged[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
-                merge(C, v, merged);
+                merge(C, v, specular_chain, merged);
                 for (int k = 0; k < kParts; ++k)
                     parts[depth == 1 ? k : x1_delta ? kSpecular : kIndirect] += beta * merged[k];
                 if (C.it.ppm) break;  // ppm: the first non-delta camera vertex gathers everything
@@ -437,6 +443,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         if (!vcm::continue_from(P, v, shading::TransportMode::Radiance, C.merge_at.factors, v.mergeable,
                                 sampler, mis, beta, wi, delta))
             break;
+        after_first = specular_chain && smooth;  // (a delta lobe sampled here zeroes dVCM anyway)
         specular_chain = specular_chain && delta;
         if (depth == 1)
             x1_delta = delta;

@@ -37,7 +37,7 @@ struct Strategies {
     float eta = 0;              // pi r^2 N_light
     bool merge_direct = false;  // merging next to the light
     bool merge_every = true;    // merging at every camera vertex, else at the first non-delta one
-    int direct_samples = 1;     // light samples at the camera's first vertex
+    int direct_samples = 1;     // light samples at the camera's first non-delta vertex
 };
 
 struct TestPath {
@@ -142,9 +142,10 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
         return can_merge(t, i, st) && (st.merge_every || first_non_delta(t, i));
     };
     const auto merge_light = [&](int i) { return can_merge(t, i, st) && st.merge_every; };
-    // Light sampling at the camera's first vertex takes direct_samples samples: paths with one
-    // inner vertex count that strategy direct_samples times (multi-sample MIS).
-    const float n = k == 2 ? float(st.direct_samples) : 1.0f;
+    // Light sampling at the camera's first non-delta vertex takes direct_samples samples: paths
+    // whose vertex next to the light is that vertex count that strategy direct_samples times
+    // (multi-sample MIS).
+    const float n = !delta(1) && first_non_delta(t, 1) ? float(st.direct_samples) : 1.0f;
     double sum = 0;
     int strategies = 0;
     // s = 0: the camera subpath hits the light (impossible for a point light).
@@ -197,7 +198,7 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
     for (int i = 1; i <= k - 1; ++i) {
         if (!merge_camera(i)) continue;
         SubpathMis l = light_state(t, i, f, st);
-        if (i == 1 && k == 2) l.dVCM *= mis(n);  // merging next to the light: as light tracing
+        if (i == 1) l.dVCM *= mis(n);  // merging next to the light: as light tracing
         const SubpathMis c = camera_state(t, i, f, st);
         const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
         const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
