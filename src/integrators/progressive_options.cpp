@@ -53,7 +53,8 @@ const options::Table& progressive_options() {
                       "times (unbiased; 0 = every shadow ray)"),
              "bdpt vcm");
         prog(b.number("direct-mis-scale", &ProgressiveOptions::direct_mis_scale, "S", between(1, 1e6),
-                      "the MIS weights count the camera subpath's first-vertex light samples S times over "
+                      "the MIS weights count the light samples at the camera subpath's first non-delta "
+                      "vertex S times over "
                       "(stratified, they converge faster than the BSDF samples and light-tracing splats "
                       "they compete with; any S keeps the estimate unbiased)"),
              "bdpt vcm");
@@ -67,11 +68,12 @@ const options::Table& progressive_options() {
                     "on another surface or off its plane (an edge, corner or contact), at most halving it",
                     true, "no-edge-aware-radius"),
              "sppm vcm");
-        auto& ds =
-            prog(b.number("direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
-                          "light samples per visible point (bdpt, vcm: at the camera subpath's first vertex; "
-                          "0 = the integrator's default)"),
-                 "ppm sppm bdpt vcm");
+        auto& ds = prog(
+            b.number(
+                "direct-samples", &ProgressiveOptions::direct_samples, "N", between(0, 65536),
+                "light samples per visible point (bdpt, vcm: at the camera subpath's first non-delta vertex; "
+                "0 = the integrator's default)"),
+            "ppm sppm bdpt vcm");
         ds.aliases = {"ppm-direct-samples"};
         ds.default_text = "sppm, bdpt and vcm 2 per iteration, ppm 16 once";
         prog(b.number("ppm-eye-samples", &ProgressiveOptions::eye_samples, "N", between(1, 4096),

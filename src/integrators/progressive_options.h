@@ -28,8 +28,8 @@ struct ProgressiveOptions {
     std::string vcm_merge = "first";     // vcm: merge at the camera's first non-delta vertex or every one
     float vcm_rr_weight = 0.1f;          // bdpt, vcm: Russian roulette on shadow rays of strategies whose
                                          // MIS weight is below this (0 = off)
-    float direct_mis_scale = 8;          // bdpt, vcm: the MIS weights count the first vertex's light
-                                         // samples this many times over
+    float direct_mis_scale = 8;          // bdpt, vcm: the MIS weights count the light samples at the
+                                         // first non-delta vertex this many times over
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.
@@ -46,8 +46,8 @@ struct ProgressiveOptions {
 inline int direct_samples_for(const ProgressiveOptions& o, bool ppm) {
     return o.direct_samples > 0 ? o.direct_samples : ppm ? 16 : 2;
 }
-// bdpt and vcm: light samples at the camera subpath's first vertex per iteration (deeper vertices
-// take one), stratified over the iterations like SPPM's (vcm.cpp).
+// bdpt and vcm: light samples at the camera subpath's first non-delta vertex per iteration
+// (deeper vertices take one), stratified over the iterations like SPPM's (vcm.cpp).
 inline int bidirectional_direct_samples(const ProgressiveOptions& o) {
     return o.direct_samples > 0 ? o.direct_samples : 2;
 }

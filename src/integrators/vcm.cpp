@@ -516,7 +516,7 @@ int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path
 // numbers, the same on every rank), as SPPM chooses its radii after its pilot (sppm.cpp):
 //  - --radius if given; else `base` (--radius-pixels footprints at the scene's centre) scaled to
 //    the density of light vertices: the pilot's mergeable vertices `pilot` (of as many light
-//    subpaths as an iteration has) in the base disc count m, and the radius becomes
+//    subpaths as an iteration has; null: no such scaling) in the base disc count m, and the radius becomes
 //    base sqrt(--radius-photons / m), at least one pixel footprint (a sharp caustic keeps its
 //    edge) and at most base (radii up to twice base where light is sparse biased the point-light
 //    caustic's window by 20 % at 128 x 128);
@@ -526,7 +526,7 @@ int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path
 // The grid's cells are sized by `base`, the largest radius. Pixels whose ray finds no such surface
 // take `base`.
 std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, float base,
-                               const std::vector<Vec3>& pilot) {
+                               const std::vector<Vec3>* pilot) {
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
     const CameraModel::Footprint footprint = P.camera.pixel_footprint();
@@ -551,9 +551,9 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
         }
         P.stats.add_rays(rays);
     });
-    if (!(o.radius > 0) && o.radius_photons > 0) {
+    if (pilot) {
         VertexGrid grid;
-        grid.build(pilot, base);
+        grid.build(*pilot, base);
         tbb::parallel_for(size_t(0), pixels, [&](size_t i) {
             if (!(r2[i] > 0)) return;
             uint64_t m = 0;
@@ -616,11 +616,10 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     if (it.merge && !it.merge_everywhere) {
         // The pilot grows to an iteration's light subpaths, whose density the radii are set for.
         if (radii_from_pilot) pilot_light_vertices(P, pixels, light_paths, merge_from, pilot);
-        pixel_radius = pixel_radii(P, opt_, r0, pilot);
+        pixel_radius = pixel_radii(P, opt_, r0, radii_from_pilot ? &pilot : nullptr);
         it.pixel_radius = &pixel_radius;
     }
     pilot = {};
-    const float r_grid = r0;  // the largest per-pixel radius
     const int max_depth = std::max(1, ro.max_depth);
     const auto tiles = film::make_tiles(ro.width, ro.height);
     std::vector<uint8_t> owned_pixel(pixels, 0);  // under MPI: the pixels of this rank's tiles
@@ -677,7 +676,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         if (it.merge) {
             // Radius reduction (Knaus & Zwicker 2011): r_i = r_1 i^((alpha - 1) / 2), per pixel.
             it.shrink = float(std::pow(double(iteration + 1), 0.5 * (double(opt_.alpha) - 1)));
-            it.radius = r_grid * it.shrink;
+            it.radius = r0 * it.shrink;  // r0: the largest per-pixel radius
             const float eta = kPi * it.radius * it.radius * it.light_paths;
             it.factors = vcm::MisFactors::of(it.connect, true, eta);
             it.uniform_norm = 1 / eta;
