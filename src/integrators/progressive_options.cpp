@@ -43,6 +43,11 @@ const options::Table& progressive_options() {
                                  "vertices per pixel in a pilot light pass)"),
                         "vcm");
         lp.default_text = "automatic";
+        prog(b.number("vcm-camera-samples", &ProgressiveOptions::vcm_camera_samples, "M", between(1, 64),
+                      "camera samples per pixel per iteration with merging at the first non-delta vertex: "
+                      "one camera subpath goes on with every strategy, the other M - 1 stop after their "
+                      "first non-delta vertex's light samples and merging (as SPPM's visible points)"),
+             "vcm");
         prog(b.choice("vcm-merge", &ProgressiveOptions::vcm_merge, {"first", "every"},
                       "where camera subpaths merge: at their first non-delta vertex only, as SPPM gathers "
                       "(first), or at every vertex (every, Georgiev et al.'s VCM)"),

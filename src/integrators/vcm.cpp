@@ -109,7 +109,8 @@ struct Iteration {
     // x_f has n times the density in every weight (direct_light_sample, the emitter hit right
     // after x_f, light tracing of a light subpath's first vertex).
     int direct_samples = 1;
-    // The count the weights give those samples: direct_samples x --direct-mis-scale. Any positive
+    // The count the weights give those samples: direct_samples x --direct-mis-scale (x
+    // camera_samples). Any positive
     // count used alike in all three weights keeps them a partition of unity (the estimate unbiased);
     // a larger one hands more of the direct light to the stratified light samples, which converge
     // faster than the BSDF samples and light-tracing splats they compete with (on the Cornell
@@ -119,6 +120,14 @@ struct Iteration {
     // Merging at every camera vertex (Georgiev et al.) or only at the camera subpath's first
     // non-delta vertex (--vcm-merge first, as SPPM gathers): vcm_mis.h.
     bool merge_everywhere = true;
+    // Camera samples per pixel (--vcm-camera-samples M, merging at the first non-delta vertex only):
+    // the first camera subpath takes every strategy; the other M - 1 stop after their first
+    // non-delta vertex x_f. So the strategies that end at x_f on the camera side (its light samples,
+    // merging there, emission found up to it) are M samples per iteration and every other strategy
+    // one: multi-sample MIS (Veach 1997 sec. 9.2.2) counts those M times in every weight (M x eta in
+    // the pixel's merging factors, M x direct_mis) and each of the M samples' estimates of them is
+    // divided by M. Merging at x_f being a path's only merging strategy, eta is already per pixel.
+    int camera_samples = 1;
     // Merging radii: pixel i's camera subpaths merge within pixel_radius[i] * shrink (first-vertex
     // merging; null: every pixel `radius`), and the grid is built for the largest, `radius`.
     float radius = 0, shrink = 1, light_paths = 0;
@@ -136,12 +145,12 @@ struct Iteration {
     // and merging multiplies it in.
     struct PixelMerge {
         vcm::MisFactors factors;
-        float merge_norm = 0, radius2 = 0;  // 1 / (pi r^2 N_light), r^2
+        float merge_norm = 0, radius2 = 0;  // 1 / (pi r^2 N_light M), r^2
     };
     PixelMerge pixel(size_t i) const {
         if (!merge || merge_everywhere || !pixel_radius) return {factors, uniform_norm, radius * radius};
         const float r = (*pixel_radius)[i] * shrink;
-        const float eta = kPi * r * r * light_paths;
+        const float eta = kPi * r * r * light_paths * float(camera_samples);
         return {vcm::MisFactors::of(connect, true, eta), 1 / eta, r * r};
     }
     float uniform_norm = 0;  // 1 / (pi r^2 N_light) of `radius`
@@ -158,10 +167,11 @@ struct Context {
     RayCounts& rays;
     Rgb* parts;  // the camera subpath's estimate per Part
     // The pixel's stratified sequences (core/low_discrepancy.h), keyed per pixel: over the
-    // iterations, its first non-delta vertex's light samples (sample iteration x direct_samples
-    // + k) cover the lights evenly, as SPPM's do.
+    // iterations, its first non-delta vertex's light samples (point sample x direct_samples + k)
+    // cover the lights evenly, as SPPM's do. `sample`: the camera sample's index in them
+    // (iteration x camera_samples + j).
     uint64_t sequence_key;
-    uint32_t iteration;
+    uint32_t sample;
     Iteration::PixelMerge merge_at;  // merging at the pixel's first non-delta vertex
 };
 
@@ -240,24 +250,24 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
 
 // Direct light sampling at camera vertex `v` (s = 1): at the camera subpath's first non-delta vertex
 // (`first`: the first vertex, or the first one seen through mirrors and glass), C.it.direct_samples
-// samples from the pixel's stratified sequences, as SPPM's visible points take them; deeper, one
-// independent sample.
+// samples from the pixel's stratified sequences, as SPPM's visible points take them (each estimate
+// also divided by the camera samples, which all take them); deeper, one independent sample.
 Rgb direct_light(const Context& C, const Vertex& v, bool first, Sampler& sampler) {
     if (!first) {
         const float u_light = sampler.next();
         return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, sampler);
     }
     const int n = C.it.direct_samples;
+    const float all = float(n * C.it.camera_samples);
     // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
     if (C.it.one_delta_light)
-        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), float(n), C.it.direct_mis, sampler) *
-               float(n);
+        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, sampler) * float(n);
     Rgb sum(0.0f);
     for (int k = 0; k < n; ++k) {
-        const uint32_t i = C.iteration * uint32_t(n) + uint32_t(k);
+        const uint32_t i = C.sample * uint32_t(n) + uint32_t(k);
         sum += direct_light_sample(C, v, padded_point1(i, hash_combine(C.sequence_key, 3)),
-                                   padded_point2(i, hash_combine(C.sequence_key, 4)), float(n),
-                                   C.it.direct_mis, sampler);
+                                   padded_point2(i, hash_combine(C.sequence_key, 4)), all, C.it.direct_mis,
+                                   sampler);
     }
     return sum;
 }
@@ -350,8 +360,11 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
 }
 
 // One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its
-// estimate for the pixel to C.parts (light tracing adds to other pixels itself).
-void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler) {
+// estimate for the pixel to C.parts (light tracing adds to other pixels itself). Without `full`
+// (the pixel's extra camera samples, Iteration::camera_samples) it ends after its first non-delta
+// vertex's light samples and merging, without connections. What the camera subpath finds up to
+// that vertex counts 1 / camera_samples (every camera sample finds it).
+void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, bool full) {
     const Prepared& P = C.P;
     const scene::Scene& scene = P.scene;
     const accel::Ray first = P.camera.generate_ray(fx, fy, lens);
@@ -377,6 +390,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         return depth == 1 ? kDirect : x1_delta ? kSpecular : kIndirect;
     };
     Rgb* const parts = C.parts;
+    const float prefix_scale = 1 / float(C.it.camera_samples);
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     Vec3 from = first.origin;
@@ -384,17 +398,20 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);
         const auto event = media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
-        parts[found_part(depth)] += emitted;  // media's own emission: only camera subpaths find it
+        // Found up to the first non-delta vertex: by every camera sample of the pixel.
+        const float found_scale = specular_chain ? prefix_scale : 1.0f;
+        // Media's own emission: only camera subpaths find it.
+        parts[found_part(depth)] += emitted * found_scale;
         if (event == shading::SurfaceWalk::Event::Escaped) {
             const Vec3 dir = normalize(ray.dir);
             if (specular_chain || P.options.background_light)
-                parts[found_part(depth)] += beta * scene.background;
+                parts[found_part(depth)] += beta * scene.background * found_scale;
             if (C.it.ppm && !specular_chain) break;
             for (size_t i : P.lights.infinite_lights()) {
                 const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
                 if (Le.is_black()) continue;
                 const float w = depth == 1 ? 1.0f : emitter_weight(C, mis, i, {}, -dir, true, after_first);
-                parts[found_part(depth)] += beta * Le * w;
+                parts[found_part(depth)] += beta * Le * (w * found_scale);
             }
             break;
         }
@@ -410,12 +427,13 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
                 const float w = depth == 1 || C.it.ppm ? 1.0f
                                                        : emitter_weight(C, mis, size_t(hit.area_light),
                                                                         hit.ng, v.wo, false, after_first);
-                parts[found_part(depth)] += beta * Le * w;
+                parts[found_part(depth)] += beta * Le * (w * found_scale);
             }
             if (specular_chain) {
                 const scene::Material& mat = scene.materials[size_t(hit.material)];
-                parts[found_part(depth)] += beta * mat.emission;
-                if (P.options.ambient) parts[found_part(depth)] += beta * mat.ambient * scene.ambient;
+                parts[found_part(depth)] += beta * mat.emission * found_scale;
+                if (P.options.ambient)
+                    parts[found_part(depth)] += beta * mat.ambient * scene.ambient * found_scale;
             }
         }
         if (depth > P.options.max_depth || C.it.lt) break;
@@ -425,7 +443,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         if (smooth) {
             if (C.it.connect) {
                 parts[sampled_part(depth)] += beta * direct_light(C, v, specular_chain, sampler);
-                if (!C.light_path.empty())
+                if (full && !C.light_path.empty())
                     parts[x1_delta ? kSpecular : kIndirect] += beta * connect_light_path(C, v, sampler);
             }
             if (v.mergeable) {
@@ -435,6 +453,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
                     parts[depth == 1 ? k : x1_delta ? kSpecular : kIndirect] += beta * merged[k];
                 if (C.it.ppm) break;  // ppm: the first non-delta camera vertex gathers everything
             }
+            if (!full && specular_chain) break;  // an extra camera sample: its x_f is done
         }
 
         // Continue the camera subpath (radiance transport).
@@ -593,9 +612,10 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     it.ppm = mode == "ppm";
     it.merge_direct = it.ppm;
     it.direct_samples = bidirectional_direct_samples(opt_);
-    it.direct_mis = float(it.direct_samples) * opt_.direct_mis_scale;
-    it.one_delta_light = P.lights.size() == 1 && P.lights[0].is_delta();
     it.merge_everywhere = opt_.vcm_merge == "every";
+    it.camera_samples = it.merge && !it.merge_everywhere ? opt_.vcm_camera_samples : 1;
+    it.direct_mis = float(it.direct_samples) * opt_.direct_mis_scale * float(it.camera_samples);
+    it.one_delta_light = P.lights.size() == 1 && P.lights[0].is_delta();
     it.rr_weight = it.lt ? 0.0f : opt_.vcm_rr_weight;
 
     const int merge_from = !it.merge ? 0 : it.merge_direct ? 1 : 2;  // light subpath vertices merged
@@ -779,15 +799,23 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     // The pixel's stratified sequences: point `iteration` gives the position in the
                     // pixel and on the lens, as in SPPM; the rest is independent random.
                     const uint64_t key = Sampler(ro.seed, 0x7663707365717563ULL, i).next_bits();
+                    const uint32_t first_sample = uint32_t(iteration) * uint32_t(it.camera_samples);
                     Context C{P,          it,   sums,  light, &merge_vertices,
-                              &grid,      rays, parts, key,   uint32_t(iteration),
+                              &grid,      rays, parts, key,   first_sample,
                               it.pixel(i)};
                     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
                     if (it.connect || it.lt)  // light tracing
                         for (const Vertex& v : light) connect_to_camera(C, v, sampler);
-                    const Vec2 jitter = padded_point2(uint32_t(iteration), hash_combine(key, 1));
-                    const Vec2 lens = padded_point2(uint32_t(iteration), hash_combine(key, 2));
-                    camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, sampler);
+                    // Camera sample j: point iteration x camera_samples + j of the pixel's sequences;
+                    // the first takes every strategy, the others stop after x_f.
+                    for (int j = 0; j < it.camera_samples; ++j) {
+                        C.sample = first_sample + uint32_t(j);
+                        Sampler extra(ro.seed, hash_combine(0x7663706578ULL, uint64_t(j)), i, iteration);
+                        const Vec2 jitter = padded_point2(C.sample, hash_combine(key, 1));
+                        const Vec2 lens = padded_point2(C.sample, hash_combine(key, 2));
+                        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, j == 0 ? sampler : extra,
+                                    j == 0);
+                    }
                     for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
                 }
             P.stats.add_rays(rays);
