@@ -14,7 +14,9 @@ void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
     inv_cell_ = 1 / (2 * radius);
     order_.clear();
     start_.clear();
-    sorted_.clear();
+    x_.clear();
+    y_.clear();
+    z_.clear();
     if (points.empty() || !(radius > 0)) return;
     lo_ = points[0];
     for (const Vec3& p : points) lo_ = Vec3(std::min(lo_.x, p.x), std::min(lo_.y, p.y), std::min(lo_.z, p.z));
@@ -32,8 +34,15 @@ void VertexGrid::build(const std::vector<Vec3>& points, float radius) {
     order_.resize(points.size());
     std::vector<uint32_t> fill(start_.begin(), start_.end() - 1);
     for (size_t i = 0; i < points.size(); ++i) order_[fill[key[i]]++] = uint32_t(i);
-    sorted_.resize(points.size());
-    tbb::parallel_for(size_t(0), points.size(), [&](size_t k) { sorted_[k] = points[order_[k]]; });
+    x_.resize(points.size());
+    y_.resize(points.size());
+    z_.resize(points.size());
+    tbb::parallel_for(size_t(0), points.size(), [&](size_t k) {
+        const Vec3& p = points[order_[k]];
+        x_[k] = p.x;
+        y_[k] = p.y;
+        z_[k] = p.z;
+    });
 }
 
 }  // namespace phos::integrators

@@ -3,8 +3,12 @@
 // given within a bucket (so sums over them are the same for any thread count). Cells are 2r wide,
 // so a query visits at most the 8 cells around its point (Georgiev et al. 2012's hash grid, as in
 // SmallVCM), each bucket once. The points are kept sorted by bucket, so a bucket's candidates lie
-// side by side in memory; callers keep their per-vertex data in the same order (order()).
+// side by side in memory; callers keep their per-vertex data in the same order (order()). The
+// sorted positions are kept as three coordinate arrays, so a bucket's distances are computed four
+// at a time (SSE, the scalar operations' order: the same bits).
 #pragma once
+
+#include <xmmintrin.h>
 
 #include <cstdint>
 #include <vector>
@@ -37,7 +41,7 @@ private:
     }
     int64_t cell(float v, float lo) const { return int64_t(std::floor((v - lo) * inv_cell_)); }
 
-    std::vector<Vec3> sorted_;  // the points in order()
+    std::vector<float> x_, y_, z_;  // the points' coordinates in order()
     float radius2_ = 0, inv_cell_ = 0;
     Vec3 lo_;
     uint64_t mask_ = 0;
@@ -63,12 +67,30 @@ void VertexGrid::query(Vec3 p, float radius2, Visit&& visit) const {
         for (int j = 0; j < n; ++j) seen |= buckets[j] == b;
         if (!seen) buckets[n++] = b;
     }
-    for (int i = 0; i < n; ++i)
-        for (uint32_t k = start_[buckets[i]]; k < start_[buckets[i] + 1]; ++k) {
-            const Vec3 d = sorted_[k] - p;
-            const float d2 = dot(d, d);
+    const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z), r2 = _mm_set1_ps(radius2);
+    for (int i = 0; i < n; ++i) {
+        uint32_t k = start_[buckets[i]];
+        const uint32_t end = start_[buckets[i] + 1];
+        for (; k + 4 <= end; k += 4) {
+            const __m128 dx = _mm_sub_ps(_mm_loadu_ps(&x_[k]), px), dy = _mm_sub_ps(_mm_loadu_ps(&y_[k]), py),
+                         dz = _mm_sub_ps(_mm_loadu_ps(&z_[k]), pz);
+            const __m128 d2 =
+                _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+            int inside = _mm_movemask_ps(_mm_cmple_ps(d2, r2));
+            if (!inside) continue;
+            alignas(16) float v[4];
+            _mm_store_ps(v, d2);
+            for (; inside; inside &= inside - 1) {
+                const int j = __builtin_ctz(unsigned(inside));
+                visit(k + uint32_t(j), v[j]);
+            }
+        }
+        for (; k < end; ++k) {
+            const float dx = x_[k] - p.x, dy = y_[k] - p.y, dz = z_[k] - p.z;
+            const float d2 = dx * dx + dy * dy + dz * dz;
             if (d2 <= radius2) visit(k, d2);
         }
+    }
 }
 
 }  // namespace phos::integrators
