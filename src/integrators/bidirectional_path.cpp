@@ -75,7 +75,8 @@ Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const 
 }
 
 bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta) {
+                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta,
+                   float go_on) {
     float pdf = 0, pdf_rev = 0;
     delta = false;
     if (v.in_medium) {
@@ -95,7 +96,7 @@ bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mo
     if (delta)
         scatter_delta(mis, cos_at(v, wi));
     else
-        scatter(mis, cos_at(v, wi), pdf, pdf_rev, merge_here, f);
+        scatter(mis, cos_at(v, wi), pdf * go_on, pdf_rev, merge_here, f);
     return true;
 }
 

@@ -65,9 +65,12 @@ inline float cos_at(const Vertex& v, Vec3 w) {
 // The subpath goes on from v: samples a direction (the BSDF in `mode`, the phase function in a
 // medium), multiplies beta by its weight and updates the MIS state `mis` (scatter or
 // scatter_delta, with merging at v a strategy when `merge_here`); sets wi and whether the lobe was
-// a delta. False when nothing was sampled.
+// a delta. False when nothing was sampled. `go_on`: the probability with which the caller chose to
+// go on from v at all (a factor of the direction's density in the MIS state; the caller divides
+// beta by it).
 bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta);
+                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta,
+                   float go_on = 1);
 // The ray leaving v in direction wi; the walk follows the medium change at a surface.
 accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 

@@ -48,6 +48,12 @@ const options::Table& progressive_options() {
                       "one camera subpath goes on with every strategy, the other M - 1 stop after their "
                       "first non-delta vertex's light samples and merging (as SPPM's visible points)"),
              "vcm");
+        prog(b.number("vcm-continue", &ProgressiveOptions::vcm_continue, "Q", between(0, 1),
+                      "with merging at the first non-delta vertex: the probability that the first camera "
+                      "sample goes on past that vertex where it is a lone Lambert lobe (the deeper "
+                      "strategies weighted by it; 0: merging, light samples, connections and light tracing "
+                      "of that vertex make every path; glossy vertices and media always go on)"),
+             "vcm");
         prog(b.choice("vcm-merge", &ProgressiveOptions::vcm_merge, {"first", "every"},
                       "where camera subpaths merge: at their first non-delta vertex only, as SPPM gathers "
                       "(first), or at every vertex (every, Georgiev et al.'s VCM)"),

@@ -23,7 +23,8 @@ struct ProgressiveOptions {
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
     std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
-    int vcm_camera_samples = 1;          // vcm: camera samples per pixel per iteration at the first non-delta vertex
+    int vcm_camera_samples = 2;          // vcm: camera samples per pixel per iteration (first-vertex merging)
+    float vcm_continue = 0;              // vcm: probability a camera subpath goes on past a Lambert x_f
     int vcm_light_paths = 0;             // vcm: light subpaths per pixel per iteration for merging
                                          // (0 = automatic, vcm.cpp light_paths_per_pixel)
     std::string vcm_merge = "first";     // vcm: merge at the camera's first non-delta vertex or every one

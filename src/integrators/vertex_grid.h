@@ -67,7 +67,8 @@ void VertexGrid::query(Vec3 p, float radius2, Visit&& visit) const {
         for (int j = 0; j < n; ++j) seen |= buckets[j] == b;
         if (!seen) buckets[n++] = b;
     }
-    const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z), r2 = _mm_set1_ps(radius2);
+    const __m128 px = _mm_set1_ps(p.x), py = _mm_set1_ps(p.y), pz = _mm_set1_ps(p.z),
+                 r2 = _mm_set1_ps(radius2);
     for (int i = 0; i < n; ++i) {
         uint32_t k = start_[buckets[i]];
         const uint32_t end = start_[buckets[i] + 1];

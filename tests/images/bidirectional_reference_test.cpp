@@ -124,17 +124,22 @@ TEST(BidirectionalReference, VcmConvergesOnCausticPoint) {
 TEST(BidirectionalReference, VcmVarianceReductionsKeepTheImage) {
     // The default vcm (per-pixel radii from the pilot light pass and edges, light subpaths per
     // pixel chosen from the pilot, first-vertex light samples weighted 8 times over, Russian
-    // roulette on shadow rays of weight below 0.1) against vcm with all four off (one radius,
-    // K = 2, the true sample count, every shadow ray): unbiased changes of the weights and of the
-    // radius's start, so both converge to the reference and agree in the mean. A weight that no
-    // longer sums to 1 (say the pixel's 1 / eta^2 left off the light subpath's dVM), or roulette
-    // not divided by its probability, moves the mean by far more than the 1.5 % allowed.
+    // roulette on shadow rays of weight below 0.1, two camera samples per pixel and iteration,
+    // camera subpaths ending at a Lambert first non-delta vertex) against vcm with all six off (one
+    // radius, K = 2, the true sample count, every shadow ray, one camera sample, every camera
+    // subpath going on): unbiased changes of the weights and of the radius's start, so both
+    // converge to the reference and agree in the mean. A weight that no longer sums to 1 (say the
+    // pixel's 1 / eta^2 left off the light subpath's dVM, or the continuation's probability left
+    // out of merging's weight), or roulette not divided by its probability, moves the mean by far
+    // more than the 1.5 % allowed.
     integrators::ProgressiveOptions off;
     off.vcm_rr_weight = 0;
     off.direct_mis_scale = 1;
     off.radius_photons = 0;
     off.edge_aware_radius = false;
     off.vcm_light_paths = 2;
+    off.vcm_camera_samples = 1;
+    off.vcm_continue = 1;
     for (const std::string name : {"cornell-glass-mirror", "caustic-point"}) {
         const Image ref = reference(name);
         const Image fast = render_with(name, "vcm", 16, integrators::ProgressiveOptions{});

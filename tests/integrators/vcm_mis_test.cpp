@@ -38,6 +38,9 @@ struct Strategies {
     bool merge_direct = false;  // merging next to the light
     bool merge_every = true;    // merging at every camera vertex, else at the first non-delta one
     int direct_samples = 1;     // light samples at the camera's first non-delta vertex
+    // Merging at the first non-delta vertex only: the probability that the camera subpath goes on
+    // past that vertex (--vcm-continue; the integrator takes it at Lambert surfaces only).
+    float go_on = 1;
 };
 
 struct TestPath {
@@ -84,6 +87,13 @@ bool first_non_delta(const TestPath& t, int i) {
     return true;
 }
 
+// The factor of the camera subpath's density of going on from x[i]: go_on where x[i] is its first
+// non-delta vertex on a surface and merging is there only, else 1.
+float go_on_at(const TestPath& t, int i, const Strategies& st) {
+    const PathVertex& v = t.x[size_t(i)];
+    return st.merge && !st.merge_every && !v.medium && !v.delta && first_non_delta(t, i) ? st.go_on : 1.0f;
+}
+
 // The light subpath's state at x[i] (arrived, before scattering at x[i]), i >= 1. Merging at x[1]
 // (next to the light) only with `merge_direct`, as the integrator marks light vertices; no merging
 // terms at all on the light side when merging is only at the camera's first non-delta vertex
@@ -123,7 +133,7 @@ SubpathMis camera_state(const TestPath& t, int i, const MisFactors& f, const Str
         if (v.delta)
             scatter_delta(m, cos_at(v, out));
         else
-            scatter(m, cos_at(v, out), pdf_at(v, out), pdf_at(v, back),
+            scatter(m, cos_at(v, out), pdf_at(v, out) * go_on_at(t, j, st), pdf_at(v, back),
                     st.merge && !v.medium && (st.merge_every || first_non_delta(t, j)), f);
     }
     return m;
@@ -162,8 +172,8 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
         const float cos_light = t.point_light ? 1.0f : dot(t.x[0].n, -to_light);
         const float direct_w = t.point_light ? 0.0f : n * direct_pdf_a(t) * d * d / cos_light;
         ++strategies;
-        sum += direct_light_weight(c, pdf_at(t.x[1], to_light), pdf_at(t.x[1], back), n * direct_pdf_a(t),
-                                   emit_pdf(t, -to_light), direct_w, merge_camera(1),
+        sum += direct_light_weight(c, pdf_at(t.x[1], to_light) * go_on_at(t, 1, st), pdf_at(t.x[1], back),
+                                   n * direct_pdf_a(t), emit_pdf(t, -to_light), direct_w, merge_camera(1),
                                    cos_at(t.x[1], to_light) / (d * d), f);
     }
     // Inner connections: light subpath to x[s-1], camera subpath to x[s], s = 2 .. k - 1.
@@ -173,8 +183,8 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
         const PathVertex &a = t.x[size_t(s - 1)], &b = t.x[size_t(s)];
         const Vec3 ab = dir(a, b);
         const float d2 = dist(a, b) * dist(a, b);
-        const float camera_pdf_a = pdf_at(b, -ab) * cos_at(a, ab) / d2;  // b's BSDF reaching a
-        const float light_pdf_a = pdf_at(a, ab) * cos_at(b, ab) / d2;    // a's BSDF reaching b
+        const float camera_pdf_a = go_on_at(t, s, st) * pdf_at(b, -ab) * cos_at(a, ab) / d2;  // b reaching a
+        const float light_pdf_a = pdf_at(a, ab) * cos_at(b, ab) / d2;  // a's BSDF reaching b
         const float w_l =
             connect_side(l, camera_pdf_a, pdf_at(a, dir(a, t.x[size_t(s - 2)])), merge_light(s - 1), f);
         const float w_c =
@@ -190,7 +200,7 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
         const Vec3 to_cam = dir(a, t.x[size_t(k)]);
         const float d = dist(a, t.x[size_t(k)]);
         const float camera_pdf_a = camera_pdf(t, -to_cam) * cos_at(a, to_cam) / (d * d);
-        const float rev = pdf_at(a, dir(a, t.x[size_t(k - 2)]));
+        const float rev = pdf_at(a, dir(a, t.x[size_t(k - 2)])) * go_on_at(t, k - 1, st);
         ++strategies;
         sum += 1 / (1 + connect_side(l, camera_pdf_a, rev, merge_camera(k - 1), f));
     }
@@ -203,8 +213,8 @@ double weight_sum(const TestPath& t, const Strategies& st, int* count = nullptr)
         const Vec3 to_light_prev = dir(t.x[size_t(i)], t.x[size_t(i - 1)]);
         const Vec3 to_cam_prev = dir(t.x[size_t(i)], t.x[size_t(i + 1)]);
         ++strategies;
-        sum +=
-            merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev), pdf_at(t.x[size_t(i)], to_cam_prev), f);
+        sum += merge_weight(c, l, pdf_at(t.x[size_t(i)], to_light_prev) * go_on_at(t, i, st),
+                            pdf_at(t.x[size_t(i)], to_cam_prev), f);
     }
     if (count) *count = strategies;
     return sum;
@@ -255,10 +265,16 @@ TEST(VcmMis, WeightsOfAllStrategiesSumToOne) {
                         for (bool direct : {false, true})
                             for (bool every : {true, false})
                                 for (int n : {1, 3})
-                                    EXPECT_NEAR(weight_sum(t, {true, eta, direct, every, n}), 1.0, 2e-4)
-                                        << "vcm eta " << eta << (direct ? ", merging next to the light" : "")
-                                        << (every ? ", merging everywhere" : ", merging at the first vertex")
-                                        << ", direct samples " << n << where();
+                                    for (float go_on : {1.0f, 0.2f, 1e-3f}) {
+                                        if (every && go_on < 1) continue;
+                                        EXPECT_NEAR(weight_sum(t, {true, eta, direct, every, n, go_on}), 1.0,
+                                                    2e-4)
+                                            << "vcm eta " << eta
+                                            << (direct ? ", merging next to the light" : "")
+                                            << (every ? ", merging everywhere"
+                                                      : ", merging at the first vertex")
+                                            << ", direct samples " << n << ", going on " << go_on << where();
+                                    }
                     ++checked;
                 }
     EXPECT_EQ(checked, 400);
@@ -288,9 +304,12 @@ TEST(VcmMis, WeightsSumToOneThroughDeltaVertices) {
                 }
                 for (float eta : {1e-3f, 0.5f, 40.0f})
                     for (bool every : {true, false})
-                        EXPECT_NEAR(weight_sum(t, {true, eta, false, every, 2}), 1.0, 2e-4)
-                            << "vcm eta " << eta << (every ? " everywhere" : " first") << ", inner " << inner
-                            << " point " << point << " seed " << seed;
+                        for (float go_on : {1.0f, 1e-3f}) {
+                            if (every && go_on < 1) continue;
+                            EXPECT_NEAR(weight_sum(t, {true, eta, false, every, 2, go_on}), 1.0, 2e-4)
+                                << "vcm eta " << eta << (every ? " everywhere" : " first") << ", going on "
+                                << go_on << ", inner " << inner << " point " << point << " seed " << seed;
+                        }
                 ++checked;
             }
     EXPECT_GT(checked, 150);
