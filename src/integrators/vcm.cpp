@@ -109,9 +109,9 @@ struct Iteration {
     // x_f has n times the density in every weight (direct_light_sample, the emitter hit right
     // after x_f, light tracing of a light subpath's first vertex).
     int direct_samples = 1;
-    // The count the weights give those samples: direct_samples x --direct-mis-scale (x
-    // camera_samples). Any positive
-    // count used alike in all three weights keeps them a partition of unity (the estimate unbiased);
+    // The count the weights give those samples: direct_samples x --direct-mis-scale x
+    // camera_samples. Any positive count used alike in all three weights keeps them a partition of
+    // unity (the estimate unbiased);
     // a larger one hands more of the direct light to the stratified light samples, which converge
     // faster than the BSDF samples and light-tracing splats they compete with (on the Cornell
     // boxes' walls, 8 cut the variance 3.4x at no cost; docs/bidirectional.md).
@@ -278,17 +278,17 @@ Rgb direct_light(const Context& C, const Vertex& v, bool first, Sampler& sampler
     }
     const int n = C.it.direct_samples;
     const float all = float(n * C.it.camera_samples);
+    const float go_on = go_on_from(C.it, v);
     // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
     if (C.it.one_delta_light)
-        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, go_on_from(C.it, v),
-                                   sampler) *
+        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, go_on, sampler) *
                float(n);
     Rgb sum(0.0f);
     for (int k = 0; k < n; ++k) {
         const uint32_t i = C.sample * uint32_t(n) + uint32_t(k);
         sum += direct_light_sample(C, v, padded_point1(i, hash_combine(C.sequence_key, 3)),
                                    padded_point2(i, hash_combine(C.sequence_key, 4)), all, C.it.direct_mis,
-                                   go_on_from(C.it, v), sampler);
+                                   go_on, sampler);
     }
     return sum;
 }
@@ -463,12 +463,14 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         const bool smooth = v.in_medium || v.bsdf->has_non_specular();
         // Merging here: at every vertex, or only at the first non-delta one.
         v.mergeable = C.it.merge && !v.in_medium && smooth && (C.it.merge_everywhere || specular_chain);
+        // The probability of going on past this vertex: below 1 only at x_f (go_on_from).
+        const float go_on = specular_chain && smooth ? go_on_from(C.it, v) : 1.0f;
         if (smooth) {
             if (C.it.connect) {
                 parts[sampled_part(depth)] += beta * direct_light(C, v, specular_chain, sampler);
                 if (full && !C.light_path.empty())
                     parts[x1_delta ? kSpecular : kIndirect] +=
-                        beta * connect_light_path(C, v, specular_chain ? go_on_from(C.it, v) : 1.0f, sampler);
+                        beta * connect_light_path(C, v, go_on, sampler);
             }
             if (v.mergeable) {
                 Rgb merged[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
@@ -480,8 +482,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
             if (!full && specular_chain) break;  // an extra camera sample: its x_f is done
         }
 
-        // Continue the camera subpath (radiance transport): past x_f with probability go_on_from.
-        const float go_on = specular_chain && smooth ? go_on_from(C.it, v) : 1.0f;
+        // Continue the camera subpath (radiance transport): past x_f with probability go_on.
         if (go_on < 1) {
             if (!(sampler.next() < go_on)) break;
             beta *= 1 / go_on;
@@ -836,14 +837,18 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
                     if (it.connect || it.lt)  // light tracing
                         for (const Vertex& v : light) connect_to_camera(C, v, sampler);
                     // Camera sample j: point iteration x camera_samples + j of the pixel's sequences;
-                    // the first takes every strategy, the others stop after x_f.
-                    for (int j = 0; j < it.camera_samples; ++j) {
+                    // the first (with the light-tracing sampler) takes every strategy, the others
+                    // (each its own sampler) stop after x_f.
+                    const auto camera_sample = [&](int j, Sampler& s) {
                         C.sample = first_sample + uint32_t(j);
-                        Sampler extra(ro.seed, hash_combine(0x7663706578ULL, uint64_t(j)), i, iteration);
                         const Vec2 jitter = padded_point2(C.sample, hash_combine(key, 1));
                         const Vec2 lens = padded_point2(C.sample, hash_combine(key, 2));
-                        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens,
-                                    j == 0 ? sampler : extra, j == 0);
+                        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, s, j == 0);
+                    };
+                    camera_sample(0, sampler);
+                    for (int j = 1; j < it.camera_samples; ++j) {
+                        Sampler extra(ro.seed, hash_combine(0x7663706578ULL, uint64_t(j)), i, iteration);
+                        camera_sample(j, extra);
                     }
                     for (int k = 0; k < kParts; ++k) sums.add(i, parts[k], Part(k));
                 }
@@ -861,9 +866,9 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     std::string merging;
     if (it.merge) {
         merging = ", " + std::to_string(per_pixel) + " light subpaths per pixel";
-        if (it.camera_samples > 1) merging += ", " + std::to_string(it.camera_samples) + " camera samples";
         if (opt_.vcm_light_paths == 0)
             merging += " (pilot: " + two_decimals(mergeable_per_path) + " mergeable vertices per subpath)";
+        if (it.camera_samples > 1) merging += ", " + std::to_string(it.camera_samples) + " camera samples";
         merging += ", largest radius " + std::to_string(it.radius);
     }
     P.stats.add_value(name, std::to_string(state.iterations) + " iterations" + merging);
