@@ -9,6 +9,7 @@
 #include <vector>
 
 #ifdef __linux__
+#include <sys/mman.h>
 #include <sys/resource.h>
 #endif
 
@@ -166,6 +167,17 @@ std::optional<uint64_t> current_rss() {
     return kb_field(read_text("/proc/self/status"), "VmRSS");
 #else
     return std::nullopt;
+#endif
+}
+
+void advise_huge_pages(void* begin, size_t bytes) {
+#ifdef __linux__
+    constexpr uintptr_t kHuge = uintptr_t(1) << 21;
+    const uintptr_t lo = (reinterpret_cast<uintptr_t>(begin) + kHuge - 1) & ~(kHuge - 1);
+    const uintptr_t hi = (reinterpret_cast<uintptr_t>(begin) + bytes) & ~(kHuge - 1);
+    if (hi > lo) madvise(reinterpret_cast<void*>(lo), hi - lo, MADV_HUGEPAGE);  // advice: failure is harmless
+#else
+    (void)begin, (void)bytes;
 #endif
 }
 

@@ -3,6 +3,7 @@
 // elsewhere every answer is "unknown" (an empty optional).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -26,6 +27,11 @@ Available available();
 
 // The value of a "/proc"-style line "key:  1234 kB" (or a bare number: bytes) in `text`, in bytes.
 std::optional<uint64_t> kb_field(const std::string& text, const std::string& key);
+
+// Asks the kernel to back the 2 MiB-aligned pages inside [begin, begin + bytes) with transparent
+// huge pages (Linux madvise(MADV_HUGEPAGE); elsewhere, or when refused, nothing happens). For
+// large arrays about to be written whole: one fault per 2 MiB instead of one per 4 kB.
+void advise_huge_pages(void* begin, size_t bytes);
 
 // Bytes for messages, decimal units with three significant digits: "812 kB", "61.2 MB", "1.23 GB".
 std::string format_bytes(uint64_t bytes);
