@@ -42,17 +42,20 @@ constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's E
 
 // Photon tracing (photon/tracer.cpp) writes each stored photon once into its map's final array
 // (power rescaled in place at the end); a round's batches hold the round's photons again with
-// their emission index. A round emits up to 2^20 photons, sized by the map that still needs the
-// most emissions, and every map of the stream stores into it (the surplus is cut afterwards):
-// with volume maps, a round of 2^20 emissions fills the surface maps too. The allocator keeps the
-// largest round's freed batch memory for the rest of the run (measured: 1 M to 6 M photons on
+// their emission index. A round emits up to photon::round_batch_limit(threads) batches of 4096
+// photons, sized by the map that still needs the most emissions, and every map of the stream
+// stores into it (the surplus is cut afterwards): with volume maps, a full round fills the
+// surface maps too. The slices are kept from round to round (measured: 1 M to 6 M photons on
 // cornell-diffuse, fog-caustic's volume maps).
 constexpr double kTracedPerPhoton = sizeof(Photon);
 constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(uint32_t);
 // Stored photons per emitted one, for a round's size and when only --photons bounds a map (1.6
 // measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
 constexpr double kStoredPerEmitted = 1.6;
-constexpr double kRoundPhotons = kStoredPerEmitted * double(1 << 20);
+// The photons a full round stores with `threads` threads per rank.
+double round_photons(int threads) {
+    return kStoredPerEmitted * double(photon::round_batch_limit(threads) * photon::TraceOptions{}.batch_size);
+}
 // The k-d tree build (photon/kdtree.cpp) permutes the traced array in place: nothing per photon
 // beyond it. The irradiance cache's points (one per stride photons) are built in place too.
 // Beam estimate of the volume maps: a 40-byte sphere per photon and the BVH's nodes (about one
@@ -157,8 +160,9 @@ double stored_photons(const PhotonMapSettings& s, uint64_t emit) {
 // The photon mapper's phases (integrators/photon_map.cpp, build_maps): tracing, the k-d tree
 // builds (one map at a time, while the traced arrays of the others exist), then the maps with
 // their caches and beam BVHs through the render pass.
-void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, const Phase& common,
+void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, int threads, const Phase& common,
                        std::vector<Phase>& phases) {
+    const double round = round_photons(threads);
     bool delta = false;
     for (const scene::Material& m : scene.materials) delta |= photon::has_delta_lobe(m);
     const bool media = media_active(scene) && !o.photon_viz;
@@ -176,9 +180,9 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, con
     // so their rounds are full ones) or the caustic stream (caustic maps, through projection maps).
     const double surface = n[photon::kGlobalMap] + n[photon::kIndirectMap];
     const double main_round =
-        n[photon::kVolumeMap] > 0 && surface > 0 ? kRoundPhotons : surface + n[photon::kVolumeMap];
+        n[photon::kVolumeMap] > 0 && surface > 0 ? round : surface + n[photon::kVolumeMap];
     const double caustic_round = n[photon::kCausticMap] + n[photon::kVolumeCausticMap];
-    const double retained = kBatchPerPhoton * std::min(std::max(main_round, caustic_round), kRoundPhotons);
+    const double retained = kBatchPerPhoton * std::min(std::max(main_round, caustic_round), round);
     const double stride = std::max<uint32_t>(o.cache_stride, 1);
 
     Phase trace = common;
@@ -306,7 +310,9 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
     common.add("film", film);
     const bool progressive = in.integrator == "ppm" || in.integrator == "sppm";
     if (in.integrator == "photonmap") {
-        photon_map_phases(scene, in.photon_map, common, phases);
+        const int arena = tbb::this_task_arena::max_concurrency();
+        photon_map_phases(scene, in.photon_map, in.threads > 0 ? std::min(in.threads, arena) : arena, common,
+                          phases);
     } else if (in.integrator == "bdpt" || in.integrator == "vcm") {
         bidirectional_phase(in, common, phases);
     } else if (progressive) {

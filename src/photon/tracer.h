@@ -10,8 +10,9 @@
 //
 // Determinism: photon i's random numbers depend only on (seed, i); batch b (indices
 // [b * batch_size, (b + 1) * batch_size)) writes its own slice, slices are concatenated in batch
-// order, and the number of batches per round depends only on the counts stored so far. So the
-// maps are bit-identical at any thread count.
+// order, and a map is cut after the exact emission that met its target whatever the rounds'
+// sizes (which follow the counts stored so far and the threads). So the maps are bit-identical at
+// any thread count.
 #pragma once
 
 #include <cstdint>
@@ -79,5 +80,10 @@ struct TracedPhotons {
 
 // Traces photons in the calling thread's oneTBB arena. A scene without lights gives empty maps.
 TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& options);
+
+// The most batches in one round of tracing with `threads` threads on each rank (trace_photons
+// takes every rank's most): 8 per thread and rank, 16 to 1024. A round's batches hold their
+// photons until its end (the memory estimate counts them).
+uint64_t round_batch_limit(int threads);
 
 }  // namespace phos::photon
