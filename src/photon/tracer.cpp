@@ -287,9 +287,11 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     uint64_t next = 0;  // first photon index of the next round
     uint64_t round_batches = 4;
     // A round's batches hold their photons until its end, and a slice's first use takes its pages'
-    // faults (~12 us per 4 kB on these virtual machines): rounds of at most 8 batches per thread
-    // (every rank's most threads; 16 at least) keep that memory small yet the threads busy. At 256
-    // batches, 4 M photons took 19 k page faults and 1.46 s on 1 thread; at 16, 3.3 k and 1.23 s.
+    // faults (~12 us per 4 kB on these virtual machines): rounds of at most 16 batches per thread
+    // (every rank's most threads; 32 at least) keep that memory small, yet give each thread enough
+    // batches that the round's last one leaves the others idle only briefly. On 1 or 2 threads the
+    // old limit of 256 batches took 19 k page faults for 4 M photons and 1.46 s on 1 thread; 16 or
+    // 32 batches took 3.3 k / 4.3 k and 1.2 s. 16 threads keep 256.
     // Round sizes change nothing in the maps (batches are fixed ranges of indices, a map is cut
     // after the exact emission that met its target), so this may depend on the threads.
     uint32_t threads =
@@ -401,7 +403,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
 }  // namespace
 
 uint64_t round_batch_limit(int threads) {
-    return std::clamp<uint64_t>(8ull * uint64_t(std::max(threads, 1)) * uint64_t(dist::ranks()), 16, 1024);
+    return std::clamp<uint64_t>(16ull * uint64_t(std::max(threads, 1)) * uint64_t(dist::ranks()), 32, 1024);
 }
 
 TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {

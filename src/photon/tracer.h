@@ -82,7 +82,7 @@ struct TracedPhotons {
 TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& options);
 
 // The most batches in one round of tracing with `threads` threads on each rank (trace_photons
-// takes every rank's most): 8 per thread and rank, 16 to 1024. A round's batches hold their
+// takes every rank's most): 16 per thread and rank, 32 to 1024. A round's batches hold their
 // photons until its end (the memory estimate counts them).
 uint64_t round_batch_limit(int threads);
 

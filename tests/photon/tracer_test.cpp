@@ -135,7 +135,7 @@ TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
     o.target[kGlobalMap] = 30000;
     o.target[kCausticMap] = 5000;
     o.batch_size = 1024;
-    // 8 threads take rounds of up to 64 batches, 1 and 2 threads of up to 16: the rounds differ,
+    // 8 threads take rounds of up to 128 batches, 1 and 2 threads of up to 32: the rounds differ,
     // the maps must not (about 20 batches of 1024 emissions here).
     ASSERT_NE(round_batch_limit(1), round_batch_limit(8));
     TracedPhotons a, b, c;
