@@ -27,9 +27,16 @@ float Distribution1D::pmf(size_t i) const {
 size_t Distribution1D::sample_discrete(float u, float* pmf, float* remapped) const {
     const size_t n = weights_.size();
     const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
+    if (n == 1) {
+        // One bin (a scene's only light, a light of one patch): its width is exactly 1 (cdf_ =
+        // {0, 1}), so the pmf is 1 and the division below would return x itself. No search, no
+        // division (photon emission takes this path twice per photon).
+        if (pmf) *pmf = 1.0f;
+        if (remapped) *remapped = std::min(float(std::clamp(x, 0.0, 1.0)), std::nextafter(1.0f, 0.0f));
+        return 0;
+    }
     // First bin whose upper edge exceeds x; empty bins (zero width) can never satisfy this.
-    // (One bin, e.g. a scene's only light: no search.)
-    size_t i = n == 1 ? 0 : size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
+    size_t i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
     if (i >= n) i = n - 1;
     while (i > 0 && cdf_[i + 1] - cdf_[i] <= 0) --i;  // guard against rounding at the top end
     const double width = cdf_[i + 1] - cdf_[i];

@@ -165,6 +165,21 @@ TEST(Distribution1D, DiscreteAndContinuous) {
     EXPECT_EQ(zero.sample_discrete(0.99f), 3u);
 }
 
+// One bin takes a short path (no search, no division): the pmf is 1 and u comes back as it went
+// in, clamped below 1, as the general path gives it, with a weight of any size or none.
+TEST(Distribution1D, OneBinReturnsUUnchanged) {
+    for (float w : {0.0f, 1e-30f, 0.37f, 5e20f}) {
+        const Distribution1D d({w});
+        const float us[] = {0.0f, 1e-9f, 0.25f, 0.5f, 0.7316f, std::nextafter(1.0f, 0.0f), 1.0f};
+        for (float u : us) {
+            float pmf = 0, remap = -1;
+            EXPECT_EQ(d.sample_discrete(u, &pmf, &remap), 0u);
+            EXPECT_EQ(pmf, 1.0f);
+            EXPECT_EQ(remap, std::min(u, std::nextafter(1.0f, 0.0f))) << w << " " << u;
+        }
+    }
+}
+
 TEST(Distribution2D, PdfIntegratesAndMatchesHistogram) {
     const int nu = 5, nv = 3;
     std::vector<float> f(nu * nv);
