@@ -76,6 +76,12 @@ constexpr double kGridPerPoint = 4 * 20 + 12 + sizeof(Vec3) + sizeof(float);
 
 uint64_t bytes(double b) { return b > 0 ? uint64_t(b) : 0; }
 
+// The threads the render will run on: --threads, at most the arena's.
+int render_threads(const MemoryEstimateInputs& in) {
+    const int arena = tbb::this_task_arena::max_concurrency();
+    return in.threads > 0 ? std::min(in.threads, arena) : arena;
+}
+
 // One phase of the render and what it holds.
 struct Phase {
     std::string name;
@@ -221,7 +227,7 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     // PhotonAccumulator: per-thread copies when they take at most 1 GiB for every thread of the
     // arena, else shared atomics; the copies are made by the threads that run photon passes.
     const int arena = tbb::this_task_arena::max_concurrency();
-    const int workers = in.threads > 0 ? std::min(in.threads, arena) : arena;
+    const int workers = render_threads(in);
     const bool per_thread = slots * kAccumulatorSlot * arena <= double(1u << 30);
     Phase p = common;
     p.name = "render";
@@ -310,9 +316,7 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
     common.add("film", film);
     const bool progressive = in.integrator == "ppm" || in.integrator == "sppm";
     if (in.integrator == "photonmap") {
-        const int arena = tbb::this_task_arena::max_concurrency();
-        photon_map_phases(scene, in.photon_map, in.threads > 0 ? std::min(in.threads, arena) : arena, common,
-                          phases);
+        photon_map_phases(scene, in.photon_map, render_threads(in), common, phases);
     } else if (in.integrator == "bdpt" || in.integrator == "vcm") {
         bidirectional_phase(in, common, phases);
     } else if (progressive) {

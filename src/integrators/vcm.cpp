@@ -111,10 +111,10 @@ struct Iteration {
     int direct_samples = 1;
     // The count the weights give those samples: direct_samples x --direct-mis-scale x
     // camera_samples. Any positive count used alike in all three weights keeps them a partition of
-    // unity (the estimate unbiased);
-    // a larger one hands more of the direct light to the stratified light samples, which converge
-    // faster than the BSDF samples and light-tracing splats they compete with (on the Cornell
-    // boxes' walls, 8 cut the variance 3.4x at no cost; docs/bidirectional.md).
+    // unity (the estimate unbiased); a larger one hands more of the direct light to the stratified
+    // light samples, which converge faster than the BSDF samples and light-tracing splats they
+    // compete with (on the Cornell boxes' walls, 8 cut the variance 3.4x at no cost;
+    // docs/bidirectional.md).
     float direct_mis = 1;
     bool one_delta_light = false;  // the scene's only light is a point-like one (delta position)
     // Merging at every camera vertex (Georgiev et al.) or only at the camera subpath's first
@@ -271,14 +271,14 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
 // (`first`: the first vertex, or the first one seen through mirrors and glass), C.it.direct_samples
 // samples from the pixel's stratified sequences, as SPPM's visible points take them (each estimate
 // also divided by the camera samples, which all take them); deeper, one independent sample.
-Rgb direct_light(const Context& C, const Vertex& v, bool first, Sampler& sampler) {
+// `go_on`: the probability of the camera subpath going on from v (below 1 only when first).
+Rgb direct_light(const Context& C, const Vertex& v, bool first, float go_on, Sampler& sampler) {
     if (!first) {
         const float u_light = sampler.next();
         return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, 1.0f, sampler);
     }
     const int n = C.it.direct_samples;
     const float all = float(n * C.it.camera_samples);
-    const float go_on = go_on_from(C.it, v);
     // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
     if (C.it.one_delta_light)
         return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, go_on, sampler) *
@@ -325,15 +325,15 @@ Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& 
 
 // Merging camera vertex `v` with the light vertices within the radius (vertex merging): the sum
 // per Part of the light vertex (meaningful when v is the camera's first vertex). `first`: v is the
-// camera subpath's first non-delta vertex.
-void merge(const Context& C, const Vertex& v, bool first, Rgb sum[kParts]) {
+// camera subpath's first non-delta vertex; `go_on`: the probability of the camera subpath going on
+// from v (below 1 only when first).
+void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[kParts]) {
     const int max_length = C.P.options.max_depth + 1 - v.length;
     const std::vector<MergeVertex>& lights = *C.merge_vertices;
     // A light vertex next to the light (merged only with merge_direct) completes a path whose
     // light-sampling strategy is at v, with its direct_samples samples when v is the first
     // non-delta vertex.
     const float direct_scale = first ? vcm::mis(C.it.direct_mis) : 1.0f;
-    const float go_on = first ? go_on_from(C.it, v) : 1.0f;  // the camera subpath going on from v
     const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
         float w = 1;
         if (!C.it.ppm) {
@@ -467,14 +467,14 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         const float go_on = specular_chain && smooth ? go_on_from(C.it, v) : 1.0f;
         if (smooth) {
             if (C.it.connect) {
-                parts[sampled_part(depth)] += beta * direct_light(C, v, specular_chain, sampler);
+                parts[sampled_part(depth)] += beta * direct_light(C, v, specular_chain, go_on, sampler);
                 if (full && !C.light_path.empty())
                     parts[x1_delta ? kSpecular : kIndirect] +=
                         beta * connect_light_path(C, v, go_on, sampler);
             }
             if (v.mergeable) {
                 Rgb merged[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
-                merge(C, v, specular_chain, merged);
+                merge(C, v, specular_chain, go_on, merged);
                 for (int k = 0; k < kParts; ++k)
                     parts[depth == 1 ? k : x1_delta ? kSpecular : kIndirect] += beta * merged[k];
                 if (C.it.ppm) break;  // ppm: the first non-delta camera vertex gathers everything

@@ -1,9 +1,7 @@
 // Photon tracing in deterministic batches and rounds (see tracer.h).
 #include "photon/tracer.h"
 
-#include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <chrono>
@@ -13,6 +11,7 @@
 #include "core/byte_buffer.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
+#include "core/threads.h"
 #include "dist/ranks.h"
 #include "photon/projection_map.h"
 
@@ -299,9 +298,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     // 32 batches took 3.3 k / 4.3 k and 1.2 s. 16 threads keep 256.
     // Round sizes change nothing in the maps (batches are fixed ranges of indices, a map is cut
     // after the exact emission that met its target), so this may depend on the threads.
-    uint32_t threads =
-        uint32_t(std::min(size_t(tbb::this_task_arena::max_concurrency()),
-                          tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+    uint32_t threads = uint32_t(worker_threads());
     dist::max(&threads, 1);
     const uint64_t most_batches = round_batch_limit(int(threads));
     std::vector<Slice> slices;

@@ -165,8 +165,8 @@ TEST(Distribution1D, DiscreteAndContinuous) {
     EXPECT_EQ(zero.sample_discrete(0.99f), 3u);
 }
 
-// One bin takes a short path (no search, no division): the pmf is 1 and u comes back as it went
-// in, clamped below 1, as the general path gives it, with a weight of any size or none.
+// One bin (no search; its width of exactly 1 needs no division): the pmf is 1 and u comes back as
+// it went in, clamped below 1, with a weight of any size or none.
 TEST(Distribution1D, OneBinReturnsUUnchanged) {
     for (float w : {0.0f, 1e-30f, 0.37f, 5e20f}) {
         const Distribution1D d({w});

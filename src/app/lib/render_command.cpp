@@ -5,7 +5,6 @@
 
 #include <fcntl.h>
 #include <tbb/global_control.h>
-#include <tbb/task_arena.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -26,6 +25,7 @@
 #include "core/log.h"
 #include "core/progress.h"
 #include "core/stats.h"
+#include "core/threads.h"
 #include "display/live_image.h"
 #include "display/preview_window.h"
 #include "display/tev_stream.h"
@@ -531,10 +531,8 @@ int run_render(const RenderCommand& command) {
             const RayCounts rays = stats.rays();
             char line[160];
             std::snprintf(line, sizeof line, "%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged",
-                          int(std::min(size_t(tbb::this_task_arena::max_concurrency()),
-                                       tbb::global_control::active_value(
-                                           tbb::global_control::max_allowed_parallelism))),
-                          seconds, double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
+                          worker_threads(), seconds,
+                          double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
                           double(dist::bytes_exchanged()) * 1e-6);
             rank_lines = dist::gather(line);
         }
