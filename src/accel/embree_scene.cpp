@@ -359,9 +359,10 @@ struct EmbreeScene::Impl {
     }
 };
 
-EmbreeScene::EmbreeScene(const scene::Scene& scene) : scene_(scene), impl_(std::make_unique<Impl>()) {
+EmbreeScene::EmbreeScene(const scene::Scene& scene, const char* device_config)
+    : scene_(scene), impl_(std::make_unique<Impl>()) {
     Impl& im = *impl_;
-    im.device = rtcNewDevice(nullptr);
+    im.device = rtcNewDevice(device_config);
     if (!im.device)
         throw InputError("cannot create the Embree device (error " +
                          std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
@@ -576,7 +577,16 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
         valid[k] = 0;
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        if (k >= n || !usable(rays[k])) continue;
+        if (k >= n || !usable(rays[k])) {
+            // A lane left out still holds a well-formed empty ray: Embree's AVX2 kernels (the
+            // packet split into two halves of 8) assert that every ray of a half is finite, left
+            // out or not, and Debian's Embree keeps its assertions (an abort on CPUs without AVX-512).
+            rh.ray.org_x[k] = rh.ray.org_y[k] = rh.ray.org_z[k] = 0;
+            rh.ray.dir_x[k] = rh.ray.dir_y[k] = rh.ray.dir_z[k] = 0;
+            rh.ray.tnear[k] = rh.ray.tfar[k] = rh.ray.time[k] = 0;
+            rh.ray.mask[k] = 0, rh.ray.flags[k] = 0, rh.ray.id[k] = unsigned(k);
+            continue;
+        }
         RTCRay r;
         init_ray(rays[k], r);
         rh.ray.org_x[k] = r.org_x, rh.ray.org_y[k] = r.org_y, rh.ray.org_z[k] = r.org_z;

@@ -42,8 +42,10 @@ struct Bounds {
 //   range, non-finite vertex) and instances of missing objects throw InputError.
 class EmbreeScene {
 public:
-    // Keeps a reference to `scene`, which must outlive this object.
-    explicit EmbreeScene(const scene::Scene& scene);
+    // Keeps a reference to `scene`, which must outlive this object. `device_config` is Embree's
+    // device configuration (rtcNewDevice; null: its defaults, the best kernels for this CPU); tests
+    // pass e.g. "isa=avx2" to run the kernels other CPUs get.
+    explicit EmbreeScene(const scene::Scene& scene, const char* device_config = nullptr);
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
