@@ -45,7 +45,7 @@ const Data& data() {
                 d.pos.push_back(vp.p);
                 d.r2.push_back(r * r);
             }
-        const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options};
+        const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs};
         for (uint64_t i = 0; d.queries.size() < 200000; ++i)
             photon::trace_photon(ps, 1, 0, i, {15},
                                  [&](const photon::PhotonHit& h) { d.queries.push_back(h.hit.p); });

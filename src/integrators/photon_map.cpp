@@ -83,7 +83,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     to.caustic_projection = o.projection_maps;
     to.record_bounces = record_bounces;
 
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdf_options, P.active_media()};
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs, P.active_media()};
     auto t0 = std::chrono::steady_clock::now();
     photon::TracedPhotons traced = photon::trace_photons(ps, to);
     const double trace_s = seconds_since(t0);

@@ -23,6 +23,7 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
       camera(camera_for(scene_, accel, prepare), options_.width, options_.height),
       options(options_),
       bsdf_options(prepare.bsdf),
+      bsdfs(scene_, bsdf_options),
       stats(stats_) {}
 
 Rgb Prepared::escaped(Vec3 dir) const {

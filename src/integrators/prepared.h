@@ -11,6 +11,7 @@
 #include "scene/scene.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
+#include "shading/material_bsdfs.h"
 #include "shading/medium.h"
 
 namespace phos::integrators {
@@ -36,12 +37,11 @@ public:
     CameraModel camera;
     RenderOptions options;
     shading::BsdfOptions bsdf_options;
+    shading::MaterialBsdfs bsdfs;  // every material's BSDF, placed at hits by bsdf()
     Stats& stats;
 
     // The BSDF at a hit (material looked up and textured).
-    shading::Bsdf bsdf(const accel::SurfaceHit& hit) const {
-        return shading::Bsdf(scene.materials[size_t(hit.material)], hit, scene, bsdf_options);
-    }
+    shading::Bsdf bsdf(const accel::SurfaceHit& hit) const { return bsdfs.at(hit); }
     // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit).
     Rgb emitted(const accel::SurfaceHit& hit, Vec3 wo) const {
         return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo) : Rgb(0.0f);

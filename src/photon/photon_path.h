@@ -15,6 +15,7 @@
 #include "scene/scene.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
+#include "shading/material_bsdfs.h"
 #include "shading/surface_walk.h"
 
 namespace phos::photon {
@@ -24,7 +25,7 @@ struct PhotonScene {
     const scene::Scene& scene;
     const accel::EmbreeScene& accel;
     const shading::LightSet& lights;
-    shading::BsdfOptions bsdf_options;
+    const shading::MaterialBsdfs& bsdfs;       // the BSDF at each hit
     const shading::MediaSet* media = nullptr;  // null or inactive: every ray travels in vacuum
 };
 
@@ -145,7 +146,7 @@ template <class Visitor>
 bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const accel::SurfaceHit& hit,
                   PhotonState& st, Visitor& visit, Vec3& wi) {
     const Vec3 wo = -normalize(st.ray.dir);
-    const shading::Bsdf bsdf(ps.scene.materials[size_t(hit.material)], hit, ps.scene, ps.bsdf_options);
+    const shading::Bsdf bsdf = ps.bsdfs.at(hit);
     if (bsdf.has_non_specular()) {
         const PhotonHit ph{hit, bsdf, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
         // A visitor returning bool may end the path (false): e.g. once no map it fills can

@@ -31,6 +31,26 @@ float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z
 
 Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
            const BsdfOptions& options) {
+    place(hit);
+    if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
+    set_material(m, options);
+    apply_textures(m, hit, scene);
+}
+
+Bsdf Bsdf::of_material(const scene::Material& m, const BsdfOptions& options) {
+    Bsdf b;
+    if (!m.interface_only) b.set_material(m, options);
+    return b;
+}
+
+Bsdf Bsdf::placed(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) const {
+    Bsdf b = *this;
+    b.place(hit);
+    if (!m.interface_only) b.apply_textures(m, hit, scene);
+    return b;
+}
+
+void Bsdf::place(const accel::SurfaceHit& hit) {
     if (hit.shading) {  // copied straight from the accelerator's (no stack temporary)
         ng_ = hit.shading->ng;
         frame_ = hit.shading->frame;
@@ -39,10 +59,10 @@ Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::
         ng_ = f.ng;
         frame_ = f.frame;
     }
-    if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
+}
 
+void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     kd_ = m.diffuse;
-    if (m.diffuse_texture >= 0) kd_ *= eval_texture(scene, m.diffuse_texture, hit.uv);
     ks_ = m.specular;
     kt_ = m.transmission;
     kdt_ = m.diffuse_transmission;
@@ -73,6 +93,10 @@ Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::
     if (lobes_ & (1u << kDielectric))
         flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
     if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
+}
+
+void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
+    if (m.diffuse_texture >= 0) kd_ *= eval_texture(scene, m.diffuse_texture, hit.uv);
 }
 
 Rgb Bsdf::specular_reflectance(float cos_o) const {

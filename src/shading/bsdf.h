@@ -73,6 +73,13 @@ public:
     // smooth, as is a dielectric with ior == 1 (there is nothing to bend light).
     Bsdf(const scene::Material& material, const accel::SurfaceHit& hit, const scene::Scene& scene,
          const BsdfOptions& options = {});
+    // The same object in two steps, for callers that build many BSDFs of few materials
+    // (MaterialBsdfs): of_material() is the part that depends on the material and the options
+    // only, built once; placed() completes a copy of it at a hit (shading frame, textures).
+    // of_material(m, options).placed(m, hit, scene) equals Bsdf(m, hit, scene, options) bit for bit.
+    static Bsdf of_material(const scene::Material& material, const BsdfOptions& options);
+    Bsdf placed(const scene::Material& material, const accel::SurfaceHit& hit,
+                const scene::Scene& scene) const;
 
     Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
     float pdf(Vec3 wo, Vec3 wi) const;
@@ -148,6 +155,11 @@ private:
     uint32_t lobes_ = 0;  // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
     MicrofacetDistribution dist_;
 
+    Bsdf() = default;
+    // The constructor's three steps: the frame at the hit, the material's lobes, its textures.
+    void place(const accel::SurfaceHit& hit);
+    void set_material(const scene::Material& m, const BsdfOptions& options);
+    void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
     std::optional<BsdfSample> sample_lambert(uint32_t lobe_mask, float side, Vec2 u) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;

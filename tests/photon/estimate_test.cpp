@@ -177,7 +177,8 @@ TEST(PhotonEstimate, PointLitPlaneConvergesToAnalyticRadiance) {
     s.lights.push_back(l);
     const accel::EmbreeScene accel(s);
     const shading::LightSet lights(s, accel.bounds());
-    const PhotonScene ps{s, accel, lights, {}};
+    const shading::MaterialBsdfs bsdfs(s, {});
+    const PhotonScene ps{s, accel, lights, bsdfs};
     const Vec3 points[] = {{0, 0, 0}, {0.5f, 0, 0}, {0, 0, -0.8f}, {1.0f, 0, 1.0f}, {-0.3f, 0, 0.4f}};
     double err[3];
     const uint64_t counts[3] = {10000, 100000, 1000000};

@@ -22,6 +22,7 @@ struct CausticScene {
     scene::Scene s;
     std::unique_ptr<accel::EmbreeScene> accel;
     std::unique_ptr<shading::LightSet> lights;
+    std::unique_ptr<shading::MaterialBsdfs> bsdfs;
     explicit CausticScene(bool area) {
         scene::Material floor;
         floor.diffuse = Rgb(0.8f);
@@ -61,8 +62,9 @@ struct CausticScene {
         }
         accel = std::make_unique<accel::EmbreeScene>(s);
         lights = std::make_unique<shading::LightSet>(s, accel->bounds());
+        bsdfs = std::make_unique<shading::MaterialBsdfs>(s, shading::BsdfOptions{});
     }
-    PhotonScene ps() const { return {s, *accel, *lights, {}}; }
+    PhotonScene ps() const { return {s, *accel, *lights, *bsdfs}; }
 };
 
 // Total caustic power and the part within 0.15 of the caustic's centre (below the sphere).

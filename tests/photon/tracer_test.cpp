@@ -21,6 +21,7 @@ struct BoxScene {
     scene::Scene s;
     std::unique_ptr<accel::EmbreeScene> accel;
     std::unique_ptr<shading::LightSet> lights;
+    std::unique_ptr<shading::MaterialBsdfs> bsdfs;
     BoxScene(float rho, float intensity, bool mirror_sphere) {
         scene::Material grey;
         grey.diffuse = Rgb(rho);
@@ -50,8 +51,9 @@ struct BoxScene {
         s.lights.push_back(l);
         accel = std::make_unique<accel::EmbreeScene>(s);
         lights = std::make_unique<shading::LightSet>(s, accel->bounds());
+        bsdfs = std::make_unique<shading::MaterialBsdfs>(s, shading::BsdfOptions{});
     }
-    PhotonScene ps() const { return {s, *accel, *lights, {}}; }
+    PhotonScene ps() const { return {s, *accel, *lights, *bsdfs}; }
 };
 
 Rgb total_power(const std::vector<Photon>& v) {

@@ -10,6 +10,7 @@
 #include "core/rng.h"
 #include "core/warp.h"
 #include "shading/fresnel.h"
+#include "shading/material_bsdfs.h"
 #include "support/chi_square.h"
 
 namespace phos::shading {
@@ -626,6 +627,85 @@ TEST(BsdfFrame, UsesDpduForTangent) {
     // s is dpdu minus its normal component.
     const Vec3 proj = normalize(h.dpdu - f.n * dot(f.n, h.dpdu));
     EXPECT_NEAR(length(f.s - proj), 0.0f, 1e-5f);
+}
+
+}  // namespace
+}  // namespace phos::shading
+
+namespace phos::shading {
+namespace {
+
+// MaterialBsdfs::at (a per-material BSDF built once, then placed at the hit) is the object the
+// constructor builds, bit for bit: same flags, frame, normal and albedo, and the same eval, pdf,
+// lobe albedos and samples, for every consistency material, a mirror, smooth glass, an interface,
+// a black body and a checkerboard-textured Lambert; at hits with and without the accelerator's
+// shading frame, random normals, tangents and uvs.
+TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
+    std::vector<Case> cases = consistency_cases();
+    cases.push_back({"mirror", phong(0.9f, 1e6f), {}});
+    cases.push_back({"smooth-glass", glass(1.0f, 1.5f), {}});
+    Material iface;
+    iface.interface_only = true;
+    cases.push_back({"interface", iface, {}});
+    cases.push_back({"black", lambert(0.0f), {}});
+    Material textured = lambert(0.8f);
+    textured.diffuse_texture = 0;
+    cases.push_back({"textured", textured, {}});
+    scene::Texture check;
+    check.kind = scene::Texture::Kind::Checkerboard;
+    check.value = Rgb(0.2f, 0.5f, 0.9f);
+    check.value2 = Rgb(0.7f, 0.1f, 0.3f);
+    check.u_scale = check.v_scale = 8;
+    Sampler rng(21);
+    const auto random_dir = [&] { return sph(180.0f * rng.next(), 360.0f * rng.next()); };
+    int compared = 0;
+    for (const Case& c : cases) {
+        scene::Scene s;
+        s.textures.push_back(check);
+        s.materials = {lambert(0.5f), c.m};
+        const MaterialBsdfs bsdfs(s, c.o);
+        for (int i = 0; i < 300; ++i) {
+            accel::SurfaceHit h = flat_hit(random_dir(), random_dir());
+            h.dpdu = random_dir() * (0.5f + rng.next());
+            h.uv = rng.next2();
+            h.material = 1;
+            ShadingFrame kept;
+            if (i % 2) {  // the accelerator's per-triangle frame
+                kept = shading_frame(h.ng, h.ns, h.dpdu);
+                h.shading = &kept;
+            }
+            const Bsdf a(s.materials[1], h, s, c.o);
+            const Bsdf b = bsdfs.at(h);
+            ASSERT_EQ(a.flags(), b.flags()) << c.name;
+            ASSERT_EQ(a.frame().n, b.frame().n);
+            ASSERT_EQ(a.frame().s, b.frame().s);
+            ASSERT_EQ(a.frame().t, b.frame().t);
+            ASSERT_EQ(a.geometric_normal(), b.geometric_normal());
+            ASSERT_EQ(a.diffuse_albedo(), b.diffuse_albedo()) << c.name;
+            const Vec3 wo = random_dir(), wi = random_dir();
+            for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
+                ASSERT_EQ(a.eval(wo, wi, mode), b.eval(wo, wi, mode)) << c.name;
+                const float ul = rng.next();
+                const Vec2 u = rng.next2();
+                const auto sa = a.sample(wo, ul, u, mode), sb = b.sample(wo, ul, u, mode);
+                ASSERT_EQ(bool(sa), bool(sb)) << c.name;
+                if (sa) {
+                    ASSERT_EQ(sa->wi, sb->wi) << c.name;
+                    ASSERT_EQ(sa->weight, sb->weight);
+                    ASSERT_EQ(sa->pdf, sb->pdf);
+                    ASSERT_EQ(sa->flags, sb->flags);
+                    ++compared;
+                }
+            }
+            ASSERT_EQ(a.pdf(wo, wi), b.pdf(wo, wi)) << c.name;
+            const Bsdf::LobeAlbedos la = a.lobe_albedos(wo), lb = b.lobe_albedos(wo);
+            ASSERT_EQ(la.diffuse, lb.diffuse);
+            ASSERT_EQ(la.glossy, lb.glossy);
+            ASSERT_EQ(la.specular, lb.specular);
+            ASSERT_EQ(la.transmission, lb.transmission);
+        }
+    }
+    EXPECT_GT(compared, 3000);
 }
 
 }  // namespace
