@@ -88,6 +88,48 @@ inline Rgb decode_rgbe(uint32_t w) {
     return {float(w & 0xff) * scale, float((w >> 8) & 0xff) * scale, float((w >> 16) & 0xff) * scale};
 }
 
+// encode_rgbe(decode_rgbe(w[k]) * s) for four words at once, one per SSE lane, each lane doing the
+// two scalar functions' IEEE operations in their order (photon_record_test.cpp compares them). A
+// group with a word outside their fast paths (black, or an exponent near either end of the range)
+// takes the scalar functions. The photon tracer rescales every stored photon's power by 1 / N so.
+inline void scale_rgbe4(uint32_t w[4], float s) {
+    const __m128i word = _mm_loadu_si128(reinterpret_cast<const __m128i*>(w));
+    const __m128i eb = _mm_srli_epi32(word, 24), byte = _mm_set1_epi32(0xff);
+    // decode_rgbe: 2^(eb - 136) from its bits (eb >= 10 keeps it a normal float), times the mantissas.
+    const __m128 dscale = _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(eb, _mm_set1_epi32(9)), 23));
+    const __m128 sv = _mm_set1_ps(s), zero = _mm_setzero_ps(), big = _mm_set1_ps(3e38f);
+    __m128 c[3];
+    for (int k = 0; k < 3; ++k) {
+        const __m128 m = _mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(word, 8 * k), byte));
+        const __m128 v = _mm_mul_ps(_mm_mul_ps(m, dscale), sv);
+        c[k] = _mm_and_ps(_mm_cmpgt_ps(v, zero), _mm_min_ps(v, big));  // encode_rgbe's clamp
+    }
+    const __m128 m = _mm_max_ps(c[0], _mm_max_ps(c[1], c[2]));
+    const __m128i biased = _mm_srli_epi32(_mm_castps_si128(m), 23);
+    // The fast paths: decoded exponent normal, and the maximum a normal float in [2^-111, 2^113].
+    const __m128i out = _mm_or_si128(_mm_cmplt_epi32(eb, _mm_set1_epi32(10)),
+                                     _mm_or_si128(_mm_cmplt_epi32(biased, _mm_set1_epi32(16)),
+                                                  _mm_cmpgt_epi32(biased, _mm_set1_epi32(240))));
+    if (_mm_movemask_epi8(out) != 0 || _mm_movemask_ps(_mm_cmpgt_ps(m, zero)) != 0xf) {
+        for (int k = 0; k < 4; ++k) w[k] = encode_rgbe(decode_rgbe(w[k]) * s);
+        return;
+    }
+    const __m128 two23 = _mm_set1_ps(0x1p23f);
+    const auto round_even = [&](__m128 x) { return _mm_sub_ps(_mm_add_ps(x, two23), two23); };
+    // e = biased - 126 and scale = 2^(8 - e); a maximum rounding up to 256 moves both one step.
+    __m128i e = _mm_sub_epi32(biased, _mm_set1_epi32(126));
+    __m128 scale = _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(_mm_set1_epi32(261), biased), 23));
+    const __m128 carry = _mm_cmpge_ps(round_even(_mm_mul_ps(m, scale)), _mm_set1_ps(256.0f));
+    e = _mm_sub_epi32(e, _mm_castps_si128(carry));  // carry lanes are all ones: -(-1)
+    scale = _mm_or_ps(_mm_and_ps(carry, _mm_mul_ps(scale, _mm_set1_ps(0.5f))), _mm_andnot_ps(carry, scale));
+    __m128i result = _mm_slli_epi32(_mm_add_epi32(e, _mm_set1_epi32(128)), 24);
+    for (int k = 0; k < 3; ++k) {
+        const __m128 q = _mm_min_ps(round_even(_mm_mul_ps(c[k], scale)), _mm_set1_ps(255.0f));
+        result = _mm_or_si128(result, _mm_slli_epi32(_mm_cvttps_epi32(q), 8 * k));
+    }
+    _mm_storeu_si128(reinterpret_cast<__m128i*>(w), result);
+}
+
 // ---- Octahedral unit vectors (Meyer et al. 2010; "precise" variant of Cigolle et al. 2014) ----
 //
 // Each of the two octahedral coordinates in [-1, 1] is quantised symmetrically to the integers

@@ -156,14 +156,12 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     // Volume photons: no normal; the volume map takes those after a non-specular scattering, the
     // volume caustic map those after specular bounces only (single scattering is not stored).
     // `ph` without its direction code: encode_directions() writes it from `wi` after the batch.
-    const auto store = [&](const Photon& ph, Vec3 wi, const bool into[kMapCount], uint64_t j, int bounces) {
-        for (int m = 0; m < kMapCount; ++m) {
-            if (!active[m] || !into[m]) continue;
-            s.photons[m].push_back(ph);
-            s.wi[m].push_back(wi);
-            s.emission[m].push_back(uint32_t(j));
-            if (o.record_bounces) s.bounces[m].push_back(uint8_t(std::min(bounces, 255)));
-        }
+    const auto store = [&](int m, const Photon& ph, Vec3 wi, uint64_t j, int bounces) {
+        if (!active[m]) return;
+        s.photons[m].push_back(ph);
+        s.wi[m].push_back(wi);
+        s.emission[m].push_back(uint32_t(j));
+        if (o.record_bounces) s.bounces[m].push_back(uint8_t(std::min(bounces, 255)));
     };
     // What photon j stores at a surface, and whether its path goes on.
     const auto on_surface_of = [&](uint64_t j) {
@@ -175,8 +173,9 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             ph.position = h.hit.p;
             ph.set_power(h.power);
             ph.normal_axis = normals.get(n);  // = set_normal(n), split axis bits as constructed
-            const bool into[kMapCount] = {true, h.after_specular, h.after_diffuse, false, false};
-            store(ph, h.wi, into, j, h.bounces);
+            store(kGlobalMap, ph, h.wi, j, h.bounces);
+            if (h.after_specular) store(kCausticMap, ph, h.wi, j, h.bounces);
+            if (h.after_diffuse) store(kIndirectMap, ph, h.wi, j, h.bounces);
             // Only caustic maps still filling: a path that went diffuse can never store a
             // caustic photon again, so stop it here (most of the caustic map's rounds).
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
@@ -187,11 +186,11 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
     // by emission the slice is the one one photon after another would store.
     const auto visitor_of = [&](uint64_t j) {
         const auto on_volume = [&, j](const PhotonVolumeHit& h) {
-            const bool into[kMapCount] = {false, false, false, h.after_diffuse, h.after_specular};
             Photon ph;  // no normal
             ph.position = h.p;
             ph.set_power(h.power);
-            store(ph, h.wi, into, j, h.bounces);
+            if (h.after_diffuse) store(kVolumeMap, ph, h.wi, j, h.bounces);
+            if (h.after_specular) store(kVolumeCausticMap, ph, h.wi, j, h.bounces);
             // After a scattering in a medium the path can only feed the non-caustic maps.
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap];
         };
@@ -390,14 +389,23 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
     for (int m = 0; m < kMapCount; ++m)
         if (active[m]) out.emitted[m] = next, out.reached[m] = o.target[m] == 0;
     // The photons carry their raw power (flux x N): divide by N now that N is known. The power is
-    // rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa step.
+    // rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa step. Four
+    // photons at a time (scale_rgbe4, the scalar functions' bits): one at a time this pass took
+    // 2.6 % of the tracing time.
     for (int m = 0; m < kMapCount; ++m) {
         std::vector<Photon>& P = out.photons[m];
         if (P.empty() || !wanted[m]) continue;
         const float inv = 1.0f / float(out.emitted[m]);
         tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
                           [&](const tbb::blocked_range<size_t>& r) {
-                              for (size_t i = r.begin(); i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
+                              size_t i = r.begin();
+                              for (; i + 4 <= r.end(); i += 4) {
+                                  uint32_t w[4] = {P[i].power_rgbe, P[i + 1].power_rgbe, P[i + 2].power_rgbe,
+                                                   P[i + 3].power_rgbe};
+                                  scale_rgbe4(w, inv);
+                                  for (size_t k = 0; k < 4; ++k) P[i + k].power_rgbe = w[k];
+                              }
+                              for (; i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
                           });
     }
 }

@@ -24,19 +24,18 @@ float Distribution1D::pmf(size_t i) const {
     return float(cdf_[i + 1] - cdf_[i]);
 }
 
-size_t Distribution1D::sample_discrete(float u, float* pmf, float* remapped) const {
+size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
     const size_t n = weights_.size();
     const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
     // First bin whose upper edge exceeds x; empty bins (zero width) can never satisfy this.
-    // (One bin, e.g. a scene's only light: no search.)
-    size_t i = n == 1 ? 0 : size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
+    size_t i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
     if (i >= n) i = n - 1;
     while (i > 0 && cdf_[i + 1] - cdf_[i] <= 0) --i;  // guard against rounding at the top end
     const double width = cdf_[i + 1] - cdf_[i];
     if (pmf) *pmf = float(width);
     if (remapped) {
-        // A width of exactly 1 (a lone bin's, as every emitted photon draws on a one-light,
-        // one-patch scene) needs no division: the quotient is the numerator, bit for bit.
+        // A width of exactly 1 (the only bin with weight) needs no division: the quotient is the
+        // numerator, bit for bit.
         const double r = width == 1.0 ? x - cdf_[i] : width > 0 ? (x - cdf_[i]) / width : 0.0;
         *remapped = std::min(float(std::clamp(r, 0.0, 1.0)), std::nextafter(1.0f, 0.0f));
     }

@@ -3,6 +3,8 @@
 // area and environment-map rows and columns. All-zero weights fall back to uniform.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -22,7 +24,16 @@ public:
 
     // Picks bin i with probability pmf(i). `remapped` (optional) receives u rescaled to [0,1)
     // within the chosen bin, so the same number can be reused for a further choice.
-    size_t sample_discrete(float u, float* pmf = nullptr, float* remapped = nullptr) const;
+    size_t sample_discrete(float u, float* pmf = nullptr, float* remapped = nullptr) const {
+        if (weights_.size() != 1) return search(u, pmf, remapped);
+        // One bin (a scene's only light, as every emitted photon draws): search()'s result without
+        // the call, bit for bit. Its width cdf_[1] - cdf_[0] is exactly 1, so pmf is 1 and u is
+        // remapped to itself, within search()'s clamps.
+        const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
+        if (pmf) *pmf = 1.0f;
+        if (remapped) *remapped = std::min(float(std::clamp(x, 0.0, 1.0)), std::nextafter(1.0f, 0.0f));
+        return 0;
+    }
     float pmf(size_t i) const;
     // Cumulative probability before bin i (cdf(size()) == 1).
     double cdf(size_t i) const { return cdf_[i]; }
@@ -32,6 +43,8 @@ public:
     float pdf_continuous(float x) const;
 
 private:
+    size_t search(float u, float* pmf, float* remapped) const;  // sample_discrete over any bins
+
     std::vector<float> weights_;
     std::vector<double> cdf_;  // size n + 1, cdf_[0] = 0, cdf_[n] = 1
     double total_ = 0;

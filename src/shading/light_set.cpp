@@ -93,8 +93,6 @@ LightSet::LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds,
 
 LightSet::~LightSet() = default;
 
-size_t LightSet::choose(float u, float& pmf) const { return distribution_.sample_discrete(u, &pmf); }
-
 float LightSet::pmf(size_t i) const { return distribution_.pmf(i); }
 
 Rgb LightSet::total_power() const {

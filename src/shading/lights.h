@@ -85,7 +85,7 @@ public:
     const Light& operator[](size_t i) const { return *lights_[i]; }
     // Picks a light with probability proportional to its power (average over channels).
     // Returns the index and sets `pmf`. Requires size() > 0.
-    size_t choose(float u, float& pmf) const;
+    size_t choose(float u, float& pmf) const { return distribution_.sample_discrete(u, &pmf); }
     float pmf(size_t i) const;
     Rgb total_power() const;
     // Indices of infinite lights (seen by escaping rays).
