@@ -44,7 +44,9 @@ struct TraceOptions {
     uint64_t max_emit = 0;  // stop emitting here even if a target is not met (0 = 2^32 - 1)
     int max_depth = 16;     // scattering events per photon path
     uint64_t seed = 0;
-    uint32_t batch_size = 4096;
+    // Emissions per batch (no effect on the maps). A batch's stored photons, their directions and
+    // the sort's scratch stay within a core's cache at 2048 (~0.2 MB): 4096 traced 2-3 % slower.
+    uint32_t batch_size = 2048;
     // Caustic map through projection maps (projection_map.h): its photons come from a second
     // stream emitted only towards specular objects. Off: one stream fills every map.
     bool caustic_projection = true;
