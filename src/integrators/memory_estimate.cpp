@@ -43,10 +43,10 @@ constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's E
 // Photon tracing (photon/tracer.cpp) writes each stored photon once into its map's final array
 // (power rescaled in place at the end); a round's batches hold the round's photons again with
 // their direction and emission index. A round emits up to photon::round_batch_limit(threads)
-// batches of 4096 photons, sized by the map that still needs the most emissions, and every map of
-// the stream stores into it (the surplus is cut afterwards): with volume maps, a full round fills
-// the surface maps too. The slices are kept from round to round (measured: 1 M to 6 M photons on
-// cornell-diffuse, fog-caustic's volume maps).
+// batches of TraceOptions::batch_size emissions, sized by the map that still needs the most
+// emissions, and every map of the stream stores into it (the surplus is cut afterwards): with
+// volume maps, a full round fills the surface maps too. The slices are kept from round to round
+// (measured: 1 M to 6 M photons on cornell-diffuse, fog-caustic's volume maps).
 constexpr double kTracedPerPhoton = sizeof(Photon);
 constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(Vec3) + sizeof(uint32_t);  // photon, wi, emission
 // Stored photons per emitted one, for a round's size and when only --photons bounds a map (1.6

@@ -34,9 +34,7 @@ size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
     const double width = cdf_[i + 1] - cdf_[i];
     if (pmf) *pmf = float(width);
     if (remapped) {
-        // A width of exactly 1 (the only bin with weight) needs no division: the quotient is the
-        // numerator, bit for bit.
-        const double r = width == 1.0 ? x - cdf_[i] : width > 0 ? (x - cdf_[i]) / width : 0.0;
+        const double r = width > 0 ? (x - cdf_[i]) / width : 0.0;
         *remapped = std::min(float(std::clamp(r, 0.0, 1.0)), std::nextafter(1.0f, 0.0f));
     }
     return i;

@@ -28,10 +28,10 @@ public:
         if (weights_.size() != 1) return search(u, pmf, remapped);
         // One bin (a scene's only light, as every emitted photon draws): search()'s result without
         // the call, bit for bit. Its width cdf_[1] - cdf_[0] is exactly 1, so pmf is 1 and u is
-        // remapped to itself, within search()'s clamps.
+        // remapped to itself (x - 0 divided by 1), within search()'s clamps.
         const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
         if (pmf) *pmf = 1.0f;
-        if (remapped) *remapped = std::min(float(std::clamp(x, 0.0, 1.0)), std::nextafter(1.0f, 0.0f));
+        if (remapped) *remapped = std::min(float(x), std::nextafter(1.0f, 0.0f));
         return 0;
     }
     float pmf(size_t i) const;

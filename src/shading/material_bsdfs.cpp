@@ -3,8 +3,7 @@
 
 namespace phos::shading {
 
-MaterialBsdfs::MaterialBsdfs(const scene::Scene& scene, const BsdfOptions& options)
-    : scene_(scene), options_(options) {
+MaterialBsdfs::MaterialBsdfs(const scene::Scene& scene, const BsdfOptions& options) : scene_(scene) {
     of_material_.reserve(scene.materials.size());
     for (const scene::Material& m : scene.materials) of_material_.push_back(Bsdf::of_material(m, options));
 }

@@ -22,11 +22,9 @@ public:
         const size_t m = size_t(hit.material);
         return of_material_[m].placed(scene_.materials[m], hit, scene_);
     }
-    const BsdfOptions& options() const { return options_; }
 
 private:
     const scene::Scene& scene_;
-    BsdfOptions options_;
     std::vector<Bsdf> of_material_;
 };
 
