@@ -41,20 +41,20 @@ constexpr double kBvhPerTriangle = 56;
 constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's Embree geometry
 
 // Photon tracing (photon/tracer.cpp) writes each stored photon once into its map's final array
-// (power rescaled in place at the end); a round's batches hold the round's photons again with
-// their direction and emission index. A round emits up to photon::round_batch_limit(threads)
-// batches of TraceOptions::batch_size emissions, sized by the map that still needs the most
-// emissions, and every map of the stream stores into it (the surplus is cut afterwards): with
-// volume maps, a full round fills the surface maps too. The slices are kept from round to round
-// (measured: 1 M to 6 M photons on cornell-diffuse, fog-caustic's volume maps).
+// (power rescaled in place at the end); the batches in flight hold their photons again with their
+// direction and emission index until committed. Up to photon::batches_in_flight(threads) batches
+// of TraceOptions::batch_size emissions are, and every map of the stream stores into them (the
+// surplus is cut when committed): with volume maps, each batch fills the surface maps too. The
+// slices are kept until the stream ends (measured: 1 M to 6 M photons on cornell-diffuse,
+// fog-caustic's volume maps).
 constexpr double kTracedPerPhoton = sizeof(Photon);
 constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(Vec3) + sizeof(uint32_t);  // photon, wi, emission
-// Stored photons per emitted one, for a round's size and when only --photons bounds a map (1.6
+// Stored photons per emitted one, for the batches in flight and when only --photons bounds a map (1.6
 // measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
 constexpr double kStoredPerEmitted = 1.6;
-// The photons a full round stores with `threads` threads per rank.
-double round_photons(int threads) {
-    return kStoredPerEmitted * double(photon::round_batch_limit(threads) * photon::TraceOptions{}.batch_size);
+// The photons the batches in flight store with `threads` threads per rank.
+double in_flight_photons(int threads) {
+    return kStoredPerEmitted * double(photon::batches_in_flight(threads) * photon::TraceOptions{}.batch_size);
 }
 // The k-d tree build (photon/kdtree.cpp) permutes the traced array in place: nothing per photon
 // beyond it. The irradiance cache's points (one per stride photons) are built in place too.
@@ -168,7 +168,7 @@ double stored_photons(const PhotonMapSettings& s, uint64_t emit) {
 // their caches and beam BVHs through the render pass.
 void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, int threads, const Phase& common,
                        std::vector<Phase>& phases) {
-    const double round = round_photons(threads);
+    const double in_flight = in_flight_photons(threads);
     bool delta = false;
     for (const scene::Material& m : scene.materials) delta |= photon::has_delta_lobe(m);
     const bool media = media_active(scene) && !o.photon_viz;
@@ -182,13 +182,14 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, int
     double total = 0;
     for (double x : n) total += x;
     const double volume = n[photon::kVolumeMap] + n[photon::kVolumeCausticMap];
-    // The largest round: the main stream (global, indirect, volume maps; volume photons are rare,
-    // so their rounds are full ones) or the caustic stream (caustic maps, through projection maps).
+    // The most photons in flight: in the main stream (global, indirect, volume maps; volume
+    // photons are rare, so the batches in flight fill up with surface photons) or the caustic
+    // stream (caustic maps, through projection maps); never more than the maps store.
     const double surface = n[photon::kGlobalMap] + n[photon::kIndirectMap];
-    const double main_round =
-        n[photon::kVolumeMap] > 0 && surface > 0 ? round : surface + n[photon::kVolumeMap];
-    const double caustic_round = n[photon::kCausticMap] + n[photon::kVolumeCausticMap];
-    const double retained = kBatchPerPhoton * std::min(std::max(main_round, caustic_round), round);
+    const double main_stream =
+        n[photon::kVolumeMap] > 0 && surface > 0 ? in_flight : surface + n[photon::kVolumeMap];
+    const double caustic_stream = n[photon::kCausticMap] + n[photon::kVolumeCausticMap];
+    const double retained = kBatchPerPhoton * std::min(std::max(main_stream, caustic_stream), in_flight);
     const double stride = std::max<uint32_t>(o.cache_stride, 1);
 
     Phase trace = common;

@@ -1,12 +1,16 @@
-// Photon tracing in deterministic batches and rounds (see tracer.h).
+// Photon tracing in deterministic batches: a pipeline in one process, rounds under MPI (see tracer.h).
 #include "photon/tracer.h"
 
 #include <tbb/parallel_for.h>
+#include <tbb/parallel_pipeline.h>
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <memory>
+#include <thread>
 
 #include "core/byte_buffer.h"
 #include "core/interrupt.h"
@@ -21,7 +25,7 @@ namespace {
 // What one batch of photon indices stored: per map, the photons (their power the raw flux x N,
 // see PhotonHit, rescaled by 1 / N once the maps are complete) and the index of the emitted photon
 // within the batch (so a map can be cut exactly after the emission that met its target). Slices
-// are reused from round to round: clear() keeps their capacity.
+// are reused from batch to batch: clear() keeps their capacity.
 struct Slice {
     std::vector<Photon> photons[kMapCount];
     std::vector<uint32_t> emission[kMapCount];
@@ -120,10 +124,10 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
     }
 }
 
-// Faults in the pages of a map's reserved but unused capacity on all cores: resize() would
-// otherwise take every page fault of the final array (one per 4 kB) in one thread between rounds
-// (33 ms of the 0.70 s that 4 M photons take on 2 threads; 3 ms after this). Writing raw bytes
-// to storage that holds no objects yet is allowed; resize() constructs the photons there. The
+// Faults in the pages of a map's reserved but unused capacity on all cores: the commits would
+// otherwise take every page fault of the final array (one per 4 kB) in the one thread that runs
+// them (33 ms of the 0.70 s that 4 M photons took on 2 threads; 3 ms after this). Writing raw
+// bytes to storage that holds no objects yet is allowed; insert() constructs the photons there. The
 // range is advised to transparent huge pages first: a 4 kB fault costs ~12 us on these virtual
 // machines (pvm guests), and faulting 4 M photons' 80 MB in 4 kB pages took 0.2 s of a 1.5 s trace.
 void fault_in_capacity(std::vector<Photon>& v) {
@@ -177,7 +181,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             if (h.after_specular) store(kCausticMap, ph, h.wi, j, h.bounces);
             if (h.after_diffuse) store(kIndirectMap, ph, h.wi, j, h.bounces);
             // Only caustic maps still filling: a path that went diffuse can never store a
-            // caustic photon again, so stop it here (most of the caustic map's rounds).
+            // caustic photon again, so stop it here (most of the caustic map's batches).
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
                    (!h.after_diffuse && (h.bsdf.flags() & shading::kSpecular));
         };
@@ -264,51 +268,175 @@ const char* map_name(int kind) {
 
 namespace {
 
-// One emission stream (photon indices 0, 1, 2... of `pass`) filling the maps in `wanted` into
-// `out` (see tracer.h for the rounds and the cut at a target).
-void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[kMapCount], uint64_t pass,
-                const ProjectionMap* projection, TracedPhotons& out) {
-    bool active[kMapCount];
-    bool any = false;
-    for (int m = 0; m < kMapCount; ++m) {
-        active[m] = wanted[m] && (o.target[m] > 0 || o.emit > 0);
-        any |= active[m];
-        // A map with a target ends within one emission of it (an emission stores at most one
-        // photon per scattering event): its final array is reserved once and filled in place.
-        // Reserved pages that are never written cost no memory.
-        if (active[m] && o.target[m] > 0) {
+// The maps of one emission stream, filled batch by batch in batch order (count, then fill): each
+// active map takes a batch's photons, cut after the emission that met its target. A map with a
+// target ends within one emission of it (an emission stores at most one photon per scattering
+// event): its final array is reserved once, its pages faulted in on all cores, and batches are
+// copied straight into it. Reserved pages that are never written cost no memory.
+class StreamMaps {
+public:
+    StreamMaps(const TraceOptions& o, const bool wanted[kMapCount], uint64_t cap, TracedPhotons& out)
+        : o_(o), cap_(cap), out_(out) {
+        for (int m = 0; m < kMapCount; ++m) {
+            active_[m] = wanted[m] && (o.target[m] > 0 || o.emit > 0);
+            if (!active_[m] || o.target[m] == 0) continue;
             const size_t most = size_t(o.target[m]) + size_t(o.max_depth) + 2;
             out.photons[m].reserve(most);
             fault_in_capacity(out.photons[m]);
             if (o.record_bounces) out.bounces[m].reserve(most);
         }
     }
-    const bool packets = packets_apply(ps, o);
-    const uint64_t cap =
-        std::min<uint64_t>(o.emit > 0 ? o.emit : ~0ull, o.max_emit > 0 ? o.max_emit : 0xffffffffull);
+    const bool* active() const { return active_; }
+    bool any() const { return mask() != 0; }
+    uint8_t mask() const {
+        uint8_t bits = 0;
+        for (int m = 0; m < kMapCount; ++m) bits |= uint8_t(active_[m]) << m;
+        return bits;
+    }
+    // Emissions [0, committed()) are in the maps (or were traced after a map's cut).
+    uint64_t committed() const { return end_; }
+
+    // Appends the slice of the batch of emissions [first, first + count) (batches in order). The
+    // statistics count the batches committed while a map was still filling.
+    void commit(const Slice& s, uint64_t first, uint64_t count) {
+        if (!any()) return;
+        for (int m = 0; m < kMapCount; ++m) {
+            if (!active_[m]) continue;
+            std::vector<Photon>& P = out_.photons[m];
+            const size_t n = s.photons[m].size();
+            size_t end = n;
+            if (o_.target[m] > 0 && P.size() + n >= o_.target[m]) {
+                end = size_t(o_.target[m] - P.size()) - 1;  // the photon meeting the target
+                const uint32_t e = s.emission[m][end];
+                while (end < n && s.emission[m][end] == e) ++end;
+                out_.emitted[m] = first + e + 1;
+                out_.reached[m] = true;
+                active_[m] = false;
+            }
+            if (P.size() + end > P.capacity()) {
+                // Only maps without a target (a fixed emission count) grow: by the rate so far.
+                const double per_emission = double(P.size() + end) / double(first + count);
+                const size_t expect =
+                    size_t(per_emission * double(cap_ - std::min(cap_, first + count)) * 1.05);
+                P.reserve(P.size() + end + expect);
+                fault_in_capacity(P);
+                if (o_.record_bounces) out_.bounces[m].reserve(P.size() + end + expect);
+            }
+            P.insert(P.end(), s.photons[m].begin(), s.photons[m].begin() + ptrdiff_t(end));
+            if (o_.record_bounces)
+                out_.bounces[m].insert(out_.bounces[m].end(), s.bounces[m].begin(),
+                                       s.bounces[m].begin() + ptrdiff_t(end));
+        }
+        out_.rays += s.rays;
+        end_ = first + count;
+    }
+
+    // The stream has ended: maps still active ran to the emission cap (their N is everything
+    // emitted), and the photons, which carry their raw power (flux x N), are divided by N. The
+    // power is rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa
+    // step. Four photons at a time (scale_rgbe4, the scalar functions' bits): one at a time this
+    // pass took 2.6 % of the tracing time.
+    void finish(const bool wanted[kMapCount]) {
+        out_.total_emitted += end_;
+        for (int m = 0; m < kMapCount; ++m)
+            if (active_[m]) out_.emitted[m] = end_, out_.reached[m] = o_.target[m] == 0;
+        for (int m = 0; m < kMapCount; ++m) {
+            std::vector<Photon>& P = out_.photons[m];
+            if (P.empty() || !wanted[m]) continue;
+            const float inv = 1.0f / float(out_.emitted[m]);
+            tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
+                              [&](const tbb::blocked_range<size_t>& r) {
+                                  size_t i = r.begin();
+                                  for (; i + 4 <= r.end(); i += 4) {
+                                      uint32_t w[4] = {P[i].power_rgbe, P[i + 1].power_rgbe,
+                                                       P[i + 2].power_rgbe, P[i + 3].power_rgbe};
+                                      scale_rgbe4(w, inv);
+                                      for (size_t k = 0; k < 4; ++k) P[i + k].power_rgbe = w[k];
+                                  }
+                                  for (; i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
+                              });
+        }
+    }
+
+private:
+    const TraceOptions& o_;
+    const uint64_t cap_;
+    TracedPhotons& out_;
+    bool active_[kMapCount];
+    uint64_t end_ = 0;
+};
+
+// One process: batches flow through a pipeline with no barrier between them. The calling
+// thread's oneTBB arena traces up to `in_flight` batches at once; each is committed as soon as it
+// and every batch before it are traced, and no batch is started once every map is full. Batch b
+// stores into the maps that were still active after the commit of batch b - in_flight (which the
+// pipeline's tokens guarantee has happened): a function of the batch index, so what a batch
+// traces does not depend on timing; a map cut earlier takes nothing more anyway.
+void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
+                     const ProjectionMap* projection, bool packets, uint64_t cap, uint64_t in_flight,
+                     StreamMaps& maps) {
     const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
+    const uint8_t initial = maps.mask();
+    std::vector<Slice> slices(in_flight);
+    // after[b % in_flight]: (b + 1) << 8 | the maps active after batch b's commit.
+    std::unique_ptr<std::atomic<uint64_t>[]> after(new std::atomic<uint64_t>[in_flight]);
+    std::atomic<bool> full{false};
+    // The pipeline's tokens let batch b start only once batch b - in_flight has left the last
+    // (in-order) stage; waiting for its record here makes that ordering explicit (it never waits).
+    const auto after_commit = [&](uint64_t b) {
+        uint64_t v;
+        while (((v = after[b % in_flight].load(std::memory_order_acquire)) >> 8) != b + 1)
+            std::this_thread::yield();
+        return uint8_t(v);
+    };
+    for (uint64_t i = 0; i < in_flight; ++i) after[i].store(0);
+    uint64_t next = 0;  // the next batch to start
+    tbb::parallel_pipeline(
+        in_flight,
+        tbb::make_filter<void,
+                         uint64_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> uint64_t {
+            // An interrupt ends tracing here: the caller renders
+            // nothing from incomplete maps.
+            if (full.load() || next * B >= cap || interrupt::requested()) {
+                fc.stop();
+                return 0;
+            }
+            return next++;
+        }) & tbb::make_filter<uint64_t, uint64_t>(tbb::filter_mode::parallel, [&](uint64_t b) {
+            const uint8_t mask = b < in_flight ? initial : after_commit(b - in_flight);
+            bool active[kMapCount];
+            for (int m = 0; m < kMapCount; ++m) active[m] = mask >> m & 1;
+            Slice& s = slices[b % in_flight];
+            s.clear();
+            const uint64_t first = b * B;
+            trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, cap - first), s);
+            return b;
+        }) & tbb::make_filter<uint64_t, void>(tbb::filter_mode::serial_in_order, [&](uint64_t b) {
+            const uint64_t first = b * B;
+            maps.commit(slices[b % in_flight], first, std::min(B, cap - first));
+            after[b % in_flight].store((b + 1) << 8 | maps.mask(), std::memory_order_release);
+            if (!maps.any()) full.store(true);
+        }));
+}
+
+// Under MPI: rounds of batches, each rank tracing the batches it owns; after each round the ranks
+// exchange their slices (exchange_slices) and every rank commits them all in batch order. A
+// round's batches store into the maps active at its start; its size follows the counts stored so
+// far (enough emissions to meet the farthest target with 5 % to spare), up to `most_batches`.
+void trace_rounds(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
+                  const ProjectionMap* projection, bool packets, uint64_t cap, uint64_t most_batches,
+                  StreamMaps& maps, TracedPhotons& out) {
+    const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
+    std::vector<Slice> slices;
     uint64_t next = 0;  // first photon index of the next round
     uint64_t round_batches = 4;
-    // A round's batches hold their photons until its end, and a slice's first use takes its pages'
-    // faults (~12 us per 4 kB on these virtual machines): rounds of at most 16 batches per thread
-    // (every rank's most threads; 32 at least) keep that memory small, yet give each thread enough
-    // batches that the round's last one leaves the others idle only briefly. On 1 or 2 threads the
-    // old limit of 256 batches took 19 k page faults for 4 M photons and 1.46 s on 1 thread; 16 or
-    // 32 batches took 3.3 k / 4.3 k and 1.2 s. 16 threads keep 256.
-    // Round sizes change nothing in the maps (batches are fixed ranges of indices, a map is cut
-    // after the exact emission that met its target), so this may depend on the threads.
-    uint32_t threads = uint32_t(worker_threads());
-    dist::max(&threads, 1);
-    const uint64_t most_batches = round_batch_limit(int(threads));
-    std::vector<Slice> slices;
-    std::vector<size_t> take[kMapCount], offset[kMapCount];  // per batch: photons kept, where they go
-    // An interrupt ends tracing at the next round (its batches are skipped): the caller renders
-    // nothing from incomplete maps.
-    // (dist::any: under MPI an interrupt on one rank ends the rounds of all.)
-    while (any && next < cap && ps.lights.size() > 0 && !dist::any(interrupt::requested())) {
+    // (dist::any: an interrupt on one rank ends the rounds of all.)
+    while (maps.any() && next < cap && !dist::any(interrupt::requested())) {
         const uint64_t n_round = std::min(round_batches * B, cap - next);
         const uint64_t nb = (n_round + B - 1) / B;
         if (slices.size() < nb) slices.resize(nb);
+        bool active[kMapCount];
+        std::copy_n(maps.active(), kMapCount, active);
         tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
             slices[b].clear();
             if (interrupt::requested() || !dist::owns(b)) return;
@@ -317,61 +445,14 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
                         slices[b]);
         });
         exchange_slices(slices, active, out);
-        // Count, then fill: the batches' photons in batch order, each map cut after the emission
-        // that met its target, copied in parallel straight into the final arrays.
-        for (int m = 0; m < kMapCount; ++m) {
-            take[m].assign(nb, 0);
-            offset[m].assign(nb, 0);
-            if (!active[m]) continue;
-            size_t size = out.photons[m].size();
-            for (uint64_t b = 0; b < nb && active[m]; ++b) {
-                const Slice& s = slices[b];
-                const size_t n = s.photons[m].size();
-                size_t end = n;
-                if (o.target[m] > 0 && size + n >= o.target[m]) {
-                    end = size_t(o.target[m] - size) - 1;  // the photon meeting the target
-                    const uint32_t e = s.emission[m][end];
-                    while (end < n && s.emission[m][end] == e) ++end;
-                    out.emitted[m] = next + b * B + e + 1;
-                    out.reached[m] = true;
-                    active[m] = false;
-                }
-                offset[m][b] = size;
-                take[m][b] = end;
-                size += end;
-            }
-            if (size > out.photons[m].capacity()) {
-                // Only maps without a target (a fixed emission count) grow: by the rate so far.
-                const double per_emission = double(size) / double(next + n_round);
-                const size_t expect =
-                    size_t(per_emission * double(cap - std::min(cap, next + n_round)) * 1.05);
-                out.photons[m].reserve(size + expect);
-                fault_in_capacity(out.photons[m]);
-                if (o.record_bounces) out.bounces[m].reserve(size + expect);
-            }
-            out.photons[m].resize(size);
-            if (o.record_bounces) out.bounces[m].resize(size);
+        for (uint64_t b = 0; b < nb; ++b) {
+            const uint64_t first = next + b * B;
+            maps.commit(slices[b], first, std::min(B, next + n_round - first));
         }
-        tbb::parallel_for(uint64_t(0), nb, [&](uint64_t b) {
-            const Slice& s = slices[b];
-            for (int m = 0; m < kMapCount; ++m) {
-                if (take[m][b] == 0) continue;
-                std::copy_n(s.photons[m].begin(), take[m][b],
-                            out.photons[m].begin() + ptrdiff_t(offset[m][b]));
-                if (o.record_bounces)
-                    std::copy_n(s.bounces[m].begin(), take[m][b],
-                                out.bounces[m].begin() + ptrdiff_t(offset[m][b]));
-            }
-        });
-        for (uint64_t b = 0; b < nb; ++b) out.rays += slices[b].rays;
         next += n_round;
-        // Size the next round from the storage rate so far (counts only: deterministic): enough
-        // emissions to meet the farthest target with 5 % to spare, between 1 and 256 batches.
         double need = 0;
-        any = false;
         for (int m = 0; m < kMapCount; ++m) {
-            if (!active[m]) continue;
-            any = true;
+            if (!maps.active()[m]) continue;
             if (o.target[m] == 0) {
                 need = double(cap - next);
                 continue;
@@ -383,37 +464,35 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
         }
         round_batches = std::clamp<uint64_t>(uint64_t(std::ceil(need / double(B))), 1, most_batches);
     }
-    std::vector<Slice>().swap(slices);  // tracing no longer needs them
-    out.total_emitted += next;
-    // Maps still active ran to the emission cap: their N is everything emitted.
-    for (int m = 0; m < kMapCount; ++m)
-        if (active[m]) out.emitted[m] = next, out.reached[m] = o.target[m] == 0;
-    // The photons carry their raw power (flux x N): divide by N now that N is known. The power is
-    // rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa step. Four
-    // photons at a time (scale_rgbe4, the scalar functions' bits): one at a time this pass took
-    // 2.6 % of the tracing time.
-    for (int m = 0; m < kMapCount; ++m) {
-        std::vector<Photon>& P = out.photons[m];
-        if (P.empty() || !wanted[m]) continue;
-        const float inv = 1.0f / float(out.emitted[m]);
-        tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
-                          [&](const tbb::blocked_range<size_t>& r) {
-                              size_t i = r.begin();
-                              for (; i + 4 <= r.end(); i += 4) {
-                                  uint32_t w[4] = {P[i].power_rgbe, P[i + 1].power_rgbe, P[i + 2].power_rgbe,
-                                                   P[i + 3].power_rgbe};
-                                  scale_rgbe4(w, inv);
-                                  for (size_t k = 0; k < 4; ++k) P[i + k].power_rgbe = w[k];
-                              }
-                              for (; i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
-                          });
+}
+
+// One emission stream (photon indices 0, 1, 2... of `pass`) filling the maps in `wanted` into
+// `out` (see tracer.h for the batches and the cut at a target).
+void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[kMapCount], uint64_t pass,
+                const ProjectionMap* projection, TracedPhotons& out) {
+    const uint64_t cap =
+        std::min<uint64_t>(o.emit > 0 ? o.emit : ~0ull, o.max_emit > 0 ? o.max_emit : 0xffffffffull);
+    StreamMaps maps(o, wanted, cap, out);
+    if (maps.any() && ps.lights.size() > 0) {
+        // Batches in flight (in the pipeline) or per round (under MPI): the most any rank allows.
+        uint32_t threads = uint32_t(worker_threads());
+        dist::max(&threads, 1);
+        const uint64_t in_flight = batches_in_flight(int(threads));
+        const bool packets = packets_apply(ps, o);
+        if (dist::distributed())
+            trace_rounds(ps, o, pass, projection, packets, cap, in_flight, maps, out);
+        else
+            trace_pipelined(ps, o, pass, projection, packets, cap, in_flight, maps);
     }
+    maps.finish(wanted);
 }
 
 }  // namespace
 
-uint64_t round_batch_limit(int threads) {
-    return std::clamp<uint64_t>(16ull * uint64_t(std::max(threads, 1)) * uint64_t(dist::ranks()), 32, 1024);
+uint64_t batches_in_flight(int threads) {
+    const uint64_t t = uint64_t(std::max(threads, 1));
+    if (dist::ranks() > 1) return std::clamp<uint64_t>(16 * t * uint64_t(dist::ranks()), 32, 1024);
+    return std::clamp<uint64_t>(4 * t, 8, 1024);
 }
 
 TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {

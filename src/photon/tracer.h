@@ -9,10 +9,11 @@
 // the lights only towards specular objects (projection_map.h); its N counts those emissions.
 //
 // Determinism: photon i's random numbers depend only on (seed, i); batch b (indices
-// [b * batch_size, (b + 1) * batch_size)) writes its own slice, slices are concatenated in batch
-// order, and a map is cut after the exact emission that met its target whatever the rounds'
-// sizes (which follow the counts stored so far and the threads). So the maps are bit-identical at
-// any thread count.
+// [b * batch_size, (b + 1) * batch_size)) writes its own slice, slices are committed to the maps
+// in batch order, and a map is cut after the exact emission that met its target, however many
+// batches are in flight (the threads') or past the cut. So the maps are bit-identical at any
+// thread count (and rank count); the statistics (rays, total emitted) count the batches up to
+// the last cut and are identical for a given thread count.
 #pragma once
 
 #include <cstdint>
@@ -66,7 +67,9 @@ struct TracedPhotons {
     std::vector<uint8_t> bounces[kMapCount];
     uint64_t emitted[kMapCount] = {};  // N of each map (photon power = flux share / N)
     bool reached[kMapCount] = {};      // the target was met (false if capped by max_emit)
-    uint64_t total_emitted = 0;        // photon paths traced
+    // Photon paths and rays of the batches committed up to the last map's cut (or the emission
+    // cap); batches traced past it are left out.
+    uint64_t total_emitted = 0;
     uint64_t rays = 0;
     double caustic_fraction = 1;    // share of the emitted power the projection maps sample
     double projection_seconds = 0;  // building the projection maps
@@ -83,9 +86,12 @@ struct TracedPhotons {
 // Traces photons in the calling thread's oneTBB arena. A scene without lights gives empty maps.
 TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& options);
 
-// The most batches in one round of tracing with `threads` threads on each rank (trace_photons
-// takes every rank's most): 16 per thread and rank, 32 to 1024. A round's batches hold their
-// photons until its end (the memory estimate counts them).
-uint64_t round_batch_limit(int threads);
+// The batches in flight at once with `threads` threads on each rank (trace_photons takes every
+// rank's most). In one process, 4 per thread (8 to 1024): the pipeline's tokens, batches traced or
+// waiting for their commit; a batch stores into the maps still active that many batches earlier,
+// so after a map's cut at most that many batches still trace its photons. Under MPI, the most
+// batches of a round: 16 per thread and rank (32 to 1024), enough that the exchange after each
+// round is rare. Each batch holds its photons until committed (the memory estimate counts them).
+uint64_t batches_in_flight(int threads);
 
 }  // namespace phos::photon
