@@ -293,9 +293,6 @@ public:
         for (int m = 0; m < kMapCount; ++m) bits |= uint8_t(active_[m]) << m;
         return bits;
     }
-    // Emissions [0, committed()) are in the maps (or were traced after a map's cut).
-    uint64_t committed() const { return end_; }
-
     // Appends the slice of the batch of emissions [first, first + count) (batches in order). The
     // statistics count the batches committed while a map was still filling.
     void commit(const Slice& s, uint64_t first, uint64_t count) {
@@ -391,32 +388,35 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
     };
     for (uint64_t i = 0; i < in_flight; ++i) after[i].store(0);
     uint64_t next = 0;  // the next batch to start
-    tbb::parallel_pipeline(
-        in_flight,
-        tbb::make_filter<void,
-                         uint64_t>(tbb::filter_mode::serial_in_order, [&](tbb::flow_control& fc) -> uint64_t {
-            // An interrupt ends tracing here: the caller renders
-            // nothing from incomplete maps.
-            if (full.load() || next * B >= cap || interrupt::requested()) {
-                fc.stop();
-                return 0;
-            }
-            return next++;
-        }) & tbb::make_filter<uint64_t, uint64_t>(tbb::filter_mode::parallel, [&](uint64_t b) {
-            const uint8_t mask = b < in_flight ? initial : after_commit(b - in_flight);
-            bool active[kMapCount];
-            for (int m = 0; m < kMapCount; ++m) active[m] = mask >> m & 1;
-            Slice& s = slices[b % in_flight];
-            s.clear();
-            const uint64_t first = b * B;
-            trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, cap - first), s);
-            return b;
-        }) & tbb::make_filter<uint64_t, void>(tbb::filter_mode::serial_in_order, [&](uint64_t b) {
-            const uint64_t first = b * B;
-            maps.commit(slices[b % in_flight], first, std::min(B, cap - first));
-            after[b % in_flight].store((b + 1) << 8 | maps.mask(), std::memory_order_release);
-            if (!maps.any()) full.store(true);
-        }));
+    // An interrupt ends tracing at the next batch: the caller renders nothing from incomplete maps.
+    const auto start = [&](tbb::flow_control& fc) -> uint64_t {
+        if (full.load() || next * B >= cap || interrupt::requested()) {
+            fc.stop();
+            return 0;
+        }
+        return next++;
+    };
+    const auto trace = [&](uint64_t b) {
+        const uint8_t mask = b < in_flight ? initial : after_commit(b - in_flight);
+        bool active[kMapCount];
+        for (int m = 0; m < kMapCount; ++m) active[m] = mask >> m & 1;
+        Slice& s = slices[b % in_flight];
+        s.clear();
+        const uint64_t first = b * B;
+        trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, cap - first), s);
+        return b;
+    };
+    const auto commit = [&](uint64_t b) {
+        const uint64_t first = b * B;
+        maps.commit(slices[b % in_flight], first, std::min(B, cap - first));
+        after[b % in_flight].store((b + 1) << 8 | maps.mask(), std::memory_order_release);
+        if (!maps.any()) full.store(true);
+    };
+    using tbb::filter_mode;
+    tbb::parallel_pipeline(in_flight,
+                           tbb::make_filter<void, uint64_t>(filter_mode::serial_in_order, start) &
+                               tbb::make_filter<uint64_t, uint64_t>(filter_mode::parallel, trace) &
+                               tbb::make_filter<uint64_t, void>(filter_mode::serial_in_order, commit));
 }
 
 // Under MPI: rounds of batches, each rank tracing the batches it owns; after each round the ranks
