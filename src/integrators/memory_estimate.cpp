@@ -43,14 +43,14 @@ constexpr double kPerGeometry = 1024;  // an analytic shape's or an instance's E
 // Photon tracing (photon/tracer.cpp) writes each stored photon once into its map's final array
 // (power rescaled in place at the end); the batches in flight hold their photons again with their
 // direction and emission index until committed. Up to photon::batches_in_flight(threads) batches
-// of TraceOptions::batch_size emissions are, and every map of the stream stores into them (the
-// surplus is cut when committed): with volume maps, each batch fills the surface maps too. The
-// slices are kept until the stream ends (measured: 1 M to 6 M photons on cornell-diffuse,
-// fog-caustic's volume maps).
+// of TraceOptions::batch_size emissions are in flight, and every map of the stream stores into
+// them (the surplus is cut when committed): with volume maps, each batch fills the surface maps
+// too. The slices are kept until the stream ends (measured: 1 M to 6 M photons on
+// cornell-diffuse, fog-caustic's volume maps).
 constexpr double kTracedPerPhoton = sizeof(Photon);
 constexpr double kBatchPerPhoton = sizeof(Photon) + sizeof(Vec3) + sizeof(uint32_t);  // photon, wi, emission
-// Stored photons per emitted one, for the batches in flight and when only --photons bounds a map (1.6
-// measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
+// Stored photons per emitted one, for the batches in flight and when only --photons bounds a map
+// (1.6 measured on cornell-diffuse's global map: diffuse scenes store one photon per bounce).
 constexpr double kStoredPerEmitted = 1.6;
 // The photons the batches in flight store with `threads` threads per rank.
 double in_flight_photons(int threads) {
