@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
 #include <thread>
 
 #include "core/byte_buffer.h"
@@ -375,8 +376,18 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
     const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
     const uint8_t initial = maps.mask();
     std::vector<Slice> slices(in_flight);
-    // after[b % in_flight]: (b + 1) << 8 | the maps active after batch b's commit.
+    // after[b % in_flight]: (b + 1) << 8 | the maps active after batch b's commit. traced[b %
+    // in_flight]: b + 1 once batch b's slice is written. The pipeline commits a batch only after
+    // its trace and returns only after every stage's call has ended; these acquire-release
+    // records (and `calls`, released at the end of every call) also say so where
+    // ThreadSanitizer can see it: oneTBB's pipeline synchronises inside its uninstrumented library.
     std::unique_ptr<std::atomic<uint64_t>[]> after(new std::atomic<uint64_t>[in_flight]);
+    std::unique_ptr<std::atomic<uint64_t>[]> traced(new std::atomic<uint64_t>[in_flight]);
+    std::atomic<uint64_t> calls{0};
+    struct EndOfCall {
+        std::atomic<uint64_t>& calls;
+        ~EndOfCall() { calls.fetch_add(1, std::memory_order_release); }
+    };
     std::atomic<bool> full{false};
     // The pipeline's tokens let batch b start only once batch b - in_flight has left the last
     // (in-order) stage; waiting for its record here makes that ordering explicit (it never waits).
@@ -386,10 +397,11 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
             std::this_thread::yield();
         return uint8_t(v);
     };
-    for (uint64_t i = 0; i < in_flight; ++i) after[i].store(0);
+    for (uint64_t i = 0; i < in_flight; ++i) after[i].store(0), traced[i].store(0);
     uint64_t next = 0;  // the next batch to start
     // An interrupt ends tracing at the next batch: the caller renders nothing from incomplete maps.
     const auto start = [&](tbb::flow_control& fc) -> uint64_t {
+        const EndOfCall end{calls};
         if (full.load() || next * B >= cap || interrupt::requested()) {
             fc.stop();
             return 0;
@@ -397,6 +409,7 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
         return next++;
     };
     const auto trace = [&](uint64_t b) {
+        const EndOfCall end{calls};
         const uint8_t mask = b < in_flight ? initial : after_commit(b - in_flight);
         bool active[kMapCount];
         for (int m = 0; m < kMapCount; ++m) active[m] = mask >> m & 1;
@@ -404,9 +417,13 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
         s.clear();
         const uint64_t first = b * B;
         trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, cap - first), s);
+        traced[b % in_flight].store(b + 1, std::memory_order_release);
         return b;
     };
     const auto commit = [&](uint64_t b) {
+        const EndOfCall end{calls};
+        if (traced[b % in_flight].load(std::memory_order_acquire) != b + 1)
+            throw std::logic_error("photon tracer: a batch reached its commit before its trace");
         const uint64_t first = b * B;
         maps.commit(slices[b % in_flight], first, std::min(B, cap - first));
         after[b % in_flight].store((b + 1) << 8 | maps.mask(), std::memory_order_release);
@@ -417,6 +434,7 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
                            tbb::make_filter<void, uint64_t>(filter_mode::serial_in_order, start) &
                                tbb::make_filter<uint64_t, uint64_t>(filter_mode::parallel, trace) &
                                tbb::make_filter<uint64_t, void>(filter_mode::serial_in_order, commit));
+    calls.load(std::memory_order_acquire);
 }
 
 // Under MPI: rounds of batches, each rank tracing the batches it owns; after each round the ranks
