@@ -152,6 +152,9 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
         P.stats.add_value("photon batches exchanged (MPI)",
                           fmt("%.3g MB", double(traced.exchanged_bytes) * 1e-6) +
                               fmt(" in %.3f s", traced.exchange_seconds));
+    P.stats.add_value("photon map pages faulted in",
+                      fmt("%.3g MB", double(traced.faulted_bytes) * 1e-6) +
+                          fmt(" in %.3f s of the trace", traced.fault_in_seconds));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
     P.stats.add_value("photon map build rate",

@@ -131,13 +131,14 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
 // bytes to storage that holds no objects yet is allowed; insert() constructs the photons there. The
 // range is advised to transparent huge pages first: a 4 kB fault costs ~12 us on these virtual
 // machines (pvm guests), and faulting 4 M photons' 80 MB in 4 kB pages took 0.2 s of a 1.5 s trace.
-void fault_in_capacity(std::vector<Photon>& v) {
+// Returns the bytes faulted in.
+uint64_t fault_in_capacity(std::vector<Photon>& v) {
     // Chunks are the huge pages themselves (2 MiB-aligned): two threads touching halves of one
     // huge page would wait for each other while the kernel clears it.
     constexpr uintptr_t kPage = 4096, kChunk = uintptr_t(1) << 21;
     const uintptr_t lo = reinterpret_cast<uintptr_t>(v.data() + v.size());
     const uintptr_t hi = lo + (v.capacity() - v.size()) * sizeof(Photon);
-    if (hi <= lo) return;
+    if (hi <= lo) return 0;
     memory::advise_huge_pages(reinterpret_cast<void*>(lo), hi - lo);
     const uintptr_t first = lo / kChunk, last = (hi - 1) / kChunk;
     tbb::parallel_for(first, last + 1, [&](uintptr_t c) {
@@ -145,6 +146,7 @@ void fault_in_capacity(std::vector<Photon>& v) {
         for (uintptr_t a = from; a < to; a = (a / kPage + 1) * kPage)
             *reinterpret_cast<unsigned char*>(a) = 0;
     });
+    return hi - lo;
 }
 
 // Whether photons travel 16 at a time (trace_photons' packets) in trace_batch.
@@ -283,7 +285,7 @@ public:
             if (!active_[m] || o.target[m] == 0) continue;
             const size_t most = size_t(o.target[m]) + size_t(o.max_depth) + 2;
             out.photons[m].reserve(most);
-            fault_in_capacity(out.photons[m]);
+            fault_in(out.photons[m]);
             if (o.record_bounces) out.bounces[m].reserve(most);
         }
     }
@@ -317,7 +319,7 @@ public:
                 const size_t expect =
                     size_t(per_emission * double(cap_ - std::min(cap_, first + count)) * 1.05);
                 P.reserve(P.size() + end + expect);
-                fault_in_capacity(P);
+                fault_in(P);
                 if (o_.record_bounces) out_.bounces[m].reserve(P.size() + end + expect);
             }
             P.insert(P.end(), s.photons[m].begin(), s.photons[m].begin() + ptrdiff_t(end));
@@ -357,6 +359,15 @@ public:
     }
 
 private:
+    // fault_in_capacity, counted in the statistics: on this project's virtual machines the first
+    // touch of memory the host has taken back costs 1-2 s per GB, of memory a process has just
+    // freed ~0.06 s (docs/performance.md, session 34).
+    void fault_in(std::vector<Photon>& v) {
+        const auto t0 = std::chrono::steady_clock::now();
+        out_.faulted_bytes += fault_in_capacity(v);
+        out_.fault_in_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+
     const TraceOptions& o_;
     const uint64_t cap_;
     TracedPhotons& out_;

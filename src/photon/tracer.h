@@ -75,7 +75,11 @@ struct TracedPhotons {
     double projection_seconds = 0;  // building the projection maps
     double caustic_seconds = 0;     // tracing the caustic stream (projection maps only)
     double exchange_seconds = 0;    // under MPI: exchanging the batches between ranks
-    uint64_t exchanged_bytes = 0;   // under MPI: the batches' bytes (every rank receives them all)
+    // The maps' reserved pages, faulted in on all cores before the photons are written there (part
+    // of the tracing time; the first touch of memory is the costliest part of writing it).
+    uint64_t faulted_bytes = 0;
+    double fault_in_seconds = 0;
+    uint64_t exchanged_bytes = 0;  // under MPI: the batches' bytes (every rank receives them all)
     uint64_t stored() const {
         uint64_t n = 0;
         for (const auto& p : photons) n += p.size();

@@ -51,6 +51,9 @@ TEST(Memory, PhotonMapEstimateMatchesPeak) {
     const std::string out = expect_estimate_near_peak(
         kCornell + " --resolution 16 16 --spp 1 --global 3000000 --no-irradiance-cache", "photon maps");
     EXPECT_NE(out.find("photon map build"), std::string::npos) << out;
+    // The global map's array, reserved at its budget (plus one path's photons) and faulted in
+    // before tracing: 20 bytes per photon.
+    EXPECT_NEAR(stat_bytes(out, "photon map pages faulted in"), 3000018.0 * 20, 0.01e6) << out;
 }
 
 TEST(Memory, SppmEstimateMatchesPeak) {
