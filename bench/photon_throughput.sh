@@ -5,7 +5,9 @@
 #     (../shared/bench/anchors/embree_rays.cpp, built here with its own build line), 1 and 2 threads;
 #   - phos's photon tracer on cornell-diffuse (the photonmap command below, 4 M global photons):
 #     photon rays per second of `time photon trace` (-v), its ratio to the anchor at the same thread
-#     count, and the 1 -> 2 thread scaling of tracing and of the k-d tree build;
+#     count, and the 1 -> 2 thread scaling of tracing and of the k-d tree build; fault-in-s is the
+#     part of the trace that first touched the map's reserved pages (-v; on virtual machines whose
+#     host takes freed memory back it swings from a few ms to ~0.1 s per 80 MB);
 #   - with --big: 100 M global photons (2 threads): peak RSS against the map's own bytes (20 B per
 #     photon) and the build rate. Needs ~3 GB of memory and a few minutes.
 # Ratios, not absolute figures, are what to compare between machines: run it on an idle machine
@@ -43,9 +45,9 @@ photonmap() {
 calc() { awk "BEGIN { print $1 }"; }
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
 
-printf '| %-7s | %13s | %13s | %6s | %8s | %13s | %13s | %13s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio \
-    trace-s "build Mphot/s" "Embree scaling" "trace scaling" "build scaling"
-printf '| %-7s | %13s | %13s | %6s | %8s | %13s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- --- ---
+printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %13s | %13s | %13s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio \
+    trace-s fault-in-s "build Mphot/s" "Embree scaling" "trace scaling" "build scaling"
+printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %13s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- --- --- ---
 first=""
 for t in $threads; do
     anchor=$("$out/rays" "$t" "${PHOS_ANCHOR_RAYS:-20000000}" | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')
@@ -54,10 +56,11 @@ for t in $threads; do
     trace=$(field "time photon trace:")
     build_s=$(field "time photon map build:")
     stored=$(sed -n 's/.*global map: \([0-9]*\) photons.*/\1/p' "$out/pm.log")
+    fault=$(sed -n 's/.*pages faulted in: .* in \([0-9.]*\) s.*/\1/p' "$out/pm.log")
     rate=$(calc "$rays / $trace / 1000000")
     [ -z "$first" ] && first=$t anchor_1=$anchor trace_1=$trace build_1=$build_s
-    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" "$rate" \
-        "$(calc "$rate / $anchor")" "$trace" "$(calc "$stored / $build_s / 1000000")" \
+    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10.3f | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" \
+        "$rate" "$(calc "$rate / $anchor")" "$trace" "$fault" "$(calc "$stored / $build_s / 1000000")" \
         "$(calc "$anchor / $anchor_1")" "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
 done
 echo "(scaling: against $first thread(s))"
