@@ -212,15 +212,17 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
 
 namespace {
 
-// Under MPI each rank traces the batches it owns (dist::owns(b)); this gives every rank every
-// batch's slice (rank 0 gathers them and broadcasts the lot), so all ranks hold the same maps.
-void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], TracedPhotons& out) {
+// Under MPI each rank traces the batches of the round it owns (dist::owns(b)); this gives every
+// rank each of the round's `count` batches' slices (rank 0 gathers them and broadcasts the lot),
+// so all ranks hold the same maps. Slices past `count` are left from a larger earlier round.
+void exchange_slices(std::vector<Slice>& slices, uint64_t count, const bool active[kMapCount],
+                     TracedPhotons& out) {
     if (!dist::distributed()) return;
     const auto t0 = std::chrono::steady_clock::now();
     std::string mine;
     {
         ByteWriter w(mine);
-        for (size_t b = 0; b < slices.size(); ++b) {
+        for (size_t b = 0; b < count; ++b) {
             if (!dist::owns(b)) continue;
             const Slice& s = slices[b];
             w.put(uint64_t(b));
@@ -238,7 +240,7 @@ void exchange_slices(std::vector<Slice>& slices, const bool active[kMapCount], T
     ByteReader r(all, "photon batches from the other ranks");
     while (!r.at_end()) {
         const uint64_t b = r.get<uint64_t>();
-        if (b >= slices.size()) r.fail("batch index out of range");
+        if (b >= count) r.fail("batch index out of range");
         Slice& s = slices[b];
         s.rays = r.get<uint64_t>();
         for (int m = 0; m < kMapCount; ++m) {
@@ -473,7 +475,7 @@ void trace_rounds(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
             trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, next + n_round - first),
                         slices[b]);
         });
-        exchange_slices(slices, active, out);
+        exchange_slices(slices, nb, active, out);
         for (uint64_t b = 0; b < nb; ++b) {
             const uint64_t first = next + b * B;
             maps.commit(slices[b], first, std::min(B, next + n_round - first));
