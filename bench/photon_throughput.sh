@@ -56,10 +56,12 @@ for t in $threads; do
     trace=$(field "time photon trace:")
     build_s=$(field "time photon map build:")
     stored=$(sed -n 's/.*global map: \([0-9]*\) photons.*/\1/p' "$out/pm.log")
+    # (-: a build from before session 34, whose -v has no such line)
     fault=$(sed -n 's/.*pages faulted in: .* in \([0-9.]*\) s.*/\1/p' "$out/pm.log")
+    [ -n "$fault" ] || fault=-
     rate=$(calc "$rays / $trace / 1000000")
     [ -z "$first" ] && first=$t anchor_1=$anchor trace_1=$trace build_1=$build_s
-    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10.3f | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" \
+    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10s | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" \
         "$rate" "$(calc "$rate / $anchor")" "$trace" "$fault" "$(calc "$stored / $build_s / 1000000")" \
         "$(calc "$anchor / $anchor_1")" "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
 done
