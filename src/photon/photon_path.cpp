@@ -32,27 +32,32 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& 
     return true;
 }
 
+// One Lambert lobe: the code of the general case below with its three absent kinds left out (their
+// probabilities are 0, so they neither change the total nor catch u), and sample_lobes(kDiffuse)
+// of such a BSDF.
+bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out) {
+    Rgb albedo(0.0f);
+    albedo += lobe.kd;
+    float p = std::max(albedo.average(), 0.0f);
+    if (!(p > 0)) return false;
+    if (p > 1) p /= p;
+    const float u = sampler.next();
+    sampler.next();  // u_lobe: one lobe, nothing to choose
+    const Vec2 u_dir = sampler.next2();
+    if (u >= p) return false;  // absorbed
+    const auto s = lobe.sample(wo, u_dir);
+    if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
+    power = power * s->weight * (1.0f / p);
+    wi_out = s->wi;
+    return true;
+}
+
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
                     bool& specular) {
     using namespace shading;
     if (bsdf.is_lambertian()) {
-        // One Lambert lobe: the code below with its three absent kinds left out (their
-        // probabilities are 0, so they neither change the total nor catch u).
-        Rgb albedo(0.0f);
-        albedo += bsdf.diffuse_albedo();
-        float p = std::max(albedo.average(), 0.0f);
-        if (!(p > 0)) return false;
-        if (p > 1) p /= p;
-        const float u = sampler.next();
-        const float u_lobe = sampler.next();
-        const Vec2 u_dir = sampler.next2();
-        if (u >= p) return false;  // absorbed
-        const auto s = bsdf.sample_lobes(kDiffuse, wo, u_lobe, u_dir, TransportMode::Importance);
-        if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
-        power = power * s->weight * (1.0f / p);
-        wi_out = s->wi;
         specular = false;
-        return true;
+        return scatter_photon(bsdf.lambert_lobe(), wo, sampler, power, wi_out);
     }
     const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
     // Probability of each lobe kind = its albedo averaged over channels (Jensen). If the material

@@ -32,7 +32,7 @@ struct PhotonScene {
 // A photon arriving at a surface with a non-specular (diffuse or glossy) component.
 struct PhotonHit {
     const accel::SurfaceHit& hit;
-    const shading::Bsdf& bsdf;
+    uint32_t bsdf_flags;  // the LobeFlags of the BSDF at the hit (Bsdf::flags)
     Vec3 wi;              // unit direction towards where the photon came from
     Rgb power;            // flux in W times the number of photons emitted (divide by N emitted)
     int bounces;          // scattering events before this hit (0 = straight from the light)
@@ -115,6 +115,9 @@ bool visit_hit(Visitor& visit, const Hit& h) {
 // expectation) and sets `wi_out` and whether the chosen lobe was specular.
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
                     bool& specular);
+// The same for a BSDF made of `lobe` alone (what scatter_photon does for it, to the bit); the
+// scattering is diffuse.
+bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out);
 
 // A photon between events: what trace_photon carries from one bounce to the next (also the
 // state of each lane of the photon tracer's wavefront, tracer.cpp).
@@ -146,16 +149,29 @@ template <class Visitor>
 bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const accel::SurfaceHit& hit,
                   PhotonState& st, Visitor& visit, Vec3& wi) {
     const Vec3 wo = -normalize(st.ray.dir);
-    const shading::Bsdf bsdf = ps.bsdfs.at(hit);
-    if (bsdf.has_non_specular()) {
-        const PhotonHit ph{hit, bsdf, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
-        // A visitor returning bool may end the path (false): e.g. once no map it fills can
-        // take this photon any more.
-        if (!visit_hit(visit, ph)) return false;
-    }
-    if (st.bounces == options.max_bounces) return false;
+    // The visit, then scatter(specular) samples the BSDF.
+    const auto visit_and_scatter = [&](uint32_t flags, auto&& scatter) {
+        if (flags & (shading::kDiffuse | shading::kGlossy)) {
+            const PhotonHit ph{hit, flags, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
+            // A visitor returning bool may end the path (false): e.g. once no map it fills can
+            // take this photon any more.
+            if (!visit_hit(visit, ph)) return false;
+        }
+        return st.bounces != options.max_bounces && scatter();
+    };
     bool specular = false;
-    if (!scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular)) return false;
+    // A lone Lambert lobe (most surfaces) scatters without a copy of the whole BSDF.
+    shading::LambertLobe lambert;
+    if (ps.bsdfs.lambert_at(hit, lambert)) {
+        if (!visit_and_scatter(shading::kDiffuse | shading::kReflection,
+                               [&] { return scatter_photon(lambert, wo, st.sampler, st.power, wi); }))
+            return false;
+    } else {
+        const shading::Bsdf bsdf = ps.bsdfs.at(hit);
+        if (!visit_and_scatter(bsdf.flags(),
+                               [&] { return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular); }))
+            return false;
+    }
     if (specular) {
         st.after_specular = !st.after_diffuse;
     } else {

@@ -23,6 +23,55 @@ float side_of(Vec3 w, Vec3 ng) {
     return d > 0 ? 1.0f : (d < 0 ? -1.0f : 0.0f);
 }
 
+// The shading frame and geometric normal of a BSDF at `hit` (Bsdf::place).
+void frame_at(const accel::SurfaceHit& hit, Frame& frame, Vec3& ng) {
+    if (hit.shading) {  // copied straight from the accelerator's (no stack temporary)
+        ng = hit.shading->ng;
+        frame = hit.shading->frame;
+    } else {
+        const ShadingFrame f = shading_frame(hit.ng, hit.ns, hit.dpdu);
+        ng = f.ng;
+        frame = f.frame;
+    }
+}
+
+// The diffuse reflectance kd of material m at `hit`, its texture applied (Bsdf::apply_textures).
+void texture_diffuse(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
+                     Rgb& kd) {
+    if (m.diffuse_texture >= 0) kd *= eval_texture(scene, m.diffuse_texture, hit.uv);
+}
+
+// sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
+// on a diffuse wall), wo on side s of ng (s != 0), without the lobe selection and with wi taken to
+// the local frame once: each operation that the general code does on this path, in its order, so
+// the sample is the same to the bit (bsdf_test.cpp compares the two).
+std::optional<BsdfSample> sample_lambert(const Frame& frame, Vec3 ng, const Rgb& kd, float s, Vec2 u) {
+    const float w = std::max(kd.average(), 0.0f);  // the selection weight, and the total
+    if (!(w > 0)) return std::nullopt;
+    BsdfSample bs;
+    const Vec3 wi_l = warp::cosine_hemisphere(u);
+    bs.flags = kDiffuse | kReflection;
+    Vec3 wi_world = wi_l;
+    wi_world.z *= s;
+    bs.wi = frame.to_world(wi_world);
+    const float gi = dot(bs.wi, ng) * s;
+    if (!(gi > 0)) return std::nullopt;
+    const float abs_cos = std::fabs(wi_l.z);
+    if (!(abs_cos > 0)) return std::nullopt;
+    // eval_local and pdf_local: wi back in the local frame, reflection only.
+    Vec3 wi_back = frame.to_local(bs.wi);
+    wi_back.z *= s;
+    if (!(wi_back.z > 0)) return std::nullopt;  // f = 0
+    Rgb f(0.0f);
+    f += kd * kInvPi;
+    const float pdf = (0.0f + w * warp::cosine_hemisphere_pdf(wi_back.z)) / w;
+    if (!(pdf > 0) || f.is_black()) return std::nullopt;
+    bs.f = f;
+    bs.pdf = pdf;
+    bs.weight = f * (abs_cos / pdf);
+    return bs;
+}
+
 // Modified Phong: f = ks (n+2)/(2 pi) cos^n(alpha) (without Fresnel), alpha from the mirror
 // direction of wo. Local frame, wi.z > 0 checked by the caller.
 float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z)); }
@@ -50,16 +99,14 @@ Bsdf Bsdf::placed(const scene::Material& m, const accel::SurfaceHit& hit, const 
     return b;
 }
 
-void Bsdf::place(const accel::SurfaceHit& hit) {
-    if (hit.shading) {  // copied straight from the accelerator's (no stack temporary)
-        ng_ = hit.shading->ng;
-        frame_ = hit.shading->frame;
-    } else {
-        const ShadingFrame f = shading_frame(hit.ng, hit.ns, hit.dpdu);
-        ng_ = f.ng;
-        frame_ = f.frame;
-    }
+void Bsdf::place_lambert(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
+                         LambertLobe& lobe) const {
+    frame_at(hit, lobe.frame, lobe.ng);
+    lobe.kd = kd_;
+    texture_diffuse(m, hit, scene, lobe.kd);
 }
+
+void Bsdf::place(const accel::SurfaceHit& hit) { frame_at(hit, frame_, ng_); }
 
 void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     kd_ = m.diffuse;
@@ -96,7 +143,7 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
 }
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
-    if (m.diffuse_texture >= 0) kd_ *= eval_texture(scene, m.diffuse_texture, hit.uv);
+    texture_diffuse(m, hit, scene, kd_);
 }
 
 Rgb Bsdf::specular_reflectance(float cos_o) const {
@@ -261,7 +308,8 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
                                              TransportMode mode) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return std::nullopt;
-    if (lobes_ == 1u << kLambert) return sample_lambert(lobe_mask, s, u);
+    if (lobes_ == 1u << kLambert)
+        return lobe_mask & kKind[kLambert] ? sample_lambert(frame_, ng_, kd_, s, u) : std::nullopt;
     Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
     float w[kNumLobes];
@@ -361,36 +409,9 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     return bs;
 }
 
-// sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
-// on a diffuse wall), without the lobe selection and with wi taken to the local frame once: each
-// operation that the general code does on this path, in its order, so the sample is the same to
-// the bit (bsdf_test.cpp compares the two).
-std::optional<BsdfSample> Bsdf::sample_lambert(uint32_t lobe_mask, float s, Vec2 u) const {
-    if (!(lobe_mask & kKind[kLambert])) return std::nullopt;
-    const float w = std::max(kd_.average(), 0.0f);  // the selection weight, and the total
-    if (!(w > 0)) return std::nullopt;
-    BsdfSample bs;
-    const Vec3 wi_l = warp::cosine_hemisphere(u);
-    bs.flags = kDiffuse | kReflection;
-    Vec3 wi_world = wi_l;
-    wi_world.z *= s;
-    bs.wi = frame_.to_world(wi_world);
-    const float gi = dot(bs.wi, ng_) * s;
-    if (!(gi > 0)) return std::nullopt;
-    const float abs_cos = std::fabs(wi_l.z);
-    if (!(abs_cos > 0)) return std::nullopt;
-    // eval_local and pdf_local: wi back in the local frame, reflection only.
-    Vec3 wi_back = frame_.to_local(bs.wi);
-    wi_back.z *= s;
-    if (!(wi_back.z > 0)) return std::nullopt;  // f = 0
-    Rgb f(0.0f);
-    f += kd_ * kInvPi;
-    const float pdf = (0.0f + w * warp::cosine_hemisphere_pdf(wi_back.z)) / w;
-    if (!(pdf > 0) || f.is_black()) return std::nullopt;
-    bs.f = f;
-    bs.pdf = pdf;
-    bs.weight = f * (abs_cos / pdf);
-    return bs;
+std::optional<BsdfSample> LambertLobe::sample(Vec3 wo, Vec2 u) const {
+    const float s = side_of(wo, ng);
+    return s == 0 ? std::nullopt : sample_lambert(frame, ng, kd, s, u);
 }
 
 }  // namespace phos::shading

@@ -63,6 +63,19 @@ struct BsdfOptions {
     MicrofacetModel microfacet = MicrofacetModel::GGX;
 };
 
+// A lone Lambert reflection lobe placed at a hit (f = kd / pi on the side of ng that wo is on): all
+// that sampling a BSDF made of it alone reads. MaterialBsdfs::lambert_at gives it without building
+// the whole BSDF (the photon tracer's commonest surface), and such a Bsdf samples through the same
+// code (Bsdf::lambert_lobe), so the two agree to the bit.
+struct LambertLobe {
+    Frame frame;  // shading frame
+    Vec3 ng;
+    Rgb kd;
+    // Bsdf::sample_lobes(kDiffuse, wo, u_lobe, u, mode) of a BSDF of this lobe alone (which
+    // reads neither u_lobe nor mode).
+    std::optional<BsdfSample> sample(Vec3 wo, Vec2 u) const;
+};
+
 class Bsdf {
 public:
     // Builds the BSDF of `material` at `hit` (textures looked up in `scene`). The shading frame is
@@ -80,6 +93,10 @@ public:
     static Bsdf of_material(const scene::Material& material, const BsdfOptions& options);
     Bsdf placed(const scene::Material& material, const accel::SurfaceHit& hit,
                 const scene::Scene& scene) const;
+    // For a material's BSDF (of_material) that is_lambertian(): the lobe that placed(material, hit,
+    // scene) would hold.
+    void place_lambert(const scene::Material& material, const accel::SurfaceHit& hit,
+                       const scene::Scene& scene, LambertLobe& lobe) const;
 
     Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
     float pdf(Vec3 wo, Vec3 wi) const;
@@ -107,6 +124,8 @@ public:
     bool is_lambertian() const { return flags_ == (kDiffuse | kReflection); }
     // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses.
     Rgb diffuse_albedo() const { return kd_; }
+    // The lobe of a placed BSDF that is_lambertian().
+    LambertLobe lambert_lobe() const { return {frame_, ng_, kd_}; }
     // Directional albedo of each lobe kind for wo (probabilities for the photon tracer's Russian
     // roulette): diffuse = kd + kdt (Lambert reflection and transmission), glossy = Phong ks
     // (x conductor Fresnel at wo), specular = mirror reflectance at wo (ks, x conductor Fresnel),
@@ -161,7 +180,6 @@ private:
     void set_material(const scene::Material& m, const BsdfOptions& options);
     void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
-    std::optional<BsdfSample> sample_lambert(uint32_t lobe_mask, float side, Vec2 u) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
     Rgb eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;

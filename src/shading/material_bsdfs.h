@@ -23,6 +23,15 @@ public:
         return of_material_[m].placed(scene_.materials[m], hit, scene_);
     }
 
+    // The BSDF at `hit` when it is a lone Lambert lobe (Bsdf::is_lambertian): its lobe as at(hit)
+    // would hold it, without building the whole BSDF (most photon bounces). False otherwise.
+    bool lambert_at(const accel::SurfaceHit& hit, LambertLobe& lobe) const {
+        const size_t m = size_t(hit.material);
+        if (!of_material_[m].is_lambertian()) return false;
+        of_material_[m].place_lambert(scene_.materials[m], hit, scene_, lobe);
+        return true;
+    }
+
 private:
     const scene::Scene& scene_;
     std::vector<Bsdf> of_material_;

@@ -708,5 +708,66 @@ TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
     EXPECT_GT(compared, 3000);
 }
 
+// The photon tracer's fast path: a lone Lambert lobe taken without building the BSDF samples as
+// the BSDF's own sample_lobes(kDiffuse) to the bit (textured or not, with the accelerator's frame
+// or without), and only lone Lambert materials take it.
+TEST(BsdfMaterialBsdfs, LambertLobeSamplesAsTheBsdfToTheBit) {
+    std::vector<Case> cases = consistency_cases();
+    cases.push_back({"black", lambert(0.0f), {}});
+    Material textured = lambert(0.8f);
+    textured.diffuse_texture = 0;
+    cases.push_back({"textured", textured, {}});
+    Material iface;
+    iface.interface_only = true;
+    cases.push_back({"interface", iface, {}});
+    scene::Texture check;
+    check.kind = scene::Texture::Kind::Checkerboard;
+    check.value = Rgb(0.2f, 0.5f, 0.9f);
+    check.value2 = Rgb(0.7f, 0.1f, 0.3f);
+    check.u_scale = check.v_scale = 8;
+    Sampler rng(22);
+    const auto random_dir = [&] { return sph(180.0f * rng.next(), 360.0f * rng.next()); };
+    int lambertian = 0, sampled = 0;
+    for (const Case& c : cases) {
+        scene::Scene s;
+        s.textures.push_back(check);
+        s.materials = {c.m};
+        const MaterialBsdfs bsdfs(s, c.o);
+        for (int i = 0; i < 300; ++i) {
+            accel::SurfaceHit h = flat_hit(random_dir(), random_dir());
+            h.dpdu = random_dir() * (0.5f + rng.next());
+            h.uv = rng.next2();
+            h.material = 0;
+            ShadingFrame kept;
+            if (i % 2) {
+                kept = shading_frame(h.ng, h.ns, h.dpdu);
+                h.shading = &kept;
+            }
+            const Bsdf b = bsdfs.at(h);
+            LambertLobe lobe;
+            ASSERT_EQ(bsdfs.lambert_at(h, lobe), b.is_lambertian()) << c.name;
+            if (!b.is_lambertian()) continue;
+            ++lambertian;
+            ASSERT_EQ(lobe.kd, b.diffuse_albedo()) << c.name;
+            for (int k = 0; k < 4; ++k) {
+                const Vec3 wo = k == 3 ? Frame(b.geometric_normal()).s : random_dir();  // grazing: none
+                const Vec2 u = rng.next2();
+                const auto sa = b.sample_lobes(kDiffuse, wo, rng.next(), u, TransportMode::Importance);
+                const auto sb = lobe.sample(wo, u);
+                ASSERT_EQ(bool(sa), bool(sb)) << c.name;
+                if (!sa) continue;
+                ASSERT_EQ(sa->wi, sb->wi) << c.name;
+                ASSERT_EQ(sa->weight, sb->weight);
+                ASSERT_EQ(sa->f, sb->f);
+                ASSERT_EQ(sa->pdf, sb->pdf);
+                ASSERT_EQ(sa->flags, sb->flags);
+                ++sampled;
+            }
+        }
+    }
+    EXPECT_GT(lambertian, 600);
+    EXPECT_GT(sampled, 1000);
+}
+
 }  // namespace
 }  // namespace phos::shading
