@@ -40,7 +40,9 @@ struct TriangleFacts {
     double edge_bound = 0;      // error x the longest edge: inset_point's test for "far from every edge"
     bool dpdu_along_n = false;  // |dpdu . n| >= 0.999: the hit takes a tangent from its normal instead
     // Without per-vertex normals (MeshGeom::normals empty), ng, ns and dpdu are the same for every
-    // hit of a top-level triangle, and so is the BSDF's frame built from them (SurfaceHit::shading).
+    // hit of a top-level triangle, and so is the BSDF's frame built from them (SurfaceHit::shading):
+    // the hit's ng (= ns) and dpdu as finish_hit stores them, and that frame.
+    Vec3 ng_float, dpdu_float;
     ShadingFrame shading;
 };
 
@@ -150,7 +152,7 @@ struct EmbreeScene::Impl {
     RTCScene top = nullptr;
     std::vector<RTCScene> object_scenes;
     std::deque<MeshGeom> meshes;  // deques: Embree keeps pointers to the Analytic records
-    // Triangles whose TriangleFacts are kept (128 bytes each): the first 2^20 of the scene's, so
+    // Triangles whose TriangleFacts are kept (152 bytes each): the first 2^20 of the scene's, so
     // that huge meshes do not double the accelerator's memory; the others compute them per hit.
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
     size_t cached_triangles = 0;
@@ -484,16 +486,17 @@ TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim) {
     t.dpdu_along_n = !(std::fabs(detail::dot(t.dpdu, t.n)) < 0.999);
     if (m.normals.empty()) {
         // What finish_hit stores in a hit on this triangle, and what the BSDF builds from it.
-        const Vec3 ng = t.n.to_float();
-        const Vec3 dpdu_f = t.dpdu_along_n ? Frame(ng).s : t.dpdu.to_float();
-        t.shading = shading_frame(ng, ng, dpdu_f);
+        t.ng_float = t.n.to_float();
+        t.dpdu_float = t.dpdu_along_n ? Frame(t.ng_float).s : t.dpdu.to_float();
+        t.shading = shading_frame(t.ng_float, t.ng_float, t.dpdu_float);
     }
     return t;
 }
 
-Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
-    TriangleFacts computed;
-    const TriangleFacts& t = m.facts.empty() ? (computed = triangle_facts(m, prim)) : m.facts[prim];
+// The point of triangle `prim` at Embree's barycentrics (u, v) (clamped to the triangle, then
+// inset_point), its barycentrics b and its uv.
+D3 mesh_point(const MeshGeom& m, const TriangleFacts& t, unsigned prim, float u, float v, double b[3],
+              Vec2& uv) {
     const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
     const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
     // Clamp to the triangle (Embree's robust test can report barycentrics a hair outside): p is
@@ -505,10 +508,26 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
         b1 /= s, b2 /= s;
     }
     const double b0 = std::max(0.0, 1.0 - b1 - b2);
+    b[0] = b0, b[1] = b1, b[2] = b2;
+    if (m.uvs) {
+        const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
+        uv = t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
+    } else {
+        uv = {float(b1), float(b2)};
+    }
+    return inset_point(p0, p1, p2, b0, b1, b2, t);
+}
+
+Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
+    TriangleFacts computed;
+    const TriangleFacts& t = m.facts.empty() ? (computed = triangle_facts(m, prim)) : m.facts[prim];
     Local L;
+    double b[3];
     L.error = t.error;
-    L.p = inset_point(p0, p1, p2, b0, b1, b2, t);
+    L.p = mesh_point(m, t, prim, u, v, b, L.uv);
     L.ng = L.ns = t.n;
+    const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
+    const double b0 = b[0], b1 = b[1], b2 = b[2];
     if (!m.normals.empty()) {
         const Vec3 ns = m.normals[i0] * float(b0) + m.normals[i1] * float(b1) + m.normals[i2] * float(b2);
         if (length_squared(ns) > 0) {
@@ -516,12 +535,6 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
             // pbrt: with shading normals the geometric normal follows them.
             if (detail::dot(L.ng, L.ns) < 0) L.ng = L.ng * -1.0;
         }
-    }
-    if (m.uvs) {
-        const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
-        L.uv = t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
-    } else {
-        L.uv = {float(b1), float(b2)};
     }
     L.dpdu = t.dpdu;
     if (t.dpdu_along_n) {
@@ -619,17 +632,40 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
         g = &im.top_geoms[raw.geom];
     }
 
+    // What every hit records of its shape.
+    const auto record_shape = [&](const scene::Shape& shape, int shape_index) {
+        hit.t = raw.t;
+        hit.shape = shape_index;
+        hit.instance = inst ? inst->instance : -1;
+        hit.material = shape.material;
+        hit.area_light = shape.area_light;
+        hit.media = shape.media;
+    };
     Local L;
     const scene::Shape* shape;
     int shape_index;
     if (g->kind == Geom::Mesh) {
         const MeshGeom& m = im.meshes[size_t(g->index)];
+        hit.primitive = int(raw.prim);
+        // (Under an instance the world-space vectors differ per instance.)
+        if (!inst && !m.facts.empty() && m.normals.empty()) {
+            // A flat top-level triangle (most hits): what the lines below give, with the kept
+            // float normal, tangent and frame instead of rounding them again.
+            const TriangleFacts& t = m.facts[raw.prim];
+            double b[3];
+            const D3 p = mesh_point(m, t, raw.prim, raw.u, raw.v, b, hit.uv);
+            hit.p = p.to_float();
+            hit.ng = hit.ns = t.ng_float;
+            hit.dpdu = t.dpdu_float;
+            hit.shading = &t.shading;
+            record_shape(*m.source, m.shape);
+            hit.error = float(t.error + 2 * kUlp * max_abs(p)) * 1.0001f;
+            return;
+        }
         L = mesh_local(m, raw.prim, raw.u, raw.v);
         shape = m.source;
         shape_index = m.shape;
-        hit.primitive = int(raw.prim);
-        // (Under an instance the world-space vectors differ per instance.)
-        hit.shading = !inst && !m.facts.empty() && m.normals.empty() ? &m.facts[raw.prim].shading : nullptr;
+        hit.shading = nullptr;
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];
         L = analytic_local(a, canonical, inst ? 1 + inst->norm * inst->to_object.norm() : 1.0);
@@ -651,17 +687,12 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
     }
 
     // ng, ns and dpdu are unit vectors in double here; rounding to float keeps them unit to 1e-7.
-    hit.t = raw.t;
     hit.p = L.p.to_float();
     hit.ng = L.ng.to_float();
     hit.ns = L.ns.to_float();
     hit.uv = L.uv;
     hit.dpdu = L.dpdu.to_float();
-    hit.shape = shape_index;
-    hit.instance = inst ? inst->instance : -1;
-    hit.material = shape->material;
-    hit.area_light = shape->area_light;
-    hit.media = shape->media;
+    record_shape(*shape, shape_index);
     // Also cover the rounding of p itself to float.
     hit.error = float(L.error + 2 * kUlp * max_abs(L.p)) * 1.0001f;
 }
