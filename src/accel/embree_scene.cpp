@@ -3,6 +3,7 @@
 #include "accel/embree_scene.h"
 
 #include <embree3/rtcore.h>
+#include <emmintrin.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 
@@ -418,9 +419,24 @@ void init_ray(const Ray& ray, RTCRay& r) {
     r.flags = 0;
 }
 
+// Lanes of a packet past its rays (EmbreeScene::intersect16).
+constexpr Ray kEmptyRay{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};
+
+// The largest ray coordinate Embree traces: its kernels assert (RayK::valid, FLT_LARGE there) that
+// every origin and direction coordinate is at most this in magnitude and that neither end of the
+// interval is NaN, and Debian's Embree keeps its assertions (an abort: a camera at 1e20 did it).
+constexpr float kMaxRayCoordinate = 1.844e18f;
+inline bool traceable(Vec3 v) {
+    const auto ok = [](float x) { return std::fabs(x) <= kMaxRayCoordinate; };  // false for NaN
+    return ok(v.x) && ok(v.y) && ok(v.z);
+}
+
+// Rays that fail this hit nothing: Embree could not trace them (see above), or their direction
+// or interval is empty (tmax > tmin, both not NaN; init_ray clamps tmin to 0). intersect16
+// checks its rays with the same comparisons four at a time.
 inline bool usable(const Ray& ray) {
-    return is_finite(ray.origin) && is_finite(ray.dir) && length_squared(ray.dir) > 0 &&
-           !(ray.tmax <= std::max(ray.tmin, 0.0f));
+    return traceable(ray.origin) && traceable(ray.dir) && length_squared(ray.dir) > 0 &&
+           ray.tmax > std::max(ray.tmin, 0.0f);
 }
 
 // Local (geometry-space) surface data before the instance transform.
@@ -585,30 +601,48 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
     CanonicalHit canonical[16];
     QueryContext qc{{}, canonical};
     rtcInitIntersectContext(&qc.ctx);
-    bool any = false;
     for (int k = 0; k < 16; ++k) {
-        valid[k] = 0;
+        const Ray& r = k < n ? rays[k] : kEmptyRay;
+        rh.ray.org_x[k] = r.origin.x, rh.ray.org_y[k] = r.origin.y, rh.ray.org_z[k] = r.origin.z;
+        rh.ray.dir_x[k] = r.dir.x, rh.ray.dir_y[k] = r.dir.y, rh.ray.dir_z[k] = r.dir.z;
+        rh.ray.tnear[k] = std::max(r.tmin, 0.0f), rh.ray.tfar[k] = r.tmax, rh.ray.time[k] = 0;  // as init_ray
+        rh.ray.mask[k] = ~0u, rh.ray.flags[k] = 0;
+        rh.ray.id[k] = unsigned(k);  // the analytic callbacks file their canonical hit by lane
         rh.hit.geomID[k] = RTC_INVALID_GEOMETRY_ID;
         rh.hit.instID[0][k] = RTC_INVALID_GEOMETRY_ID;
-        if (k >= n || !usable(rays[k])) {
-            // A lane left out still holds a well-formed empty ray: Embree's AVX2 kernels (the
-            // packet split into two halves of 8) assert that every ray of a half is finite, left
-            // out or not, and Debian's Embree keeps its assertions (an abort on CPUs without AVX-512).
-            rh.ray.org_x[k] = rh.ray.org_y[k] = rh.ray.org_z[k] = 0;
-            rh.ray.dir_x[k] = rh.ray.dir_y[k] = rh.ray.dir_z[k] = 0;
-            rh.ray.tnear[k] = rh.ray.tfar[k] = rh.ray.time[k] = 0;
-            rh.ray.mask[k] = 0, rh.ray.flags[k] = 0, rh.ray.id[k] = unsigned(k);
-            continue;
+    }
+    // usable() of every lane, four lanes per SSE instruction (the same comparisons on the same
+    // values). A lane left out still holds a well-formed empty ray: Embree's AVX2 kernels (the
+    // packet split into two halves of 8) assert that every ray of a half is finite, left out or
+    // not, and Debian's Embree keeps its assertions (an abort on CPUs without AVX-512).
+    const __m128 largest = _mm_set1_ps(kMaxRayCoordinate),
+                 abs_mask = _mm_castsi128_ps(_mm_set1_epi32(0x7fffffff));
+    const auto traceable = [&](const float* v) {
+        return _mm_cmple_ps(_mm_and_ps(_mm_load_ps(v), abs_mask), largest);
+    };
+    bool any = false;
+    for (int k = 0; k < 16; k += 4) {
+        const __m128 dx = _mm_load_ps(rh.ray.dir_x + k), dy = _mm_load_ps(rh.ray.dir_y + k),
+                     dz = _mm_load_ps(rh.ray.dir_z + k);
+        const __m128 len2 =
+            _mm_add_ps(_mm_add_ps(_mm_mul_ps(dx, dx), _mm_mul_ps(dy, dy)), _mm_mul_ps(dz, dz));
+        __m128 ok = _mm_and_ps(_mm_and_ps(traceable(rh.ray.org_x + k), traceable(rh.ray.org_y + k)),
+                               traceable(rh.ray.org_z + k));
+        ok = _mm_and_ps(ok, _mm_and_ps(_mm_and_ps(traceable(rh.ray.dir_x + k), traceable(rh.ray.dir_y + k)),
+                                       traceable(rh.ray.dir_z + k)));
+        ok = _mm_and_ps(ok, _mm_cmpgt_ps(len2, _mm_setzero_ps()));
+        ok = _mm_and_ps(ok, _mm_cmpgt_ps(_mm_load_ps(rh.ray.tfar + k), _mm_load_ps(rh.ray.tnear + k)));
+        _mm_store_si128(reinterpret_cast<__m128i*>(valid + k), _mm_castps_si128(ok));
+        const int mask = _mm_movemask_ps(ok);
+        any |= mask != 0;
+        if (mask == 0xf) continue;
+        for (int i = k; i < k + 4; ++i) {
+            if (valid[i]) continue;
+            rh.ray.org_x[i] = rh.ray.org_y[i] = rh.ray.org_z[i] = 0;
+            rh.ray.dir_x[i] = rh.ray.dir_y[i] = rh.ray.dir_z[i] = 0;
+            rh.ray.tnear[i] = rh.ray.tfar[i] = 0;
+            rh.ray.mask[i] = 0;
         }
-        RTCRay r;
-        init_ray(rays[k], r);
-        rh.ray.org_x[k] = r.org_x, rh.ray.org_y[k] = r.org_y, rh.ray.org_z[k] = r.org_z;
-        rh.ray.dir_x[k] = r.dir_x, rh.ray.dir_y[k] = r.dir_y, rh.ray.dir_z[k] = r.dir_z;
-        rh.ray.tnear[k] = r.tnear, rh.ray.tfar[k] = r.tfar, rh.ray.time[k] = r.time;
-        rh.ray.mask[k] = r.mask, rh.ray.flags[k] = r.flags;
-        rh.ray.id[k] = unsigned(k);  // the analytic callbacks file their canonical hit by lane
-        valid[k] = -1;
-        any = true;
     }
     if (any) rtcIntersect16(valid, impl_->top, &qc.ctx, &rh);
     for (int k = 0; k < n; ++k) {

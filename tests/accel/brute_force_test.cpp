@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "accel/embree_scene.h"
@@ -204,10 +205,12 @@ TEST(BruteForce, EmbreeAgreesWithReferenceOnRandomRays) {
 
 // The packet query (intersect16, for the photon tracer's wavefront) must give exactly the hits of
 // single-ray queries, field by field and bit for bit, on the same random scene of every shape kind
-// and instances, with partly filled packets and unusable rays (a zero direction, an empty interval)
-// among them; with the kernels Embree picks for this CPU and with those of CPUs without AVX-512
-// (whose packets of 16 run as two halves of 8: lanes left out once held garbage there, and
-// Debian's Embree aborted on its assertion that every ray of a half is finite).
+// and instances, with partly filled packets and unusable rays among them (a zero direction, an empty
+// interval, a NaN origin, an infinite direction, coordinates beyond Embree's range, a NaN end of the
+// interval: Embree asserted on the last two, and Debian's Embree keeps its assertions); with the
+// kernels Embree picks for this CPU and with those of CPUs without AVX-512 (whose packets of 16 run
+// as two halves of 8: lanes left out once held garbage there, and Debian's Embree aborted on its
+// assertion that every ray of a half is finite).
 class PacketKernels : public ::testing::TestWithParam<const char*> {};
 
 TEST_P(PacketKernels, PacketHitsEqualSingleRayHits) {
@@ -226,6 +229,13 @@ TEST_P(PacketKernels, PacketHitsEqualSingleRayHits) {
                 rng.next() < 0.5f ? random_unit(rng) : (target - rays[k].origin) * (0.1f + rng.next());
             if (k == 3 && round % 7 == 0) rays[k].dir = Vec3(0.0f);
             if (k == 4 && round % 5 == 0) rays[k].tmax = 0.0f;
+            if (k == 5 && round % 11 == 0) rays[k].origin.y = std::numeric_limits<float>::quiet_NaN();
+            if (k == 6 && round % 13 == 0) rays[k].dir.z = std::numeric_limits<float>::infinity();
+            // Finite but beyond what Embree traces (it asserts), and a NaN end of the interval.
+            if (k == 7 && round % 17 == 0) rays[k].origin.x = 1e20f;
+            if (k == 8 && round % 19 == 0) rays[k].dir.y = -2e18f;
+            if (k == 9 && round % 23 == 0) rays[k].tmax = std::numeric_limits<float>::quiet_NaN();
+            if (k == 10 && round % 29 == 0) rays[k].tmin = std::numeric_limits<float>::quiet_NaN();
         }
         accel::SurfaceHit packet[16];
         bool found[16];
