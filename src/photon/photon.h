@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "core/vec.h"
+#include "photon/octahedral_lanes.h"
 
 namespace phos::photon {
 
@@ -233,80 +234,53 @@ inline uint32_t encode_octahedral(Vec3 d) {
     return uint32_t(u) | (uint32_t(v) << Bits);
 }
 
+namespace detail {
+// The lanes of SSE (every x86-64 CPU) for encode_octahedral_lanes (octahedral_lanes.h).
+struct SseLanes {
+    using F = __m128;
+    using I = __m128i;
+    static F load_strided(const float* p, int stride) {
+        return _mm_setr_ps(p[0], p[stride], p[2 * stride], p[3 * stride]);
+    }
+    static F set1(float v) { return _mm_set1_ps(v); }
+    static F add(F a, F b) { return _mm_add_ps(a, b); }
+    static F sub(F a, F b) { return _mm_sub_ps(a, b); }
+    static F mul(F a, F b) { return _mm_mul_ps(a, b); }
+    static F div(F a, F b) { return _mm_div_ps(a, b); }
+    static F sqrt(F a) { return _mm_sqrt_ps(a); }
+    static F min(F a, F b) { return _mm_min_ps(a, b); }
+    static F max(F a, F b) { return _mm_max_ps(a, b); }
+    static F and_(F a, F b) { return _mm_and_ps(a, b); }
+    static F or_(F a, F b) { return _mm_or_ps(a, b); }
+    static F andnot(F a, F b) { return _mm_andnot_ps(a, b); }
+    static F xor_(F a, F b) { return _mm_xor_ps(a, b); }
+    static F cmplt(F a, F b) { return _mm_cmplt_ps(a, b); }
+    static F cmpgt(F a, F b) { return _mm_cmpgt_ps(a, b); }
+    static F cmpge(F a, F b) { return _mm_cmpge_ps(a, b); }
+    static I cvtt(F a) { return _mm_cvttps_epi32(a); }
+    static F cvt(I a) { return _mm_cvtepi32_ps(a); }
+    static I as_i(F a) { return _mm_castps_si128(a); }
+    static I set1_i(int v) { return _mm_set1_epi32(v); }
+    static I add_i(I a, I b) { return _mm_add_epi32(a, b); }
+    static I sub_i(I a, I b) { return _mm_sub_epi32(a, b); }
+    static I cmpgt_i(I a, I b) { return _mm_cmpgt_epi32(a, b); }
+    static I and_i(I a, I b) { return _mm_and_si128(a, b); }
+    static I or_i(I a, I b) { return _mm_or_si128(a, b); }
+    static I andnot_i(I a, I b) { return _mm_andnot_si128(a, b); }
+    static I shl_i(I a, int n) { return _mm_slli_epi32(a, n); }
+    static void store_u32(uint32_t* out, I a) { _mm_storeu_si128(reinterpret_cast<__m128i*>(out), a); }
+};
+}  // namespace detail
+
 // The same codes as encode_octahedral_reference for four directions at once, one per SSE lane
-// (each lane does the reference's IEEE operations in its order, the four lattice points one after
-// another): no scalar chain from the input to the code, so consecutive calls overlap. The photon
-// tracer encodes each batch's stored directions this way.
+// (encode_octahedral_lanes: each lane does the reference's IEEE operations in its order, the four
+// lattice points one after another): no scalar chain from the input to the code, so consecutive
+// calls overlap. The photon tracer encodes each batch's stored directions this way, or eight at a
+// time with AVX2 (octahedral_avx2.h) where the CPU has it.
 template <int Bits>
 inline void encode_octahedral4(const Vec3 d[4], uint32_t codes[4]) {
-    static_assert(Bits >= 2 && Bits <= 15);
-    constexpr int S = (1 << (Bits - 1)) - 1;
-    constexpr float kInv = 1.0f / float(S);
-    const __m128 sign_mask = _mm_set1_ps(-0.0f), one = _mm_set1_ps(1.0f), zero = _mm_setzero_ps();
-    const auto abs = [&](__m128 v) { return _mm_andnot_ps(sign_mask, v); };
-    const auto select = [](__m128 m, __m128 a, __m128 b) {
-        return _mm_or_ps(_mm_and_ps(m, a), _mm_andnot_ps(m, b));
-    };
-    const auto select_i = [](__m128i m, __m128i a, __m128i b) {
-        return _mm_or_si128(_mm_and_si128(m, a), _mm_andnot_si128(m, b));
-    };
-    // The minus sign where v < 0 (v >= 0, -0 included, counts as positive, as in oct_wrap).
-    const auto negative = [&](__m128 v) { return _mm_andnot_ps(_mm_cmpge_ps(v, zero), sign_mask); };
-    const __m128 x = _mm_setr_ps(d[0].x, d[1].x, d[2].x, d[3].x);
-    const __m128 y = _mm_setr_ps(d[0].y, d[1].y, d[2].y, d[3].y);
-    const __m128 z = _mm_setr_ps(d[0].z, d[1].z, d[2].z, d[3].z);
-    const __m128 l1 = _mm_add_ps(_mm_add_ps(abs(x), abs(y)), abs(z));
-    // l1 > 0 and finite; the other lanes get the reference's fallback code below.
-    const __m128 usable = _mm_and_ps(_mm_cmpgt_ps(l1, zero),
-                                     _mm_cmplt_ps(l1, _mm_set1_ps(std::numeric_limits<float>::infinity())));
-    const __m128 inv = _mm_div_ps(one, l1);
-    __m128 px = _mm_mul_ps(x, inv), py = _mm_mul_ps(y, inv);
-    const __m128 lower = _mm_cmplt_ps(z, zero);  // oct_wrap there
-    const __m128 wx = _mm_xor_ps(_mm_sub_ps(one, abs(py)), negative(px));
-    const __m128 wy = _mm_xor_ps(_mm_sub_ps(one, abs(px)), negative(py));
-    px = select(lower, wx, px);
-    py = select(lower, wy, py);
-    // The reference's clamp to [-1, 1] (p is finite in usable lanes), then u0 = floor(fu).
-    const __m128 m1 = _mm_set1_ps(-1.0f), s = _mm_set1_ps(float(S));
-    const __m128 fu = _mm_add_ps(_mm_mul_ps(_mm_min_ps(_mm_max_ps(px, m1), one), s), s);
-    const __m128 fv = _mm_add_ps(_mm_mul_ps(_mm_min_ps(_mm_max_ps(py, m1), one), s), s);
-    const __m128i top = _mm_set1_epi32(2 * S), one_i = _mm_set1_epi32(1);
-    const __m128i u0 = _mm_cvttps_epi32(fu), v0 = _mm_cvttps_epi32(fv);
-    const __m128i u1 =
-        select_i(_mm_cmpgt_epi32(_mm_add_epi32(u0, one_i), top), top, _mm_add_epi32(u0, one_i));
-    const __m128i v1 =
-        select_i(_mm_cmpgt_epi32(_mm_add_epi32(v0, one_i), top), top, _mm_add_epi32(v0, one_i));
-    // dn = normalize(d).
-    const __m128 dl =
-        _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(x, x), _mm_mul_ps(y, y)), _mm_mul_ps(z, z)));
-    const __m128 dnx = _mm_div_ps(x, dl), dny = _mm_div_ps(y, dl), dnz = _mm_div_ps(z, dl);
-    const __m128i s_i = _mm_set1_epi32(S);
-    __m128 best = _mm_set1_ps(-2.0f);
-    __m128i best_u = u0, best_v = v0;
-    for (int k = 0; k < 4; ++k) {  // (du, dv) = (0,0), (0,1), (1,0), (1,1), as the reference
-        const __m128i u = k >= 2 ? u1 : u0, v = (k & 1) ? v1 : v0;
-        const __m128 fx = _mm_mul_ps(_mm_cvtepi32_ps(_mm_sub_epi32(u, s_i)), _mm_set1_ps(kInv));
-        const __m128 fy = _mm_mul_ps(_mm_cvtepi32_ps(_mm_sub_epi32(v, s_i)), _mm_set1_ps(kInv));
-        const __m128 ax = abs(fx), ay = abs(fy);
-        const __m128 fz = _mm_sub_ps(_mm_sub_ps(one, ax), ay);
-        const __m128 wrap = _mm_cmplt_ps(fz, zero);
-        const __m128 qx = select(wrap, _mm_xor_ps(_mm_sub_ps(one, ay), negative(fx)), fx);
-        const __m128 qy = select(wrap, _mm_xor_ps(_mm_sub_ps(one, ax), negative(fy)), fy);
-        const __m128 len =
-            _mm_sqrt_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(qx, qx), _mm_mul_ps(qy, qy)), _mm_mul_ps(fz, fz)));
-        const __m128 c =
-            _mm_add_ps(_mm_add_ps(_mm_mul_ps(_mm_div_ps(qx, len), dnx), _mm_mul_ps(_mm_div_ps(qy, len), dny)),
-                       _mm_mul_ps(_mm_div_ps(fz, len), dnz));
-        const __m128 better = _mm_cmpgt_ps(c, best);  // the first strictly largest wins
-        best = select(better, c, best);
-        best_u = select_i(_mm_castps_si128(better), u, best_u);
-        best_v = select_i(_mm_castps_si128(better), v, best_v);
-    }
-    const __m128i code = _mm_or_si128(best_u, _mm_slli_epi32(best_v, Bits));
-    const __m128i fallback = _mm_set1_epi32(S | (S << Bits));
-    alignas(16) uint32_t out[4];
-    _mm_store_si128(reinterpret_cast<__m128i*>(out), select_i(_mm_castps_si128(usable), code, fallback));
-    for (int i = 0; i < 4; ++i) codes[i] = out[i];
+    static_assert(sizeof(Vec3) == 3 * sizeof(float));
+    detail::encode_octahedral_lanes<Bits, detail::SseLanes>(&d[0].x, codes);
 }
 
 template <int Bits>

@@ -18,6 +18,7 @@
 #include "core/memory.h"
 #include "core/threads.h"
 #include "dist/ranks.h"
+#include "photon/octahedral_avx2.h"
 #include "photon/projection_map.h"
 
 namespace phos::photon {
@@ -70,15 +71,24 @@ private:
     Entry entries_[64];
 };
 
-// Writes the direction codes of a slice's photons, four per call of the four-lane encoder: one
-// photon at a time, each code is a chain of dependent divisions and square roots that nothing
-// overlaps (7 % of the tracing time).
+// Writes the direction codes of a slice's photons, eight per call of the AVX2 encoder where the
+// CPU has AVX2 (asked once, here, outside the code compiled for it), else four per call of the SSE
+// one: one photon at a time, each code is a chain of dependent divisions and square roots that
+// nothing overlaps (7 % of the tracing time; eight lanes instead of four took the tracing of 300 k
+// photons from 790 to 768 M instructions).
 void encode_directions(Slice& s) {
+    static const bool avx2 = __builtin_cpu_supports("avx2");
     for (int m = 0; m < kMapCount; ++m) {
         std::vector<Photon>& P = s.photons[m];
         const std::vector<Vec3>& wi = s.wi[m];
-        uint32_t codes[4];
+        uint32_t codes[8];
         size_t i = 0;
+        if (avx2) {
+            for (; i + 8 <= P.size(); i += 8) {
+                encode_octahedral8_avx2(&wi[i].x, codes);
+                for (size_t k = 0; k < 8; ++k) P[i + k].wi_code = uint16_t(codes[k]);
+            }
+        }
         // Straight from the array: copying four directions into a stack array first stalled the
         // encoder's loads on store forwarding (0.8 % of the tracing time).
         for (; i + 4 <= P.size(); i += 4) {

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "core/rng.h"
+#include "photon/octahedral_avx2.h"
 #include "photon/photon.h"
 
 namespace phos::photon {
@@ -173,17 +174,22 @@ TEST(Octahedral, AxesAndSeamsAreExact) {
     EXPECT_NEAR(length(decode_octahedral<8>(encode_octahedral<8>(Vec3(0.0f)))), 1.0f, 1e-6f);
 }
 
-// The four-lane encoders (four lattice points of one direction, or four directions) must give
+// The four-lane encoders (four lattice points of one direction, or four directions) and the
+// eight-lane AVX2 one (eight directions) must give
 // the reference's code for every input: random unit and
 // non-unit vectors, the axes, the fold lines and the lattice's own directions (ties between
 // neighbouring lattice points), for the direction (8) and normal (7) widths and a wide one.
 template <int Bits>
 void expect_same_codes_as_reference(uint64_t seed) {
     Sampler rng(seed);
-    int mismatches = 0;
-    // The batch encoder sees each direction in a different lane, beside earlier directions.
+    int mismatches = 0, compared8 = 0;
+    // The batch encoders see each direction in a different lane, beside earlier directions; the
+    // eight-lane AVX2 one (directions only) where this CPU has AVX2.
+    const bool avx2 = Bits == 8 && __builtin_cpu_supports("avx2");
     Vec3 lanes[4] = {Vec3(0, 0, 1), Vec3(0.0f), Vec3(1, -2, 3), Vec3(-0.5f, 0.25f, -1)};
-    int lane = 0;
+    Vec3 lanes8[8] = {Vec3(0, 0, 1),          Vec3(0.0f),     Vec3(1, -2, 3),         Vec3(-0.5f, 0.25f, -1),
+                      Vec3(0.1f, 0.9f, 0.2f), Vec3(-1, 0, 0), Vec3(3e38f, 1, -3e38f), Vec3(0, -1e-30f, 0)};
+    int lane = 0, lane8 = 0;
     const auto check = [&](Vec3 d) {
         const uint32_t want = encode_octahedral_reference<Bits>(d);
         if (encode_octahedral<Bits>(d) != want) ++mismatches;
@@ -192,6 +198,14 @@ void expect_same_codes_as_reference(uint64_t seed) {
         encode_octahedral4<Bits>(lanes, codes);
         if (codes[lane] != want) ++mismatches;
         lane = (lane + 1) & 3;
+        if (avx2) {
+            lanes8[lane8] = d;
+            uint32_t codes8[8];
+            encode_octahedral8_avx2(&lanes8[0].x, codes8);
+            if (codes8[lane8] != want) ++mismatches;
+            lane8 = (lane8 + 1) & 7;
+            ++compared8;
+        }
     };
     for (int i = 0; i < 400000; ++i) {
         const Vec3 d = uniform_sphere(rng.next2());
@@ -210,9 +224,12 @@ void expect_same_codes_as_reference(uint64_t seed) {
           Vec3(1e-30f, -1e-30f, 1e-30f), Vec3(3e38f, 3e38f, -3e38f)})
         check(a);
     EXPECT_EQ(mismatches, 0) << Bits << "-bit codes";
+    if (avx2) {
+        EXPECT_GT(compared8, 1000000);
+    }
 }
 
-TEST(Octahedral, FourLaneEncoderGivesTheReferenceCodes) {
+TEST(Octahedral, LaneEncodersGiveTheReferenceCodes) {
     expect_same_codes_as_reference<8>(21);
     expect_same_codes_as_reference<7>(22);
     expect_same_codes_as_reference<12>(23);
