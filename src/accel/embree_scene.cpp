@@ -439,6 +439,17 @@ inline bool usable(const Ray& ray) {
            ray.tmax > std::max(ray.tmin, 0.0f);
 }
 
+// Called for a ray that is not usable(): says once per process when the reason is its size (a
+// scene or camera with coordinates beyond Embree's range), so that such a scene's black pixels are
+// explained. Rays that are merely empty or NaN say nothing.
+void note_unusable(const Ray& ray) {
+    if (!is_finite(ray.origin) || !is_finite(ray.dir) || (traceable(ray.origin) && traceable(ray.dir)))
+        return;
+    log::warn_once("accel: ray beyond range",
+                   "rays with coordinates beyond +-1.8e18 (the most Embree traces) hit nothing: the scene or "
+                   "camera has coordinates that large");
+}
+
 // Local (geometry-space) surface data before the instance transform.
 struct Local {
     D3 p, ng, ns, dpdu;
@@ -580,7 +591,10 @@ Local analytic_local(const Analytic& a, const CanonicalHit& h, double amplify) {
 }  // namespace
 
 bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
-    if (!usable(ray)) return false;
+    if (!usable(ray)) {
+        note_unusable(ray);
+        return false;
+    }
     CanonicalHit canonical;
     QueryContext qc{{}, &canonical};
     rtcInitIntersectContext(&qc.ctx);
@@ -638,6 +652,7 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
         if (mask == 0xf) continue;
         for (int i = k; i < k + 4; ++i) {
             if (valid[i]) continue;
+            if (i < n) note_unusable(rays[i]);
             rh.ray.org_x[i] = rh.ray.org_y[i] = rh.ray.org_z[i] = 0;
             rh.ray.dir_x[i] = rh.ray.dir_y[i] = rh.ray.dir_z[i] = 0;
             rh.ray.tnear[i] = rh.ray.tfar[i] = 0;
@@ -736,7 +751,10 @@ double EmbreeScene::triangle_constants_bytes(double triangles) {
 }
 
 bool EmbreeScene::occluded(const Ray& ray) const {
-    if (!usable(ray)) return false;
+    if (!usable(ray)) {
+        note_unusable(ray);
+        return false;
+    }
     RTCIntersectContext ctx;
     rtcInitIntersectContext(&ctx);
     RTCRay r;

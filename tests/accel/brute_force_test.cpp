@@ -263,6 +263,31 @@ TEST_P(PacketKernels, PacketHitsEqualSingleRayHits) {
     EXPECT_GT(analytic_hits, 300);
 }
 
+// Rays beyond Embree's range hit nothing, in every query, though the scene lies on their path
+// (the process says so once: Cli.CameraBeyondEmbreesRangeRendersAndSaysSo).
+TEST(BruteForce, RaysBeyondEmbreesRangeMiss) {
+    const RandomScene rs = make_random_scene(8);
+    const accel::EmbreeScene es(rs.scene);
+    accel::SurfaceHit hit;
+    const accel::Ray reach{Vec3(0, 0, 1e18f), Vec3(0, 0, -1)}, far{Vec3(0, 0, 1e20f), Vec3(0, 0, -1)};
+    int reached = 0;
+    for (const Vec3& t : rs.targets) {
+        const accel::Ray r{reach.origin, t - reach.origin};
+        reached += es.intersect(r, hit);
+    }
+    ASSERT_GT(reached, 0);  // within range, the scene is hit from that far
+    for (const Vec3& t : rs.targets) {
+        const accel::Ray r{far.origin, t - far.origin};
+        EXPECT_FALSE(es.intersect(r, hit));
+        EXPECT_FALSE(es.occluded(r));
+        accel::Ray packet[2] = {r, reach};
+        accel::SurfaceHit hits[2];
+        bool found[2];
+        es.intersect16(packet, 2, hits, found);
+        EXPECT_FALSE(found[0]);
+    }
+}
+
 std::string kernels_name(const ::testing::TestParamInfo<const char*>& info) {
     return info.param ? std::string(info.param + 4) == "avx2" ? "Avx2" : "Sse42" : "Best";
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
 #include <vector>
 
 #include "test_util.h"
@@ -115,6 +116,30 @@ TEST(Cli, VerbosePrintsStatistics) {
     EXPECT_NE(r.output.find("time render"), std::string::npos);
     EXPECT_NE(r.output.find("4 spp"), std::string::npos) << r.output;  // -aa 1 = 4 samples
     EXPECT_TRUE(std::filesystem::exists(dir.file("o.exr")));
+}
+
+// A camera beyond what Embree traces (coordinates over 1.8e18) used to stop phos on Embree's
+// assertion (exit 134). Its rays now hit nothing, and phos says why, once.
+TEST(Cli, CameraBeyondEmbreesRangeRendersAndSaysSo) {
+    TempDir dir;
+    ASSERT_TRUE(dir.ok());
+    const std::string scene = (dir.path() / "far.scn").string();
+    {
+        std::ofstream f(scene);
+        f << "camera 0 0.5 1e20   0 0 -1   0 1 0   0.33 0.001 1e30\n"
+             "material 0 0 0   0.8 0.8 0.8   0 0 0   0 0 0   0 0 0   10 1 0\n"
+             "tri 0   -0.5 0 -0.5   -0.5 0 0.5   0.5 0 0.5\n"
+             "point_light 1 1 1   0 0.9 0   0 0 1\n";
+    }
+    const std::string out = (dir.path() / "far.pfm").string();
+    const CommandResult r =
+        run_phos("render " + scene + " --integrator path --resolution 8 8 --spp 1 -o " + out);
+    EXPECT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(out));
+    const std::string says = "beyond +-1.8e18";
+    const size_t at = r.output.find(says);
+    EXPECT_NE(at, std::string::npos) << r.output;
+    EXPECT_EQ(r.output.find(says, at + 1), std::string::npos) << r.output;
 }
 
 TEST(Cli, DefaultSceneRenders) {
