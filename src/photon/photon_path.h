@@ -149,7 +149,8 @@ template <class Visitor>
 bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const accel::SurfaceHit& hit,
                   PhotonState& st, Visitor& visit, Vec3& wi) {
     const Vec3 wo = -normalize(st.ray.dir);
-    // The visit, then scatter(specular) samples the BSDF.
+    // The visitor sees the hit if the BSDF (of these flags) has a non-specular part; then, unless
+    // the path ends there, scatter() does the Russian roulette and samples the BSDF.
     const auto visit_and_scatter = [&](uint32_t flags, auto&& scatter) {
         if (flags & (shading::kDiffuse | shading::kGlossy)) {
             const PhotonHit ph{hit, flags, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
