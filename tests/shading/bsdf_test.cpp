@@ -635,12 +635,10 @@ TEST(BsdfFrame, UsesDpduForTangent) {
 namespace phos::shading {
 namespace {
 
-// MaterialBsdfs::at (a per-material BSDF built once, then placed at the hit) is the object the
-// constructor builds, bit for bit: same flags, frame, normal and albedo, and the same eval, pdf,
-// lobe albedos and samples, for every consistency material, a mirror, smooth glass, an interface,
-// a black body and a checkerboard-textured Lambert; at hits with and without the accelerator's
-// shading frame, random normals, tangents and uvs.
-TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
+// What the two MaterialBsdfs tests place: every consistency material, a mirror, smooth glass, an
+// interface, a black body and a checkerboard-textured Lambert, each as material 1 of its scene
+// (texture 0 the checkerboard), at random hits with and without the accelerator's frame.
+std::vector<Case> placement_cases() {
     std::vector<Case> cases = consistency_cases();
     cases.push_back({"mirror", phong(0.9f, 1e6f), {}});
     cases.push_back({"smooth-glass", glass(1.0f, 1.5f), {}});
@@ -651,29 +649,49 @@ TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
     Material textured = lambert(0.8f);
     textured.diffuse_texture = 0;
     cases.push_back({"textured", textured, {}});
+    return cases;
+}
+scene::Scene placement_scene(const Material& m) {
     scene::Texture check;
     check.kind = scene::Texture::Kind::Checkerboard;
     check.value = Rgb(0.2f, 0.5f, 0.9f);
     check.value2 = Rgb(0.7f, 0.1f, 0.3f);
     check.u_scale = check.v_scale = 8;
+    scene::Scene s;
+    s.textures.push_back(check);
+    s.materials = {lambert(0.5f), m};
+    return s;
+}
+// On material 1, with random normals, tangent and uv; with `kept` as the accelerator's
+// per-triangle frame when `with_frame`.
+accel::SurfaceHit placement_hit(Sampler& rng, bool with_frame, ShadingFrame& kept) {
+    const auto random_dir = [&] { return sph(180.0f * rng.next(), 360.0f * rng.next()); };
+    accel::SurfaceHit h = flat_hit(random_dir(), random_dir());
+    h.dpdu = random_dir() * (0.5f + rng.next());
+    h.uv = rng.next2();
+    h.material = 1;
+    if (with_frame) {
+        kept = shading_frame(h.ng, h.ns, h.dpdu);
+        h.shading = &kept;
+    }
+    return h;
+}
+
+// MaterialBsdfs::at (a per-material BSDF built once, then placed at the hit) is the object the
+// constructor builds, bit for bit: same flags, frame, normal and albedo, and the same eval, pdf,
+// lobe albedos and samples, for every consistency material, a mirror, smooth glass, an interface,
+// a black body and a checkerboard-textured Lambert; at hits with and without the accelerator's
+// shading frame, random normals, tangents and uvs.
+TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
     Sampler rng(21);
     const auto random_dir = [&] { return sph(180.0f * rng.next(), 360.0f * rng.next()); };
     int compared = 0;
-    for (const Case& c : cases) {
-        scene::Scene s;
-        s.textures.push_back(check);
-        s.materials = {lambert(0.5f), c.m};
+    for (const Case& c : placement_cases()) {
+        const scene::Scene s = placement_scene(c.m);
         const MaterialBsdfs bsdfs(s, c.o);
         for (int i = 0; i < 300; ++i) {
-            accel::SurfaceHit h = flat_hit(random_dir(), random_dir());
-            h.dpdu = random_dir() * (0.5f + rng.next());
-            h.uv = rng.next2();
-            h.material = 1;
             ShadingFrame kept;
-            if (i % 2) {  // the accelerator's per-triangle frame
-                kept = shading_frame(h.ng, h.ns, h.dpdu);
-                h.shading = &kept;
-            }
+            const accel::SurfaceHit h = placement_hit(rng, i % 2, kept);
             const Bsdf a(s.materials[1], h, s, c.o);
             const Bsdf b = bsdfs.at(h);
             ASSERT_EQ(a.flags(), b.flags()) << c.name;
@@ -712,37 +730,15 @@ TEST(BsdfMaterialBsdfs, PlacedEqualsConstructedToTheBit) {
 // the BSDF's own sample_lobes(kDiffuse) to the bit (textured or not, with the accelerator's frame
 // or without), and only lone Lambert materials take it.
 TEST(BsdfMaterialBsdfs, LambertLobeSamplesAsTheBsdfToTheBit) {
-    std::vector<Case> cases = consistency_cases();
-    cases.push_back({"black", lambert(0.0f), {}});
-    Material textured = lambert(0.8f);
-    textured.diffuse_texture = 0;
-    cases.push_back({"textured", textured, {}});
-    Material iface;
-    iface.interface_only = true;
-    cases.push_back({"interface", iface, {}});
-    scene::Texture check;
-    check.kind = scene::Texture::Kind::Checkerboard;
-    check.value = Rgb(0.2f, 0.5f, 0.9f);
-    check.value2 = Rgb(0.7f, 0.1f, 0.3f);
-    check.u_scale = check.v_scale = 8;
     Sampler rng(22);
     const auto random_dir = [&] { return sph(180.0f * rng.next(), 360.0f * rng.next()); };
     int lambertian = 0, sampled = 0;
-    for (const Case& c : cases) {
-        scene::Scene s;
-        s.textures.push_back(check);
-        s.materials = {c.m};
+    for (const Case& c : placement_cases()) {
+        const scene::Scene s = placement_scene(c.m);
         const MaterialBsdfs bsdfs(s, c.o);
         for (int i = 0; i < 300; ++i) {
-            accel::SurfaceHit h = flat_hit(random_dir(), random_dir());
-            h.dpdu = random_dir() * (0.5f + rng.next());
-            h.uv = rng.next2();
-            h.material = 0;
             ShadingFrame kept;
-            if (i % 2) {
-                kept = shading_frame(h.ng, h.ns, h.dpdu);
-                h.shading = &kept;
-            }
+            const accel::SurfaceHit h = placement_hit(rng, i % 2, kept);
             const Bsdf b = bsdfs.at(h);
             LambertLobe lobe;
             ASSERT_EQ(bsdfs.lambert_at(h, lobe), b.is_lambertian()) << c.name;
