@@ -17,7 +17,9 @@
 # each row's scaling is against the first count), PHOS_ANCHOR (a prebuilt anchor binary, for a
 # machine without Embree's headers), PHOS_BENCH_DIR (the shared bench folder, default
 # ../shared/bench), PHOS_PHOTONS (global photons of the tracing rows, default 4000000) and
-# PHOS_ANCHOR_RAYS (the anchor's rays, default 20000000): raise both for many cores.
+# PHOS_ANCHOR_RAYS (the anchor's rays, default 20000000): raise both for many cores; PHOS_REPEAT
+# (runs per row, default 1): each figure of a row is then the median of that many runs, the
+# anchor's and phos's alternating (single runs on shared machines swing by +-0.05 in the ratio).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
@@ -43,29 +45,47 @@ photonmap() {
         2> "$out/pm.log"
 }
 calc() { awk "BEGIN { print $1 }"; }
+# The median of the numbers on stdin (one per word); - if any word is not a number.
+median() {
+    tr ' ' '\n' | grep -v '^$' | sort -g | awk '
+        $1 !~ /^[0-9.e+-]+$/ || $1 == "-" { bad = 1 }
+        { v[NR] = $1 }
+        END { if (bad || NR == 0) print "-"; else print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
+}
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
 
 printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %13s | %13s | %13s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio \
     trace-s fault-in-s "build Mphot/s" "Embree scaling" "trace scaling" "build scaling"
 printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %13s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- --- --- ---
 first=""
+repeat=${PHOS_REPEAT:-1}
 for t in $threads; do
-    anchor=$("$out/rays" "$t" "${PHOS_ANCHOR_RAYS:-20000000}" | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')
-    photonmap "$t" "${PHOS_PHOTONS:-4000000}"
+    anchors="" traces="" builds="" faults=""
+    run=0
+    while [ "$run" -lt "$repeat" ]; do
+        anchors="$anchors $("$out/rays" "$t" "${PHOS_ANCHOR_RAYS:-20000000}" | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')"
+        photonmap "$t" "${PHOS_PHOTONS:-4000000}"
+        traces="$traces $(field "time photon trace:")"
+        builds="$builds $(field "time photon map build:")"
+        # (-: a build from before session 34, whose -v has no such line)
+        fault=$(sed -n 's/.*pages faulted in: .* in \([0-9.]*\) s.*/\1/p' "$out/pm.log")
+        faults="$faults ${fault:--}"
+        run=$((run + 1))
+    done
+    # The photon rays and stored photons are the same in every run at a thread count.
     rays=$(sed -n 's/.* \([0-9]*\) photon (.*/\1/p' "$out/pm.log")
-    trace=$(field "time photon trace:")
-    build_s=$(field "time photon map build:")
     stored=$(sed -n 's/.*global map: \([0-9]*\) photons.*/\1/p' "$out/pm.log")
-    # (-: a build from before session 34, whose -v has no such line)
-    fault=$(sed -n 's/.*pages faulted in: .* in \([0-9.]*\) s.*/\1/p' "$out/pm.log")
-    [ -n "$fault" ] || fault=-
+    anchor=$(echo "$anchors" | median)
+    trace=$(echo "$traces" | median)
+    build_s=$(echo "$builds" | median)
+    fault=$(echo "$faults" | median)
     rate=$(calc "$rays / $trace / 1000000")
     [ -z "$first" ] && first=$t anchor_1=$anchor trace_1=$trace build_1=$build_s
     printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10s | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" \
         "$rate" "$(calc "$rate / $anchor")" "$trace" "$fault" "$(calc "$stored / $build_s / 1000000")" \
         "$(calc "$anchor / $anchor_1")" "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
 done
-echo "(scaling: against $first thread(s))"
+echo "(scaling: against $first thread(s); each figure the median of $repeat run(s))"
 
 if [ "$big" = 1 ]; then
     photonmap 2 100000000
