@@ -11,8 +11,9 @@
 
 namespace phos::photon::detail {
 
-// V: the lane type, with V::kLanes lanes of floats (V::F) and of 32-bit ints (V::I), and the
-// operations below (the SSE/AVX intrinsics of the same names).
+// V: the lane type: as many lanes of floats (V::F) as of 32-bit ints (V::I), and the operations
+// below (the SSE/AVX intrinsics of the same names). xyz holds one direction per lane, x, y, z of
+// each one after another; codes receives one code per lane.
 template <int Bits, class V>
 inline void encode_octahedral_lanes(const float* xyz, uint32_t* codes) {
     static_assert(Bits >= 2 && Bits <= 15);

@@ -55,10 +55,8 @@ bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler,
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
                     bool& specular) {
     using namespace shading;
-    if (bsdf.is_lambertian()) {
-        specular = false;
-        return scatter_photon(bsdf.lambert_lobe(), wo, sampler, power, wi_out);
-    }
+    // (surface_step gives a lone Lambert lobe to the overload above instead; this code would draw
+    // the same sample for it.)
     const Bsdf::LobeAlbedos a = bsdf.lobe_albedos(wo);
     // Probability of each lobe kind = its albedo averaged over channels (Jensen). If the material
     // reflects more than it receives, the probabilities are scaled down so they sum to 1 and the

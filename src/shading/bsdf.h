@@ -65,8 +65,8 @@ struct BsdfOptions {
 
 // A lone Lambert reflection lobe placed at a hit (f = kd / pi on the side of ng that wo is on): all
 // that sampling a BSDF made of it alone reads. MaterialBsdfs::lambert_at gives it without building
-// the whole BSDF (the photon tracer's commonest surface), and such a Bsdf samples through the same
-// code (Bsdf::lambert_lobe), so the two agree to the bit.
+// the whole BSDF (the photon tracer's commonest surface), and such a Bsdf samples its lobe through the
+// same function (bsdf.cpp's sample_lambert), so the two agree to the bit.
 struct LambertLobe {
     Frame frame;  // shading frame
     Vec3 ng;
@@ -124,8 +124,6 @@ public:
     bool is_lambertian() const { return flags_ == (kDiffuse | kReflection); }
     // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses.
     Rgb diffuse_albedo() const { return kd_; }
-    // The lobe of a placed BSDF that is_lambertian().
-    LambertLobe lambert_lobe() const { return {frame_, ng_, kd_}; }
     // Directional albedo of each lobe kind for wo (probabilities for the photon tracer's Russian
     // roulette): diffuse = kd + kdt (Lambert reflection and transmission), glossy = Phong ks
     // (x conductor Fresnel at wo), specular = mirror reflectance at wo (ks, x conductor Fresnel),
