@@ -66,6 +66,9 @@ TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim);
 struct Geom {
     enum Kind { Mesh, Analytic, Instance } kind = Mesh;
     int index = 0;  // into Impl::meshes / analytics / instances
+    // A mesh's record itself (the deque keeps it in place): a hit reaches it without the deque's
+    // two-level indexing.
+    const MeshGeom* mesh = nullptr;
 };
 
 struct InstanceData {
@@ -257,7 +260,7 @@ struct EmbreeScene::Impl {
                               });
         }
         meshes.push_back(std::move(mg));
-        attach(s, g, ids, {Geom::Mesh, int(meshes.size() - 1)});
+        attach(s, g, ids, {Geom::Mesh, int(meshes.size() - 1), &meshes.back()});
     }
 
     void add_mesh(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
@@ -612,7 +615,10 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
 void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
-    CanonicalHit canonical[16];
+    // The analytic callbacks' exact hits, one per lane: a lane's entry is written before its hit
+    // is read. The thread's own (no call here runs inside another), so that each call does not
+    // construct sixteen of them (5 instructions per photon ray).
+    thread_local CanonicalHit canonical[16];
     QueryContext qc{{}, canonical};
     rtcInitIntersectContext(&qc.ctx);
     for (int k = 0; k < 16; ++k) {
@@ -694,7 +700,7 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
     const scene::Shape* shape;
     int shape_index;
     if (g->kind == Geom::Mesh) {
-        const MeshGeom& m = im.meshes[size_t(g->index)];
+        const MeshGeom& m = *g->mesh;
         hit.primitive = int(raw.prim);
         // (Under an instance the world-space vectors differ per instance.)
         if (!inst && !m.facts.empty() && m.normals.empty()) {

@@ -28,7 +28,16 @@ size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
     const size_t n = weights_.size();
     const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
     // First bin whose upper edge exceeds x; empty bins (zero width) can never satisfy this.
-    size_t i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
+    size_t i;
+    if (n <= 16) {
+        // Few bins (the triangles of a quad light): the edges up to x counted without branches,
+        // which is the same index (the edges never fall, and cdf_[n] = 1 > x); the binary search's
+        // random turns were mispredicted at half of all photon emissions.
+        i = 0;
+        for (size_t k = 1; k < n; ++k) i += cdf_[k] <= x;
+    } else {
+        i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
+    }
     if (i >= n) i = n - 1;
     while (i > 0 && cdf_[i + 1] - cdf_[i] <= 0) --i;  // guard against rounding at the top end
     const double width = cdf_[i + 1] - cdf_[i];

@@ -2,7 +2,10 @@
 // into a closed shape find its far side, and shadow rays do not leak through touching geometry.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 
 #include "accel/brute_force.h"
 #include "accel/embree_scene.h"
@@ -281,6 +284,59 @@ TEST(Spawn, ShadowRaysStopShortOfTheirTarget) {
     EXPECT_EQ(l.shape, 1);
     EXPECT_TRUE(blocked.occluded(accel::spawn_ray_to(f, l.p)));
     EXPECT_TRUE(blocked.occluded(accel::spawn_ray_between(f, l)));
+}
+
+// offset_origin (SSE selects) against its one-coordinate-at-a-time reference, to the bit: random
+// hits and directions, and the values where next_float's cases part (zeros of both signs, the
+// ends +-kInf and beyond, denormals, NaN, axis-aligned normals, no error bound).
+TEST(OffsetOrigin, LanesGiveTheReferenceBits) {
+    Sampler rng(91);
+    const float special[] = {0.0f,
+                             -0.0f,
+                             kInf,
+                             -kInf,
+                             2e30f,
+                             -3e30f,
+                             1e-40f,
+                             -1e-40f,
+                             1.0f,
+                             -1.0f,
+                             1e-7f,
+                             std::numeric_limits<float>::quiet_NaN(),
+                             std::numeric_limits<float>::infinity()};
+    const auto pick = [&](float scale) {
+        const float u = rng.next();
+        if (u < 0.3f) return special[size_t(rng.next() * 12.999f)];
+        return (rng.next() * 2 - 1) * scale;
+    };
+    int differ = 0, nudged = 0;
+    for (int k = 0; k < 400000; ++k) {
+        accel::SurfaceHit h;
+        const float scale = std::ldexp(1.0f, int(rng.next() * 80) - 40);
+        h.p = Vec3(pick(scale), pick(scale), pick(scale));
+        if (rng.next() < 0.3f) {
+            const int axis = int(rng.next() * 2.999f);
+            h.ng = Vec3(0.0f);
+            h.ng[axis] = rng.next() < 0.5f ? 1.0f : -1.0f;
+            if (rng.next() < 0.3f) h.ng[(axis + 1) % 3] = -0.0f;
+        } else {
+            h.ng = random_unit(rng);
+        }
+        h.error = rng.next() < 0.1f ? 0.0f : rng.next() * 1e-3f * scale;
+        const Vec3 dir = rng.next() < 0.05f ? Vec3(pick(1.0f), pick(1.0f), pick(1.0f)) : random_unit(rng);
+        if (rng.next() < 0.1f) {
+            // A coordinate that the offset takes exactly to zero (next_float's zero case).
+            const float d = h.error * (std::fabs(h.ng.x) + std::fabs(h.ng.y) + std::fabs(h.ng.z));
+            const int i = int(rng.next() * 2.999f);
+            const float o = h.ng[i] * d;
+            h.p[i] = dot(dir, h.ng) < 0 ? o : -o;
+        }
+        const Vec3 a = accel::offset_origin(h, dir), b = accel::offset_origin_reference(h, dir);
+        differ += std::memcmp(&a, &b, sizeof a) != 0;
+        nudged += std::memcmp(&b, &h.p, sizeof b) != 0;
+    }
+    EXPECT_EQ(differ, 0);
+    EXPECT_GT(nudged, 200000);  // the cases above do move most points
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // 1D/2D piecewise-constant distributions underneath.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "core/log.h"
 #include "light_test_util.h"
@@ -178,6 +180,41 @@ TEST(Distribution1D, OneBinReturnsUUnchanged) {
             EXPECT_EQ(remap, std::min(u, std::nextafter(1.0f, 0.0f))) << w << " " << u;
         }
     }
+}
+
+// The index search of sample_discrete (edges counted for up to 16 bins, a binary search above)
+// against a binary search over cdf(): the same bin for every u, the edges themselves and their
+// float neighbours included, with empty bins anywhere and bins of very different widths.
+TEST(Distribution1D, EverySearchFindsTheBinarySearchsBin) {
+    Sampler rng(17);
+    int checked = 0;
+    for (size_t n = 2; n <= 40; ++n) {
+        for (int trial = 0; trial < 6; ++trial) {
+            std::vector<float> w(n);
+            for (float& v : w) v = rng.next() < 0.25f ? 0.0f : std::ldexp(rng.next(), -int(rng.next() * 20));
+            const Distribution1D d(w);
+            std::vector<double> cdf(n + 1);
+            for (size_t i = 0; i <= n; ++i) cdf[i] = d.cdf(i);
+            const auto reference = [&](float u) {
+                const double x = std::clamp(double(u), 0.0, std::nextafter(1.0, 0.0));
+                size_t i = size_t(std::upper_bound(cdf.begin() + 1, cdf.end(), x) - (cdf.begin() + 1));
+                if (i >= n) i = n - 1;
+                while (i > 0 && cdf[i + 1] - cdf[i] <= 0) --i;
+                return i;
+            };
+            std::vector<float> us = {0.0f, 1.0f, std::nextafter(1.0f, 0.0f)};
+            for (size_t i = 1; i < n; ++i) {
+                const float e = float(cdf[i]);
+                us.insert(us.end(), {e, std::nextafter(e, 0.0f), std::nextafter(e, 1.0f)});
+            }
+            for (int k = 0; k < 200; ++k) us.push_back(rng.next());
+            for (float u : us) {
+                ASSERT_EQ(d.sample_discrete(u), reference(u)) << n << " bins, u = " << u;
+                ++checked;
+            }
+        }
+    }
+    EXPECT_GT(checked, 50000);
 }
 
 TEST(Distribution2D, PdfIntegratesAndMatchesHistogram) {
