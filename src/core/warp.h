@@ -13,13 +13,14 @@ namespace phos::warp {
 inline Vec2 concentric_disk(Vec2 u) {
     const float ox = 2 * u.x - 1, oy = 2 * u.y - 1;
     if (ox == 0 && oy == 0) return {0, 0};
-    // theta = pi/4 oy/ox in the wedges where |ox| > |oy|, else pi/2 - pi/4 ox/oy. Written with
-    // selects, not branches: which wedge a random sample falls in is a coin toss the CPU
-    // mispredicts half the time (the operations, and so the bits, are the same either way).
-    const bool wide = std::fabs(ox) > std::fabs(oy);
-    const float r = wide ? ox : oy, other = wide ? oy : ox;
-    const float q = (kPi / 4) * (other / r);
-    const float theta = wide ? q : (kPi / 2) - q;
+    float r, theta;
+    if (std::fabs(ox) > std::fabs(oy)) {
+        r = ox;
+        theta = (kPi / 4) * (oy / ox);
+    } else {
+        r = oy;
+        theta = (kPi / 2) - (kPi / 4) * (ox / oy);
+    }
     return {r * std::cos(theta), r * std::sin(theta)};
 }
 inline float concentric_disk_pdf() { return kInvPi; }

@@ -39,7 +39,9 @@ size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
         i = size_t(std::upper_bound(cdf_.begin() + 1, cdf_.end(), x) - (cdf_.begin() + 1));
     }
     if (i >= n) i = n - 1;
-    while (i > 0 && cdf_[i + 1] - cdf_[i] <= 0) --i;  // guard against rounding at the top end
+    // Guard against rounding at the top end. (The width first: i > 0 is a coin toss between
+    // the two triangles of a quad light, the empty bin almost never happens.)
+    while (cdf_[i + 1] - cdf_[i] <= 0 && i > 0) --i;
     const double width = cdf_[i + 1] - cdf_[i];
     if (pmf) *pmf = float(width);
     if (remapped) {
