@@ -43,8 +43,9 @@ struct SurfaceHit {
 // enough that a ray from the result does not re-hit the same surface (no acne) and close enough not
 // to skip touching geometry (no leaks). (Inline with spawn_ray: every bounce of every path.)
 // offset_origin_reference is the same one coordinate at a time; this one computes the three with
-// SSE selects instead of branches (which side and which rounding direction each coordinate takes
-// depend on the surface and the sampled direction, and were mispredicted almost once per call).
+// SSE selects instead of branches: which side and which rounding direction each coordinate takes
+// depend on the surface and the sampled direction (callgrind's branch simulation mispredicted
+// those branches almost once per call).
 // Every lane runs the reference's IEEE operations, so the bits are the same
 // (OffsetOrigin.LanesGiveTheReferenceBits).
 inline Vec3 offset_origin(const SurfaceHit& hit, Vec3 dir) {

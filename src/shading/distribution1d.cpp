@@ -30,9 +30,10 @@ size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
     // First bin whose upper edge exceeds x; empty bins (zero width) can never satisfy this.
     size_t i;
     if (n <= 16) {
-        // Few bins (the triangles of a quad light): the edges up to x counted without branches,
-        // which is the same index (the edges never fall, and cdf_[n] = 1 > x); the binary search's
-        // random turns were mispredicted at half of all photon emissions.
+        // Few bins (the triangles of a quad light): the edges at or below x counted without
+        // branches. They are a prefix (the sums never fall, and an edge that rounding put above the
+        // last one, 1, is above x < 1 too), so the count is the binary search's index; the binary
+        // search's random turns were mispredicted at half of all photon emissions.
         i = 0;
         for (size_t k = 1; k < n; ++k) i += cdf_[k] <= x;
     } else {
