@@ -56,11 +56,15 @@ inline uint32_t encode_rgbe_reference(Rgb c) {
 // photon in practice): the exponent from the bits, powers of two built from bits, and round to
 // nearest even by adding and subtracting 2^23 (exact for 0 <= x < 2^23 in the default rounding
 // mode, which nearbyint also uses). The photon tracer encodes every stored photon twice.
+// The three channels travel in the lanes of one SSE register (r, g, b, 0): each lane's clamp,
+// product and rounding are the scalar operations, and the maximum of three non-negative,
+// non-NaN values is the same whichever way it is taken.
 inline uint32_t encode_rgbe(Rgb c) {
-    const float r = c.r > 0 ? (c.r < 3e38f ? c.r : 3e38f) : 0.0f;
-    const float g = c.g > 0 ? (c.g < 3e38f ? c.g : 3e38f) : 0.0f;
-    const float b = c.b > 0 ? (c.b < 3e38f ? c.b : 3e38f) : 0.0f;
-    const float m = r > g ? (r > b ? r : b) : (g > b ? g : b);
+    const __m128 raw = _mm_setr_ps(c.r, c.g, c.b, 0.0f);
+    // c > 0 ? min(c, 3e38) : 0 per channel (NaN fails the comparison).
+    const __m128 v = _mm_and_ps(_mm_cmpgt_ps(raw, _mm_setzero_ps()), _mm_min_ps(raw, _mm_set1_ps(3e38f)));
+    const __m128 m2 = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1)));
+    const float m = _mm_cvtss_f32(_mm_max_ps(m2, _mm_shuffle_ps(m2, m2, _MM_SHUFFLE(1, 0, 3, 2))));
     const int biased = int(std::bit_cast<uint32_t>(m) >> 23);  // m >= 0: no sign bit
     if (!(m > 0) || biased < 16 || biased > 240) return encode_rgbe_reference(c);
     int e = biased - 126;  // frexp's exponent for a normal float
@@ -72,11 +76,12 @@ inline uint32_t encode_rgbe(Rgb c) {
         ++e;
         scale *= 0.5f;
     }
-    auto q = [&](float v) {
-        const float x = round_even(v * scale);
-        return uint32_t(x < 255.0f ? x : 255.0f);
-    };
-    return q(r) | (q(g) << 8) | (q(b) << 16) | (uint32_t(e + 128) << 24);
+    const __m128 two23 = _mm_set1_ps(0x1p23f);
+    const __m128 x = _mm_sub_ps(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(scale)), two23), two23);
+    // min(x, 255) as whole numbers, then the low bytes of the four lanes (the fourth is 0).
+    const __m128i q = _mm_cvttps_epi32(_mm_min_ps(x, _mm_set1_ps(255.0f)));
+    const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(q, q), _mm_setzero_si128());
+    return uint32_t(_mm_cvtsi128_si32(bytes)) | (uint32_t(e + 128) << 24);
 }
 
 inline Rgb decode_rgbe(uint32_t w) {
