@@ -2,8 +2,8 @@
 # Packs what bench/photon_throughput.sh needs into one folder that runs on another x86-64 Linux
 # machine with none of phos's packages installed (a many-core machine lent for a few minutes, for
 # the 1-16 thread scaling curve): the built phos, the shared libraries it and the anchor link
-# except the C library's own (compressed: ~30 MB), the anchor built here with its own build line,
-# the benchmark scene and the bench script. On the other machine: `sh DIR/run.sh [--big]` prints
+# except the C library's own (xz-compressed: ~20 MB in all), the anchor built here with its own
+# build line, the benchmark scene and the bench script. On the other machine: `sh DIR/run.sh [--big]` prints
 # the table for PHOS_THREADS (default "1 2 4 8 16") with PHOS_PHOTONS (default 64 M) and
 # PHOS_ANCHOR_RAYS (default 100 M), enough work for 16 cores to run a few seconds per row.
 # The anchor is built with -march=native here: the other machine needs every instruction set this
