@@ -20,6 +20,7 @@ else
 fi
 shared=${PHOS_BENCH_DIR:-$here/../../shared/bench}
 [ -x "$build/phos" ] || { echo "no phos in $build: build it first (scripts/setup.sh)" >&2; exit 2; }
+command -v xz > /dev/null || { echo "the libraries are packed with xz: apt-get install xz-utils" >&2; exit 2; }
 rm -rf "$out"
 mkdir -p "$out/bin" "$out/bench/scn" "$out/lib"
 cp "$build/phos" "$out/bin/phos"
