@@ -155,6 +155,16 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     P.stats.add_value("photon map pages faulted in",
                       fmt("%.3g MB", double(traced.faulted_bytes) * 1e-6) +
                           fmt(" in %.3f s of the trace", traced.fault_in_seconds));
+    // How busy the tracing threads were: below ~95 % the pipeline waits (commits, the last
+    // batches); at ~100 % a rate that grows less than the thread count is the cores' own speed.
+    if (traced.pipeline_seconds > 0 && traced.threads > 0)
+        P.stats.add_value(
+            "photon tracing threads busy",
+            fmt("%.1f %%", 100.0 * traced.batch_seconds / (traced.threads * traced.pipeline_seconds)) +
+                fmt(" (batches %.3f s on ", traced.batch_seconds) + std::to_string(traced.threads) +
+                fmt(traced.threads == 1 ? " thread in %.3f s;" : " threads in %.3f s;",
+                    traced.pipeline_seconds) +
+                fmt(" commits %.3f s, serial)", traced.commit_seconds));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
     P.stats.add_value("photon map build rate",

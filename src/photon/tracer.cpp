@@ -24,6 +24,25 @@
 namespace phos::photon {
 namespace {
 
+double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
+    return std::chrono::duration<double>(b - a).count();
+}
+
+// Sums durations from many threads (the batches' own time): whole nanoseconds in an atomic.
+class TimeSum {
+public:
+    void add(std::chrono::steady_clock::time_point from) {
+        ns_.fetch_add(uint64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(
+                                   std::chrono::steady_clock::now() - from)
+                                   .count()),
+                      std::memory_order_relaxed);
+    }
+    double seconds() const { return double(ns_.load(std::memory_order_relaxed)) * 1e-9; }
+
+private:
+    std::atomic<uint64_t> ns_{0};
+};
+
 // What one batch of photon indices stored: per map, the photons (their power the raw flux x N,
 // see PhotonHit, rescaled by 1 / N once the maps are complete) and the index of the emitted photon
 // within the batch (so a map can be cut exactly after the emission that met its target). Slices
@@ -262,7 +281,7 @@ void exchange_slices(std::vector<Slice>& slices, uint64_t count, const bool acti
             s.bounces[m] = r.get_vector<uint8_t>();
         }
     }
-    out.exchange_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.exchange_seconds += seconds_between(t0, std::chrono::steady_clock::now());
 }
 
 }  // namespace
@@ -314,6 +333,7 @@ public:
     // statistics count the batches committed while a map was still filling.
     void commit(const Slice& s, uint64_t first, uint64_t count) {
         if (!any()) return;
+        const auto t0 = std::chrono::steady_clock::now();
         for (int m = 0; m < kMapCount; ++m) {
             if (!active_[m]) continue;
             std::vector<Photon>& P = out_.photons[m];
@@ -343,6 +363,7 @@ public:
         }
         out_.rays += s.rays;
         end_ = first + count;
+        out_.commit_seconds += seconds_between(t0, std::chrono::steady_clock::now());
     }
 
     // The stream has ended: maps still active ran to the emission cap (their N is everything
@@ -379,7 +400,7 @@ private:
     void fault_in(std::vector<Photon>& v) {
         const auto t0 = std::chrono::steady_clock::now();
         out_.faulted_bytes += fault_in_capacity(v);
-        out_.fault_in_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        out_.fault_in_seconds += seconds_between(t0, std::chrono::steady_clock::now());
     }
 
     const TraceOptions& o_;
@@ -397,7 +418,7 @@ private:
 // traces does not depend on timing; a map cut earlier takes nothing more anyway.
 void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
                      const ProjectionMap* projection, bool packets, uint64_t cap, uint64_t in_flight,
-                     StreamMaps& maps) {
+                     StreamMaps& maps, TimeSum& batch_time) {
     const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
     const uint8_t initial = maps.mask();
     std::vector<Slice> slices(in_flight);
@@ -441,7 +462,9 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
         Slice& s = slices[b % in_flight];
         s.clear();
         const uint64_t first = b * B;
+        const auto t0 = std::chrono::steady_clock::now();
         trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, cap - first), s);
+        batch_time.add(t0);
         traced[b % in_flight].store(b + 1, std::memory_order_release);
         return b;
     };
@@ -468,7 +491,7 @@ void trace_pipelined(const PhotonScene& ps, const TraceOptions& o, uint64_t pass
 // far (enough emissions to meet the farthest target with 5 % to spare), up to `most_batches`.
 void trace_rounds(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
                   const ProjectionMap* projection, bool packets, uint64_t cap, uint64_t most_batches,
-                  StreamMaps& maps, TracedPhotons& out) {
+                  StreamMaps& maps, TracedPhotons& out, TimeSum& batch_time) {
     const uint64_t B = std::max<uint32_t>(o.batch_size, 1);
     std::vector<Slice> slices;
     uint64_t next = 0;  // first photon index of the next round
@@ -484,8 +507,10 @@ void trace_rounds(const PhotonScene& ps, const TraceOptions& o, uint64_t pass,
             slices[b].clear();
             if (interrupt::requested() || !dist::owns(b)) return;
             const uint64_t first = next + b * B;
+            const auto t0 = std::chrono::steady_clock::now();
             trace_batch(ps, o, active, pass, projection, packets, first, std::min(B, next + n_round - first),
                         slices[b]);
+            batch_time.add(t0);
         });
         exchange_slices(slices, nb, active, out);
         for (uint64_t b = 0; b < nb; ++b) {
@@ -522,10 +547,15 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
         dist::max(&threads, 1);
         const uint64_t in_flight = batches_in_flight(int(threads));
         const bool packets = packets_apply(ps, o);
+        TimeSum batch_time;
+        const auto t0 = std::chrono::steady_clock::now();
         if (dist::distributed())
-            trace_rounds(ps, o, pass, projection, packets, cap, in_flight, maps, out);
+            trace_rounds(ps, o, pass, projection, packets, cap, in_flight, maps, out, batch_time);
         else
-            trace_pipelined(ps, o, pass, projection, packets, cap, in_flight, maps);
+            trace_pipelined(ps, o, pass, projection, packets, cap, in_flight, maps, batch_time);
+        out.pipeline_seconds += seconds_between(t0, std::chrono::steady_clock::now());
+        out.batch_seconds += batch_time.seconds();
+        out.threads = worker_threads();
     }
     maps.finish(wanted);
 }
@@ -555,11 +585,11 @@ TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
     const ProjectionMap pm(ps, o.projection_resolution);
     out.caustic_fraction = pm.fraction();
-    out.projection_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.projection_seconds = seconds_between(t0, std::chrono::steady_clock::now());
     if (!pm.empty()) {
         t0 = std::chrono::steady_clock::now();
         run_stream(ps, o, caustic_only, 1, &pm, out);
-        out.caustic_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        out.caustic_seconds = seconds_between(t0, std::chrono::steady_clock::now());
     } else {
         // No light can reach a specular object: nothing to store.
         out.reached[kCausticMap] = out.reached[kVolumeCausticMap] = true;

@@ -80,6 +80,14 @@ struct TracedPhotons {
     uint64_t faulted_bytes = 0;
     double fault_in_seconds = 0;
     uint64_t exchanged_bytes = 0;  // under MPI: the batches' bytes (every rank receives them all)
+    // Where the tracing threads' time went (-v, for scaling): the streams' pipelines (or rounds)
+    // from start to end, the batches' own time summed over all threads, and the commits (serial:
+    // one thread at a time copies a batch into the maps). batch_seconds / (threads x
+    // pipeline_seconds) is how busy the threads were.
+    double pipeline_seconds = 0;
+    double batch_seconds = 0;
+    double commit_seconds = 0;
+    int threads = 0;
     uint64_t stored() const {
         uint64_t n = 0;
         for (const auto& p : photons) n += p.size();

@@ -1,6 +1,7 @@
 // End-to-end tests of phos render's memory check: the estimate against the peak the render then
 // measures (within 25 %) for renders that each make one item dominate, and the refusals (exit 2,
-// a message, no output) of a render that needs more than --max-memory or the memory available.
+// a message, no output) of a render that needs more than --max-memory or the memory available; and
+// the photon tracer's -v figures printed beside the memory (pages faulted in, threads busy).
 #include "core/memory.h"
 
 #include <gtest/gtest.h>
@@ -54,6 +55,16 @@ TEST(Memory, PhotonMapEstimateMatchesPeak) {
     // The global map's array, reserved at its budget (plus one path's photons) and faulted in
     // before tracing: 20 bytes per photon.
     EXPECT_NEAR(stat_bytes(out, "photon map pages faulted in"), 3000018.0 * 20, 0.01e6) << out;
+    // And how busy the tracing threads were: a share of their time, with the sums it comes from.
+    std::smatch busy;
+    ASSERT_TRUE(std::regex_search(
+        out, busy,
+        std::regex("photon tracing threads busy: ([0-9.]+) % \\(batches ([0-9.]+) s on [0-9]+ threads? in "
+                   "([0-9.]+) s; commits ([0-9.]+) s, serial\\)")))
+        << out;
+    EXPECT_GT(std::stod(busy[1]), 0.0) << out;
+    EXPECT_LE(std::stod(busy[1]), 100.0) << out;
+    EXPECT_GT(std::stod(busy[2]), 0.0) << out;
 }
 
 TEST(Memory, SppmEstimateMatchesPeak) {

@@ -1,5 +1,5 @@
 // Photon tracing (photon/tracer.h): power conservation in a closed grey box (global and indirect
-// maps), budget bookkeeping, map classification and thread-count independence.
+// maps), budget bookkeeping, map classification, thread-count independence and the threads' time.
 #include "photon/tracer.h"
 
 #include <gtest/gtest.h>
@@ -9,6 +9,7 @@
 #include <cstring>
 
 #include "accel/embree_scene.h"
+#include "core/threads.h"
 #include "scene/scene.h"
 #include "shading/lights.h"
 
@@ -164,6 +165,32 @@ TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
         EXPECT_TRUE(a.reached[kGlobalMap] && a.reached[kCausticMap]);
         if (!projection) {
             EXPECT_GT(a.emitted[kCausticMap], a.emitted[kGlobalMap] + 2 * o.batch_size);
+        }
+    }
+}
+
+// -v's "threads busy": the batches' time summed over the threads fits in threads x the pipeline's
+// time, and on one thread the batches and the commits (one after another there) fit in it.
+TEST(PhotonTracer, ThreadTimesFitThePipelines) {
+    BoxScene box(0.6f, 1.0f, true);
+    TraceOptions o;
+    o.target[kGlobalMap] = 20000;
+    o.target[kCausticMap] = 3000;
+    o.batch_size = 1024;
+    for (int threads : {1, 3}) {
+        TracedPhotons t;
+        int workers = 0;  // the arena's threads, at most the machine's
+        tbb::task_arena(threads).execute([&] {
+            workers = worker_threads();
+            t = trace_photons(box.ps(), o);
+        });
+        ASSERT_EQ(workers, t.threads);
+        EXPECT_GT(t.batch_seconds, 0.0);
+        EXPECT_GT(t.commit_seconds, 0.0);
+        EXPECT_LE(t.batch_seconds, workers * t.pipeline_seconds);
+        EXPECT_LE(t.commit_seconds, t.pipeline_seconds);
+        if (threads == 1) {
+            EXPECT_LE(t.batch_seconds + t.commit_seconds, t.pipeline_seconds);
         }
     }
 }
