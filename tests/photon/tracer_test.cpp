@@ -132,12 +132,18 @@ TEST(PhotonTracer, FixedEmissionCountFillsEveryWantedMap) {
     EXPECT_GT(t.photons[kCausticMap].size(), 0u);
 }
 
+// Targets for the global and caustic maps, filled in batches of 1024 emissions.
+TraceOptions global_and_caustic(uint64_t global, uint64_t caustic) {
+    TraceOptions o;
+    o.target[kGlobalMap] = global;
+    o.target[kCausticMap] = caustic;
+    o.batch_size = 1024;
+    return o;
+}
+
 TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
     BoxScene box(0.6f, 1.0f, true);
-    TraceOptions o;
-    o.target[kGlobalMap] = 30000;
-    o.target[kCausticMap] = 5000;
-    o.batch_size = 1024;
+    TraceOptions o = global_and_caustic(30000, 5000);
     // 8 threads keep up to 32 batches in flight, 1 and 2 threads up to 8: the batches traced past
     // a cut differ, the maps must not (about 20 batches of 1024 emissions here). With one stream
     // for both maps, the batches after the global map's cut store caustic photons only: which ones
@@ -173,10 +179,7 @@ TEST(PhotonTracer, IdenticalAtAnyThreadCount) {
 // time, and on one thread the batches and the commits (one after another there) fit in it.
 TEST(PhotonTracer, ThreadTimesFitThePipelines) {
     BoxScene box(0.6f, 1.0f, true);
-    TraceOptions o;
-    o.target[kGlobalMap] = 20000;
-    o.target[kCausticMap] = 3000;
-    o.batch_size = 1024;
+    const TraceOptions o = global_and_caustic(20000, 3000);
     for (int threads : {1, 3}) {
         TracedPhotons t;
         int workers = 0;  // the arena's threads, at most the machine's
