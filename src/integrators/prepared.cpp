@@ -17,7 +17,7 @@ scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::Embre
 Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, const PrepareOptions& prepare,
                    Stats& stats_)
     : scene(scene_),
-      accel(scene_),
+      accel(scene_, prepare.embree_config.empty() ? nullptr : prepare.embree_config.c_str()),
       lights(scene_, accel.bounds(), prepare.lights),
       media(scene_),
       camera(camera_for(scene_, accel, prepare), options_.width, options_.height),

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <memory>
+#include <string>
 
 #include "accel/embree_scene.h"
 #include "core/stats.h"
@@ -23,6 +24,8 @@ struct PrepareOptions {
     // camera framed for scenes without one); ignored when lens_radius < 0.
     float lens_radius = -1;
     float focal_distance = 1;
+    // Embree's device configuration (accel/device_config.h; empty: Embree's choice).
+    std::string embree_config;
 };
 
 class Prepared {

@@ -37,22 +37,25 @@ TEST(Cli, NonsenseOptionsExitWith2) {
     TempDir dir;
     const std::string scene = dir.write("s.scn", kTinyScene);
     const std::string out = dir.file("o.png");
-    const std::vector<std::string> bad_commands = {"render " + scene + " -o " + out + " --width 0",
-                                                   "render " + scene + " -o " + out + " --height -5",
-                                                   "render " + scene + " -o " + out + " --spp 0",
-                                                   "render " + scene + " -o " + out + " --spp",
-                                                   "render " + scene + " -o " + out + " --frobnicate",
-                                                   "render " + scene + " -o " + out + " --spp abc",
-                                                   "render " + scene + " -o " + out + " --integrator magic",
-                                                   "render " + scene + " -o " + out + " --threads -1",
-                                                   "render " + scene + " -o " + out + " -resolution 10",
-                                                   "render " + scene + " -o " + out + " --dof 0 1 0.1",
-                                                   "render " + scene + " -o " + out + " --dof 4 -1 0.1",
-                                                   "render " + scene + " -o " + dir.file("x.tiff"),
-                                                   "render " + scene + " -o " + dir.file("nodir/x.png"),
-                                                   "render " + scene,
-                                                   "render",
-                                                   "bogus-command"};
+    const std::vector<std::string> bad_commands = {
+        "render " + scene + " -o " + out + " --width 0",
+        "render " + scene + " -o " + out + " --height -5",
+        "render " + scene + " -o " + out + " --spp 0",
+        "render " + scene + " -o " + out + " --spp",
+        "render " + scene + " -o " + out + " --frobnicate",
+        "render " + scene + " -o " + out + " --spp abc",
+        "render " + scene + " -o " + out + " --integrator magic",
+        "render " + scene + " -o " + out + " --threads -1",
+        "render " + scene + " -o " + out + " -resolution 10",
+        "render " + scene + " -o " + out + " --dof 0 1 0.1",
+        "render " + scene + " -o " + out + " --dof 4 -1 0.1",
+        "render " + scene + " -o " + out + " --embree-config isa=fast",
+        "render " + scene + " -o " + out + " --embree-config threads=4",
+        "render " + scene + " -o " + dir.file("x.tiff"),
+        "render " + scene + " -o " + dir.file("nodir/x.png"),
+        "render " + scene,
+        "render",
+        "bogus-command"};
     for (const std::string& bad : bad_commands) {
         const auto r = run_phos(bad);
         EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
@@ -104,6 +107,27 @@ TEST(Cli, SameSeedIsBitIdenticalForAnyThreadCount) {
             .exit_code,
         0);
     EXPECT_NE(read_bytes(c), read_bytes(dir.file("a-path.pfm")));
+}
+
+// --embree-config reaches Embree's device (its verbose=1 banner appears), and with the kernels
+// pinned the image is still the same at any thread count.
+TEST(Cli, EmbreeConfigReachesTheDevice) {
+    TempDir dir;
+    const std::string scene = dir.write("s.scn", kTinyScene);
+    const std::string common =
+        "render " + scene + " --width 32 --height 24 --spp 2 --global 20000 --gather-rays 2 ";
+    const auto plain = run_phos(common + "-o " + dir.file("p.pfm"));
+    ASSERT_EQ(plain.exit_code, 0) << plain.output;
+    EXPECT_EQ(plain.output.find("Embree Ray Tracing Kernels"), std::string::npos) << plain.output;
+    const auto banner = run_phos(common + "--embree-config isa=sse4.2,verbose=1 -o " + dir.file("v.pfm"));
+    ASSERT_EQ(banner.exit_code, 0) << banner.output;
+    EXPECT_NE(banner.output.find("Embree Ray Tracing Kernels"), std::string::npos) << banner.output;
+    const std::string a = dir.file("a.pfm"), b = dir.file("b.pfm");
+    ASSERT_EQ(run_phos(common + "--embree-config isa=sse4.2 --threads 1 -q -o " + a).exit_code, 0);
+    ASSERT_EQ(run_phos(common + "--embree-config isa=sse4.2 --threads 2 -q -o " + b).exit_code, 0);
+    ASSERT_GT(read_bytes(a).size(), 32u * 24u * 12u);
+    EXPECT_EQ(read_bytes(a), read_bytes(b));
+    EXPECT_EQ(read_bytes(a), read_bytes(dir.file("v.pfm")));  // verbose changes nothing else
 }
 
 TEST(Cli, VerbosePrintsStatistics) {

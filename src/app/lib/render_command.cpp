@@ -382,6 +382,7 @@ integrators::PrepareOptions prepare_options(const RenderCommand& cmd) {
     prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
     prep.lens_radius = cmd.render.lens_radius;
     prep.focal_distance = cmd.render.focal_distance;
+    prep.embree_config = cmd.scene.embree_config;
     return prep;
 }
 

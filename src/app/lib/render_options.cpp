@@ -4,6 +4,7 @@
 
 #include <sstream>
 
+#include "accel/device_config.h"
 #include "integrators/factory.h"
 
 namespace phos::app {
@@ -124,6 +125,19 @@ const options::Table& scene_options() {
             "no-default-lights", &SceneOptions::no_default_lights,
             ".scn: a scene without lights gets none (by default it gets the seed renderer's two directional "
             "lights, with a warning)");
+        auto& embree = b.custom(
+            "embree-config", "KEY=VALUE,...", 1,
+            "Embree's device configuration: isa=I or max_isa=I (sse2, sse4.2, avx, avx2, avx512) picks its "
+            "kernels, frequency_level=simd128|simd256|simd512 how wide they may go, also hugepages=0|1 and "
+            "verbose=0..3. Kernels of different widths can differ in a hit's last bits (and so the image): a "
+            "fixed isa takes that difference between machines away",
+            [](SceneOptions& o, const std::vector<std::string>& v) {
+                if (const std::string e = accel::embree_config_error(v.at(0)); !e.empty())
+                    throw options::ValueError(e);
+                o.embree_config = v.at(0);
+            },
+            [](const SceneOptions& o) { return o.embree_config; });
+        embree.default_text = "Embree's own choice for this CPU";
         return b.build();
     }();
     return table;

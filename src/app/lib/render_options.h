@@ -50,6 +50,7 @@ struct SceneOptions {
     bool real = false;               // the seed's -real: now the default (accepted, no effect)
     bool raw_materials = false;      // keep energy-creating .scn materials as written
     bool no_default_lights = false;  // .scn: no default lights for a scene without lights
+    std::string embree_config;       // Embree's device configuration (empty: its own choice)
 };
 
 const options::Table& run_options();
