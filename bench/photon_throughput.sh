@@ -21,7 +21,8 @@
 # ../shared/bench), PHOS_PHOTONS (global photons of the tracing rows, default 4000000) and
 # PHOS_ANCHOR_RAYS (the anchor's rays, default 20000000): raise both for many cores; PHOS_REPEAT
 # (runs per row, default 1): each figure of a row is then the median of that many runs, the
-# anchor's and phos's alternating (single runs on shared machines swing by +-0.05 in the ratio).
+# anchor's and phos's alternating (single runs on shared machines swing by +-0.05 in the ratio);
+# PHOS_ARGS: more options for phos's runs (e.g. "--embree-config frequency_level=simd256").
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
@@ -44,7 +45,7 @@ fi
 photonmap() {
     "$phos" render "$shared/scn/cornell-diffuse.scn" --integrator photonmap --width 64 --height 64 --spp 1 \
         --gather-rays 1 --global "$2" --no-irradiance-cache -v --no-progress --threads "$1" -o "$out/pm.pfm" \
-        2> "$out/pm.log"
+        ${PHOS_ARGS:-} 2> "$out/pm.log" || { cat "$out/pm.log" >&2; exit 2; }
 }
 calc() { awk "BEGIN { print $1 }"; }
 # The median of the numbers on stdin (one per word); - if any word is not a number.
