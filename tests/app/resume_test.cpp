@@ -2,7 +2,7 @@
 // SIGKILL mid-way and resumed from its last checkpoint writes exactly the bytes of an uninterrupted
 // render with the same total iterations; corrupt, truncated or foreign checkpoints exit 2; a
 // resume says what it continues, and warns when the checkpoint already holds more iterations than
-// asked.
+// asked; --embree-config is not part of the identity.
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -57,6 +57,23 @@ TEST(Resume, KilledRenderResumesToTheSameImage) {
     const std::string a = read_bytes(dir.file("full.pfm")), b = read_bytes(dir.file("resumed.pfm"));
     EXPECT_GT(a.size(), 64u * 64u * 12u);
     EXPECT_TRUE(a == b) << "resumed image differs from the uninterrupted render";
+}
+
+// Embree's kernels already follow the machine, so --embree-config is not part of a checkpoint's
+// identity: a render checkpointed with one configuration goes on under another (or none).
+TEST(Resume, EmbreeConfigIsNotPartOfTheIdentity) {
+    TempDir dir;
+    const std::string ckpt = dir.file("e.ckpt");
+    const auto first =
+        run_phos("render " + kScene + kArgs + " --iterations 3 --embree-config isa=sse4.2 --checkpoint " +
+                 ckpt + " -o " + dir.file("first.pfm"));
+    ASSERT_EQ(first.exit_code, 0) << first.output;
+    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    ASSERT_FALSE(saved.options.empty());
+    for (const auto& [flag, value] : saved.options) EXPECT_EQ(flag.find("embree"), std::string::npos) << flag;
+    const auto resumed = run_phos("render " + kScene + kArgs + " --iterations 5 --resume " + ckpt + " -o " +
+                                  dir.file("more.pfm"));
+    EXPECT_EQ(resumed.exit_code, 0) << resumed.output;
 }
 
 TEST(Resume, BadCheckpointsAreRefusedWithExit2) {

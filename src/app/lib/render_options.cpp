@@ -138,6 +138,9 @@ const options::Table& scene_options() {
             },
             [](const SceneOptions& o) { return o.embree_config; });
         embree.default_text = "Embree's own choice for this CPU";
+        // Not part of a checkpoint's identity: without it the kernels already follow the machine,
+        // and a render may go on elsewhere (the images differ in last bits at most).
+        embree.effect = Effect::None;
         return b.build();
     }();
     return table;
