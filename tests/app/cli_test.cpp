@@ -37,25 +37,25 @@ TEST(Cli, NonsenseOptionsExitWith2) {
     TempDir dir;
     const std::string scene = dir.write("s.scn", kTinyScene);
     const std::string out = dir.file("o.png");
-    const std::vector<std::string> bad_commands = {
-        "render " + scene + " -o " + out + " --width 0",
-        "render " + scene + " -o " + out + " --height -5",
-        "render " + scene + " -o " + out + " --spp 0",
-        "render " + scene + " -o " + out + " --spp",
-        "render " + scene + " -o " + out + " --frobnicate",
-        "render " + scene + " -o " + out + " --spp abc",
-        "render " + scene + " -o " + out + " --integrator magic",
-        "render " + scene + " -o " + out + " --threads -1",
-        "render " + scene + " -o " + out + " -resolution 10",
-        "render " + scene + " -o " + out + " --dof 0 1 0.1",
-        "render " + scene + " -o " + out + " --dof 4 -1 0.1",
-        "render " + scene + " -o " + out + " --embree-config isa=fast",
-        "render " + scene + " -o " + out + " --embree-config threads=4",
-        "render " + scene + " -o " + dir.file("x.tiff"),
-        "render " + scene + " -o " + dir.file("nodir/x.png"),
-        "render " + scene,
-        "render",
-        "bogus-command"};
+    const std::string with_out = "render " + scene + " -o " + out + " ";  // then the bad option
+    const std::vector<std::string> bad_commands = {with_out + "--width 0",
+                                                   with_out + "--height -5",
+                                                   with_out + "--spp 0",
+                                                   with_out + "--spp",
+                                                   with_out + "--frobnicate",
+                                                   with_out + "--spp abc",
+                                                   with_out + "--integrator magic",
+                                                   with_out + "--threads -1",
+                                                   with_out + "-resolution 10",
+                                                   with_out + "--dof 0 1 0.1",
+                                                   with_out + "--dof 4 -1 0.1",
+                                                   with_out + "--embree-config isa=fast",
+                                                   with_out + "--embree-config threads=4",
+                                                   "render " + scene + " -o " + dir.file("x.tiff"),
+                                                   "render " + scene + " -o " + dir.file("nodir/x.png"),
+                                                   "render " + scene,
+                                                   "render",
+                                                   "bogus-command"};
     for (const std::string& bad : bad_commands) {
         const auto r = run_phos(bad);
         EXPECT_EQ(r.exit_code, 2) << bad << "\n" << r.output;
