@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "core/stats.h"
 #include "photon/kdtree.h"
 
 namespace {
@@ -190,10 +191,6 @@ struct Dataset {
     std::unique_ptr<NanoTree> nano;
     std::string error;  // set if the two libraries disagree
 };
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 // Both libraries' neighbour sets, as indices into the input array, must be equal; only photons
 // tied at exactly the k-th distance may differ.

@@ -42,15 +42,17 @@ private:
     std::vector<std::pair<std::string, std::string>> values_;
 };
 
+// Seconds of wall time since `t0` (steady clock).
+inline double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
 // Measures the lifetime of a scope into `stats` under `phase`.
 class ScopedTimer {
 public:
     ScopedTimer(Stats& stats, std::string phase)
         : stats_(stats), phase_(std::move(phase)), start_(std::chrono::steady_clock::now()) {}
-    ~ScopedTimer() {
-        stats_.add_time(phase_,
-                        std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count());
-    }
+    ~ScopedTimer() { stats_.add_time(phase_, seconds_since(start_)); }
     ScopedTimer(const ScopedTimer&) = delete;
     ScopedTimer& operator=(const ScopedTimer&) = delete;
 

@@ -8,6 +8,7 @@
 #include "core/error.h"
 #include "core/interrupt.h"
 #include "core/log.h"
+#include "core/stats.h"
 #include "dist/ranks.h"
 #include "integrators/factory.h"
 #include "integrators/path_recorder.h"
@@ -19,10 +20,6 @@
 
 namespace phos::integrators {
 namespace {
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
 
 std::string fmt(const char* f, double v) {
     char buf[64];

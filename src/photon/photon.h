@@ -51,6 +51,13 @@ inline uint32_t encode_rgbe_reference(Rgb c) {
     return q(r) | (q(g) << 8) | (q(b) << 16) | (uint32_t(e + 128) << 24);
 }
 
+// Rounds each lane to the nearest whole number, ties to even, by adding and subtracting 2^23 (exact
+// for 0 <= x < 2^23 in the default rounding mode; the scalar round_even below, lane by lane).
+inline __m128 round_even_lanes(__m128 x) {
+    const __m128 two23 = _mm_set1_ps(0x1p23f);
+    return _mm_sub_ps(_mm_add_ps(x, two23), two23);
+}
+
 // The same words as encode_rgbe_reference (photon_record_test.cpp compares them), without its
 // libm calls where the maximum channel is a normal float well inside the exponent range (every
 // photon in practice): the exponent from the bits, powers of two built from bits, and round to
@@ -76,8 +83,7 @@ inline uint32_t encode_rgbe(Rgb c) {
         ++e;
         scale *= 0.5f;
     }
-    const __m128 two23 = _mm_set1_ps(0x1p23f);
-    const __m128 x = _mm_sub_ps(_mm_add_ps(_mm_mul_ps(v, _mm_set1_ps(scale)), two23), two23);
+    const __m128 x = round_even_lanes(_mm_mul_ps(v, _mm_set1_ps(scale)));
     // min(x, 255) as whole numbers, then the low bytes of the four lanes (the fourth is 0).
     const __m128i q = _mm_cvttps_epi32(_mm_min_ps(x, _mm_set1_ps(255.0f)));
     const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(q, q), _mm_setzero_si128());
@@ -120,17 +126,15 @@ inline void scale_rgbe4(uint32_t w[4], float s) {
         for (int k = 0; k < 4; ++k) w[k] = encode_rgbe(decode_rgbe(w[k]) * s);
         return;
     }
-    const __m128 two23 = _mm_set1_ps(0x1p23f);
-    const auto round_even = [&](__m128 x) { return _mm_sub_ps(_mm_add_ps(x, two23), two23); };
     // e = biased - 126 and scale = 2^(8 - e); a maximum rounding up to 256 moves both one step.
     __m128i e = _mm_sub_epi32(biased, _mm_set1_epi32(126));
     __m128 scale = _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(_mm_set1_epi32(261), biased), 23));
-    const __m128 carry = _mm_cmpge_ps(round_even(_mm_mul_ps(m, scale)), _mm_set1_ps(256.0f));
+    const __m128 carry = _mm_cmpge_ps(round_even_lanes(_mm_mul_ps(m, scale)), _mm_set1_ps(256.0f));
     e = _mm_sub_epi32(e, _mm_castps_si128(carry));  // carry lanes are all ones: -(-1)
     scale = _mm_or_ps(_mm_and_ps(carry, _mm_mul_ps(scale, _mm_set1_ps(0.5f))), _mm_andnot_ps(carry, scale));
     __m128i result = _mm_slli_epi32(_mm_add_epi32(e, _mm_set1_epi32(128)), 24);
     for (int k = 0; k < 3; ++k) {
-        const __m128 q = _mm_min_ps(round_even(_mm_mul_ps(c[k], scale)), _mm_set1_ps(255.0f));
+        const __m128 q = _mm_min_ps(round_even_lanes(_mm_mul_ps(c[k], scale)), _mm_set1_ps(255.0f));
         result = _mm_or_si128(result, _mm_slli_epi32(_mm_cvttps_epi32(q), 8 * k));
     }
     _mm_storeu_si128(reinterpret_cast<__m128i*>(w), result);

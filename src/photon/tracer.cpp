@@ -16,6 +16,7 @@
 #include "core/byte_buffer.h"
 #include "core/interrupt.h"
 #include "core/memory.h"
+#include "core/stats.h"
 #include "core/threads.h"
 #include "dist/ranks.h"
 #include "photon/octahedral_avx2.h"
@@ -23,10 +24,6 @@
 
 namespace phos::photon {
 namespace {
-
-double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-    return std::chrono::duration<double>(b - a).count();
-}
 
 // Sums durations from many threads (the batches' own time): whole nanoseconds in an atomic.
 class TimeSum {
@@ -281,7 +278,7 @@ void exchange_slices(std::vector<Slice>& slices, uint64_t count, const bool acti
             s.bounces[m] = r.get_vector<uint8_t>();
         }
     }
-    out.exchange_seconds += seconds_between(t0, std::chrono::steady_clock::now());
+    out.exchange_seconds += seconds_since(t0);
 }
 
 }  // namespace
@@ -363,7 +360,7 @@ public:
         }
         out_.rays += s.rays;
         end_ = first + count;
-        out_.commit_seconds += seconds_between(t0, std::chrono::steady_clock::now());
+        out_.commit_seconds += seconds_since(t0);
     }
 
     // The stream has ended: maps still active ran to the emission cap (their N is everything
@@ -400,7 +397,7 @@ private:
     void fault_in(std::vector<Photon>& v) {
         const auto t0 = std::chrono::steady_clock::now();
         out_.faulted_bytes += fault_in_capacity(v);
-        out_.fault_in_seconds += seconds_between(t0, std::chrono::steady_clock::now());
+        out_.fault_in_seconds += seconds_since(t0);
     }
 
     const TraceOptions& o_;
@@ -553,7 +550,7 @@ void run_stream(const PhotonScene& ps, const TraceOptions& o, const bool wanted[
             trace_rounds(ps, o, pass, projection, packets, cap, in_flight, maps, out, batch_time);
         else
             trace_pipelined(ps, o, pass, projection, packets, cap, in_flight, maps, batch_time);
-        out.pipeline_seconds += seconds_between(t0, std::chrono::steady_clock::now());
+        out.pipeline_seconds += seconds_since(t0);
         out.batch_seconds += batch_time.seconds();
         out.threads = worker_threads();
     }
@@ -585,11 +582,11 @@ TracedPhotons trace_photons(const PhotonScene& ps, const TraceOptions& o) {
     auto t0 = std::chrono::steady_clock::now();
     const ProjectionMap pm(ps, o.projection_resolution);
     out.caustic_fraction = pm.fraction();
-    out.projection_seconds = seconds_between(t0, std::chrono::steady_clock::now());
+    out.projection_seconds = seconds_since(t0);
     if (!pm.empty()) {
         t0 = std::chrono::steady_clock::now();
         run_stream(ps, o, caustic_only, 1, &pm, out);
-        out.caustic_seconds = seconds_between(t0, std::chrono::steady_clock::now());
+        out.caustic_seconds = seconds_since(t0);
     } else {
         // No light can reach a specular object: nothing to store.
         out.reached[kCausticMap] = out.reached[kVolumeCausticMap] = true;

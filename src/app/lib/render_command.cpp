@@ -527,8 +527,7 @@ int run_render(const RenderCommand& command) {
         const auto t0 = std::chrono::steady_clock::now();
         integrator->render(*prepared, film, progress);
         if (dist::distributed()) {
-            const double seconds =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double seconds = seconds_since(t0);
             const RayCounts rays = stats.rays();
             char line[160];
             std::snprintf(line, sizeof line, "%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged",
