@@ -59,6 +59,7 @@ inline float key(const Photon& p, int axis) {
 // input, so the tree is identical at any thread count.
 constexpr uint32_t kChunk = 1u << 14;             // partition chunk: 320 KiB of photons, fits L2
 constexpr uint32_t kLarge = 1u << 18;             // ranges this big use the chunked selection
+constexpr uint32_t kBoxedSelect = 1u << 16;       // serial selections this big take boxes as they go
 constexpr uint32_t kParallelSubtrees = 1u << 14;  // ranges this big build their subtrees in parallel
 constexpr uint32_t kScan = 1u << 16;              // bounding boxes, checks: photons per piece
 constexpr uint32_t kPiece = 1u << 14;             // exchanges: element pairs per piece
@@ -159,25 +160,34 @@ struct Builder {
         if constexpr (kIndex) std::swap(idx[i], idx[j]);
     }
 
-    // The position and the power word share one 16-byte SSE load (lane 3 is ignored).
-    Box bounds_serial(uint32_t b, uint32_t e) const {
-        __m128 lo0 = _mm_set1_ps(kInf), hi0 = _mm_set1_ps(-kInf), lo1 = lo0, hi1 = hi0;
+    // Grows the SSE bounds lo, hi by the positions of p[b, e). The position and the power word
+    // share one 16-byte load (lane 3 is ignored).
+    static void grow_lanes(const Photon* p, uint32_t b, uint32_t e, __m128& lo, __m128& hi) {
+        __m128 lo1 = lo, hi1 = hi;
         uint32_t i = b;
         for (; i + 1 < e; i += 2) {
             const __m128 v0 = _mm_loadu_ps(&p[i].position.x), v1 = _mm_loadu_ps(&p[i + 1].position.x);
-            lo0 = _mm_min_ps(lo0, v0), hi0 = _mm_max_ps(hi0, v0);
+            lo = _mm_min_ps(lo, v0), hi = _mm_max_ps(hi, v0);
             lo1 = _mm_min_ps(lo1, v1), hi1 = _mm_max_ps(hi1, v1);
         }
         if (i < e) {
             const __m128 v = _mm_loadu_ps(&p[i].position.x);
-            lo0 = _mm_min_ps(lo0, v), hi0 = _mm_max_ps(hi0, v);
+            lo = _mm_min_ps(lo, v), hi = _mm_max_ps(hi, v);
         }
-        alignas(16) float lo[4], hi[4];
-        _mm_store_ps(lo, _mm_min_ps(lo0, lo1));
-        _mm_store_ps(hi, _mm_max_ps(hi0, hi1));
+        lo = _mm_min_ps(lo, lo1), hi = _mm_max_ps(hi, hi1);
+    }
+    static Box to_box(__m128 lo, __m128 hi) {
+        alignas(16) float l[4], h[4];
+        _mm_store_ps(l, lo);
+        _mm_store_ps(h, hi);
         Box box;
-        for (int a = 0; a < 3; ++a) box.lo[a] = lo[a], box.hi[a] = hi[a];
+        for (int a = 0; a < 3; ++a) box.lo[a] = l[a], box.hi[a] = h[a];
         return box;
+    }
+    Box bounds_serial(uint32_t b, uint32_t e) const {
+        __m128 lo = _mm_set1_ps(kInf), hi = _mm_set1_ps(-kInf);
+        grow_lanes(p, b, e, lo, hi);
+        return to_box(lo, hi);
     }
 
     // Per-piece boxes merged in piece order: the same at any thread count.
@@ -194,6 +204,17 @@ struct Builder {
         for (const Box& x : part) box.merge(x);
         return box;
     }
+
+    // With kBoxes, the partitions below also take the bounding boxes of the elements they put
+    // below (`in`) and not below (`out`): of each block as it is finished, while it is still in
+    // the L1 cache, so a range too large for the caches needs no second pass for its children's
+    // boxes.
+    struct SideBoxes {
+        __m128 in_lo = _mm_set1_ps(kInf), in_hi = _mm_set1_ps(-kInf);
+        __m128 out_lo = _mm_set1_ps(kInf), out_hi = _mm_set1_ps(-kInf);
+        Box in() const { return to_box(in_lo, in_hi); }
+        Box out() const { return to_box(out_lo, out_hi); }
+    };
 
     // Moves the elements of [b, e) for which below(coordinate) holds to the front, keeping nothing
     // else in order, and returns where they end. A branchless Lomuto partition: a swap per element
@@ -222,8 +243,8 @@ struct Builder {
     // the wrong side; then only those are swapped in pairs. [b, l) is done (below), [r, e) too (not
     // below); a block is dropped from the unprocessed middle once its wrong elements are all
     // swapped; the last <= 2 kBlock elements take the Lomuto partition.
-    template <class Below>
-    uint32_t partition(uint32_t b, uint32_t e, int axis, Below below) const {
+    template <bool kBoxes = false, class Below>
+    uint32_t partition(uint32_t b, uint32_t e, int axis, Below below, SideBoxes* boxes = nullptr) const {
         constexpr uint32_t kBlock = 64;
         uint8_t wrong_l[kBlock], wrong_r[kBlock];
         uint32_t l = b, r = e, nl = 0, nr = 0, sl = 0, sr = 0;
@@ -245,10 +266,21 @@ struct Builder {
             const uint32_t m = std::min(nl, nr);
             for (uint32_t j = 0; j < m; ++j) swap(l + wrong_l[sl + j], r - 1 - wrong_r[sr + j]);
             nl -= m, nr -= m, sl += m, sr += m;
-            if (nl == 0) l += kBlock;
-            if (nr == 0) r -= kBlock;
+            if (nl == 0) {  // the block holds only elements below: final
+                if constexpr (kBoxes) grow_lanes(p, l, l + kBlock, boxes->in_lo, boxes->in_hi);
+                l += kBlock;
+            }
+            if (nr == 0) {
+                if constexpr (kBoxes) grow_lanes(p, r - kBlock, r, boxes->out_lo, boxes->out_hi);
+                r -= kBlock;
+            }
         }
-        return partition_lomuto(l, r, axis, below);
+        const uint32_t s = partition_lomuto(l, r, axis, below);
+        if constexpr (kBoxes) {
+            grow_lanes(p, l, s, boxes->in_lo, boxes->in_hi);
+            grow_lanes(p, s, r, boxes->out_lo, boxes->out_hi);
+        }
+        return s;
     }
 
     // Selection in a range of at most kTiny photons: selects among (coordinate, position) pairs
@@ -324,8 +356,15 @@ struct Builder {
     // wall, duplicates) are peeled off by a second `<=` pass so they cannot make it quadratic, and
     // an unlucky pivot sequence falls back to heapsort. The last kTiny photons take select_tiny.
     // Deterministic: a pure function of the input order.
-    void select_small(uint32_t b, uint32_t e, uint32_t k, int axis) const {
+    // With kBoxes, also the bounding boxes of [b, k) and (k, e), taken by the Floyd-Rivest steps'
+    // partitions as they classify (so a range beyond the cache is not read a second time for
+    // them) and by one pass over the final band; the permutation is the same either way.
+    template <bool kBoxes = false>
+    void select_small(uint32_t b, uint32_t e, uint32_t k, int axis, Box* left = nullptr,
+                      Box* right = nullptr) const {
         uint32_t lo = b, hi = e;
+        Box below, above;  // with kBoxes: the boxes of [b, lo) and [hi, e)
+        bool done = false;
         for (int steps = 0; hi - lo > kSampled && steps < 8; ++steps) {
             const uint32_t n = hi - lo;
             float sample[kSampleMax];
@@ -333,20 +372,37 @@ struct Builder {
             for (uint32_t i = 0; i < s; ++i) sample[i] = key(p[lo + sample_at(i, n)], axis);
             float plo, phi;
             pick_pivots(lo, hi, k, false, sample, s, plo, phi);
-            const uint32_t s1 = partition(lo, hi, axis, [plo](float x) { return x < plo; });
+            SideBoxes first, second;
+            const uint32_t s1 = partition<kBoxes>(
+                lo, hi, axis, [plo](float x) { return x < plo; }, &first);
             if (k < s1) {  // rare: rank k is below the band
                 hi = s1;
+                if constexpr (kBoxes) above.merge(first.out());
                 continue;
             }
-            const uint32_t s2 = partition(s1, hi, axis, [phi](float x) { return x <= phi; });
+            const uint32_t s2 = partition<kBoxes>(
+                s1, hi, axis, [phi](float x) { return x <= phi; }, &second);
             if (k >= s2) {  // rare: above it
                 lo = s2;
+                if constexpr (kBoxes) below.merge(first.in()), below.merge(second.in());
                 continue;
             }
-            if (plo == phi) return;  // the band holds equal coordinates only
+            if constexpr (kBoxes) below.merge(first.in()), above.merge(second.out());
             lo = s1, hi = s2;
+            if (plo == phi) {  // the band holds equal coordinates only
+                done = true;
+                break;
+            }
             if (2 * (hi - lo) > n) break;  // few distinct values: leave it to quickselect
         }
+        if (!done) select_band(lo, hi, k, axis);
+        if constexpr (kBoxes) {
+            below.merge(bounds_serial(lo, k)), above.merge(bounds_serial(k + 1, hi));
+            *left = below, *right = above;
+        }
+    }
+    // The quickselect part of select_small, on what its Floyd-Rivest steps left.
+    void select_band(uint32_t lo, uint32_t hi, uint32_t k, int axis) const {
         for (int budget = 2 * std::bit_width(hi - lo) + 8; hi - lo > kTiny; --budget) {
             if (budget == 0) {
                 heap_sort(lo, hi, axis);
@@ -485,6 +541,12 @@ struct Builder {
                 Box& left, Box& right) const {
         const uint32_t n = e - b;
         if (n < kLarge || depth == kMaxLargeSteps) {
+            if (n >= kBoxedSelect) {
+                select_small<true>(b, e, k, axis, &left, &right);
+                if (k - b <= skip) left = Box();
+                if (e - k - 1 <= skip) right = Box();
+                return;
+            }
             select_small(b, e, k, axis);
             left = k - b > skip ? bounds_serial(b, k) : Box();
             right = e - k - 1 > skip ? bounds_serial(k + 1, e) : Box();

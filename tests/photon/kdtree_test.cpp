@@ -519,6 +519,41 @@ TEST(KdTree, LargeBuildIsIdenticalAtOneAndTwoThreads) {
     }
 }
 
+TEST(KdTree, SplitAxisIsTheWidestExtentOfTheNodesPoints) {
+    // The layout's contract: each split is along the axis of largest extent of its range's points
+    // (the first such axis on a tie). The children's boxes come out of the selections (the
+    // chunked one above 2^18 photons, the serial one that takes boxes as it partitions from 2^16,
+    // the plain one below), so a box missing any photon shows here as a wrong axis somewhere.
+    for (const auto& input : {cornell_like(600000, 31), large_ties(25)}) {
+        PhotonKdTree tree;
+        tbb::task_arena(2).execute([&] { tree.build(input, with_index(8)); });
+        const auto P = tree.photons();
+        std::vector<std::pair<uint32_t, uint32_t>> todo{{0u, uint32_t(P.size())}};
+        uint32_t checked = 0;
+        while (!todo.empty()) {
+            const auto [b, e] = todo.back();
+            todo.pop_back();
+            if (e - b <= tree.leaf_size()) continue;
+            float lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+            for (uint32_t i = b; i < e; ++i) {
+                for (int a = 0; a < 3; ++a) {
+                    lo[a] = std::min(lo[a], detail::coord(P[i].position, a));
+                    hi[a] = std::max(hi[a], detail::coord(P[i].position, a));
+                }
+            }
+            int widest = 0;
+            for (int a = 1; a < 3; ++a)
+                if (hi[a] - lo[a] > hi[widest] - lo[widest]) widest = a;
+            const uint32_t m = b + (e - b) / 2;
+            ASSERT_EQ(P[m].split_axis(), widest) << "node [" << b << ", " << e << ")";
+            ++checked;
+            todo.push_back({b, m});
+            todo.push_back({m + 1, e});
+        }
+        EXPECT_GT(checked, 30000u);
+    }
+}
+
 TEST(KdTree, LargeBuildInvariantsOnDegenerateInputs) {
     // Inputs that stress the selection: ties everywhere, all duplicates, two values per axis,
     // a plane, presorted and reverse-sorted input, plus a kNN spot check on each.
