@@ -10,6 +10,9 @@
 #     host takes freed memory back it swings from a few ms to ~0.1 s per 80 MB);
 #     busy is how much of the pipeline's time the threads spent in batches (-v; near 100 % a
 #     rate that grows less than the thread count is the cores' own speed, not phos waiting);
+#     top-s and below-s are the k-d build's thread time (-v, summed over threads) in its top levels'
+#     passes over the whole map (ranges of 2^18 photons and more) and below them: a share that
+#     grows with the threads while the work stays the same is time spent waiting for memory;
 #   - with --big: 100 M global photons (2 threads): peak RSS against the map's own bytes (20 B per
 #     photon) and the build rate. Needs ~3 GB of memory and a few minutes.
 # Ratios, not absolute figures, are what to compare between machines: run it on an idle machine
@@ -57,13 +60,15 @@ median() {
 }
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
 
-printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %6s | %13s | %13s | %13s | %13s |\n' threads "Embree Mray/s" "photon Mray/s" ratio \
-    trace-s fault-in-s busy "build Mphot/s" "Embree scaling" "trace scaling" "build scaling"
-printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %6s | %13s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- --- --- --- ---
+printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %6s | %13s | %6s | %7s | %13s | %13s | %13s |\n' threads "Embree Mray/s" \
+    "photon Mray/s" ratio trace-s fault-in-s busy "build Mphot/s" top-s below-s "Embree scaling" "trace scaling" \
+    "build scaling"
+printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %6s | %13s | %6s | %7s | %13s | %13s | %13s |\n' --- --- --- --- --- --- --- \
+    --- --- --- --- --- ---
 first=""
 repeat=${PHOS_REPEAT:-1}
 for t in $threads; do
-    anchors="" traces="" builds="" faults="" busies=""
+    anchors="" traces="" builds="" faults="" busies="" tops="" belows=""
     run=0
     while [ "$run" -lt "$repeat" ]; do
         anchors="$anchors $("$out/rays" "$t" "${PHOS_ANCHOR_RAYS:-20000000}" | sed -n 's/.*: \([0-9.]*\) M incoherent.*/\1/p')"
@@ -75,6 +80,9 @@ for t in $threads; do
         faults="$faults ${fault:--}"
         busy=$(sed -n 's/.*photon tracing threads busy: \([0-9.]*\) %.*/\1/p' "$out/pm.log")
         busies="$busies ${busy:--}"
+        top=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1/p' "$out/pm.log")
+        below=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\2/p' "$out/pm.log")
+        tops="$tops ${top:--}" belows="$belows ${below:--}"
         run=$((run + 1))
     done
     # The photon rays and stored photons are the same in every run at a thread count.
@@ -85,12 +93,15 @@ for t in $threads; do
     build_s=$(echo "$builds" | median)
     fault=$(echo "$faults" | median)
     busy=$(echo "$busies" | median)
+    top=$(echo "$tops" | median)
+    below=$(echo "$belows" | median)
     [ "$busy" = - ] || busy="$busy %"
     rate=$(calc "$rays / $trace / 1000000")
     [ -z "$first" ] && first=$t anchor_1=$anchor trace_1=$trace build_1=$build_s
-    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10s | %6s | %13.2f | %12.2fx | %12.2fx | %12.2fx |\n' "$t" "$anchor" \
-        "$rate" "$(calc "$rate / $anchor")" "$trace" "$fault" "$busy" "$(calc "$stored / $build_s / 1000000")" \
-        "$(calc "$anchor / $anchor_1")" "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
+    printf '| %-7s | %13.2f | %13.2f | %6.3f | %8.3f | %10s | %6s | %13.2f | %6s | %7s | %12.2fx | %12.2fx | %12.2fx |\n' \
+        "$t" "$anchor" "$rate" "$(calc "$rate / $anchor")" "$trace" "$fault" "$busy" \
+        "$(calc "$stored / $build_s / 1000000")" "$top" "$below" "$(calc "$anchor / $anchor_1")" \
+        "$(calc "$trace_1 / $trace")" "$(calc "$build_1 / $build_s")"
 done
 echo "(scaling: against $first thread(s); each figure the median of $repeat run(s))"
 

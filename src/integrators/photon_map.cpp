@@ -91,11 +91,14 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
 
     t0 = std::chrono::steady_clock::now();
     const uint64_t stored = traced.stored();
+    photon::KdBuildStats build_times;
     for (int m = 0; m < photon::kMapCount; ++m) {
         photon::KdTreeOptions ko;
         ko.keep_input_index = record_bounces;
         // In place: the traced array becomes the tree's (no second copy at the peak).
         maps.map[m].build(std::move(traced.photons[m]), ko);
+        build_times.top_seconds += maps.map[m].build_stats().top_seconds;
+        build_times.below_seconds += maps.map[m].build_stats().below_seconds;
         maps.emitted[m] = traced.emitted[m];
         if (record_bounces) {  // into tree order
             maps.bounces[m].resize(maps.map[m].size());
@@ -164,6 +167,14 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
                 fmt(" commits %.3f s, serial)", traced.commit_seconds));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
+    // The build's thread time by level: on many cores, a top-level share that grows with the
+    // thread count means those passes over the whole map wait for memory.
+    P.stats.add_value("photon map build thread time",
+                      fmt("top levels %.3f s, ", build_times.top_seconds) +
+                          fmt("below them %.3f s", build_times.below_seconds) + fmt(" in %.3f s", build_s) +
+                          (traced.threads > 0 ? " on " + std::to_string(traced.threads) +
+                                                    (traced.threads == 1 ? " thread" : " threads")
+                                              : std::string()));
     P.stats.add_value("photon map build rate",
                       fmt("%.3g photons/s", build_s > 0 ? double(stored) / build_s : 0.0));
 

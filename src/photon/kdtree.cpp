@@ -7,7 +7,9 @@
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
+#include <atomic>
 #include <bit>
+#include <chrono>
 #include <cstddef>
 #include <cstring>
 #include <limits>
@@ -148,12 +150,36 @@ struct Cursor {
     }
 };
 
+// The build's thread time, summed over threads, in nanoseconds (for -v): the top levels' passes
+// (ranges of kLarge photons and more, and the bands they leave) and everything below them. On
+// many cores, the top levels' share growing faster than the work says they wait for memory.
+struct BuildTimes {
+    std::atomic<uint64_t> top{0}, below{0};
+};
+// Adds the time its scope takes to one of them.
+class TimeInto {
+public:
+    explicit TimeInto(std::atomic<uint64_t>& to) : to_(to) {}
+    TimeInto(const TimeInto&) = delete;
+    TimeInto& operator=(const TimeInto&) = delete;
+    ~TimeInto() {
+        const auto ns =
+            std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now() - t0_);
+        to_.fetch_add(uint64_t(ns.count()), std::memory_order_relaxed);
+    }
+
+private:
+    std::atomic<uint64_t>& to_;
+    const std::chrono::steady_clock::time_point t0_ = std::chrono::steady_clock::now();
+};
+
 // The photons, and with kIndex their input indices, permuted together.
 template <bool kIndex>
 struct Builder {
     Photon* p;
     uint32_t* idx;
     uint32_t leaf;
+    BuildTimes* times;
 
     void swap(uint32_t i, uint32_t j) const {
         std::swap(p[i], p[j]);
@@ -192,11 +218,15 @@ struct Builder {
 
     // Per-piece boxes merged in piece order: the same at any thread count.
     Box bounds(uint32_t b, uint32_t e) const {
-        if (e - b <= kScan) return bounds_serial(b, e);
+        if (e - b <= kScan) {
+            const TimeInto t(times->top);
+            return bounds_serial(b, e);
+        }
         const uint32_t pieces = pieces_of(e - b, kScan);
         std::vector<Box> part(pieces);
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, pieces),
                           [&](const tbb::blocked_range<uint32_t>& r) {
+                              const TimeInto t(times->top);
                               for (uint32_t c = r.begin(); c < r.end(); ++c)
                                   part[c] = bounds_serial(b + c * kScan, piece_end(b + c * kScan, e, kScan));
                           });
@@ -434,6 +464,7 @@ struct Builder {
         if (count == 0) return;
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kPiece),
                           [&](const tbb::blocked_range<uint32_t>& r) {
+                              const TimeInto t(times->top);
                               Cursor ca(a, oa + r.begin()), cb(b, ob + r.begin());
                               for (uint32_t i = r.begin(); i < r.end();) {
                                   const uint32_t m = std::min({ca.left, cb.left, r.end() - i});
@@ -450,6 +481,7 @@ struct Builder {
         if (count == 0) return;
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, count, kPiece),
                           [&](const tbb::blocked_range<uint32_t>& r) {
+                              const TimeInto t(times->top);
                               Cursor ca(a, oa + r.begin()), cb(b, ob + r.begin()), cc(c, oc + r.begin());
                               for (uint32_t i = r.begin(); i < r.end();) {
                                   const uint32_t m = std::min({ca.left, cb.left, cc.left, r.end() - i});
@@ -484,6 +516,7 @@ struct Builder {
         std::vector<Chunk> info(chunks);
         tbb::parallel_for(
             tbb::blocked_range<uint32_t>(0, chunks), [&](const tbb::blocked_range<uint32_t>& r) {
+                const TimeInto t(times->top);
                 for (uint32_t c = r.begin(); c < r.end(); ++c) {
                     const uint32_t cb = b + c * kChunk, ce = piece_end(cb, e, kChunk);
                     const uint32_t s1 = partition(cb, ce, axis, [lo](float x) { return x < lo; });
@@ -491,23 +524,26 @@ struct Builder {
                     info[c] = {s1 - cb, s2 - s1, bounds_serial(cb, s1), bounds_serial(s2, ce)};
                 }
             });
-        uint32_t n0 = 0, n1 = 0;
-        box0 = box2 = Box();
-        for (const Chunk& c : info) {
-            n0 += c.n0, n1 += c.n1;
-            box0.merge(c.box0), box2.merge(c.box2);
-        }
-        za = b + n0, zb = za + n1;
         // misplaced[x][y]: positions of class-x elements inside zone y (x != y), in chunk order.
         SegmentList misplaced[3][3];
-        const uint32_t zone[4] = {b, za, zb, e};
-        for (uint32_t c = 0; c < chunks; ++c) {
-            const uint32_t cb = b + c * kChunk, ce = piece_end(cb, e, kChunk);
-            const uint32_t seg[4] = {cb, cb + info[c].n0, cb + info[c].n0 + info[c].n1, ce};
-            for (int x = 0; x < 3; ++x) {
-                for (int y = 0; y < 3; ++y) {
-                    if (x != y)
-                        misplaced[x][y].add(std::max(seg[x], zone[y]), std::min(seg[x + 1], zone[y + 1]));
+        {
+            const TimeInto t(times->top);
+            uint32_t n0 = 0, n1 = 0;
+            box0 = box2 = Box();
+            for (const Chunk& c : info) {
+                n0 += c.n0, n1 += c.n1;
+                box0.merge(c.box0), box2.merge(c.box2);
+            }
+            za = b + n0, zb = za + n1;
+            const uint32_t zone[4] = {b, za, zb, e};
+            for (uint32_t c = 0; c < chunks; ++c) {
+                const uint32_t cb = b + c * kChunk, ce = piece_end(cb, e, kChunk);
+                const uint32_t seg[4] = {cb, cb + info[c].n0, cb + info[c].n0 + info[c].n1, ce};
+                for (int x = 0; x < 3; ++x) {
+                    for (int y = 0; y < 3; ++y) {
+                        if (x != y)
+                            misplaced[x][y].add(std::max(seg[x], zone[y]), std::min(seg[x + 1], zone[y + 1]));
+                    }
                 }
             }
         }
@@ -541,26 +577,23 @@ struct Builder {
                 Box& left, Box& right) const {
         const uint32_t n = e - b;
         if (n < kLarge || depth == kMaxLargeSteps) {
-            if (n >= kBoxedSelect) {
-                select_small<true>(b, e, k, axis, &left, &right);
-                if (k - b <= skip) left = Box();
-                if (e - k - 1 <= skip) right = Box();
-                return;
-            }
-            select_small(b, e, k, axis);
-            left = k - b > skip ? bounds_serial(b, k) : Box();
-            right = e - k - 1 > skip ? bounds_serial(k + 1, e) : Box();
-            return;
+            if (depth == 0) return select_serial(b, e, k, axis, skip, left, right);  // timed by the caller
+            const TimeInto t(times->top);  // the band a top level left
+            return select_serial(b, e, k, axis, skip, left, right);
         }
         const uint32_t s = std::clamp<uint32_t>(n >> 8, 1u << 10, 1u << 16);
         std::vector<float> sample(s);
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, s, 4096),
                           [&](const tbb::blocked_range<uint32_t>& r) {
+                              const TimeInto t(times->top);
                               for (uint32_t i = r.begin(); i < r.end(); ++i)
                                   sample[i] = key(p[b + sample_at(i, n)], axis);
                           });
         float lo, hi;
-        pick_pivots(b, e, k, narrow, sample.data(), s, lo, hi);
+        {
+            const TimeInto t(times->top);
+            pick_pivots(b, e, k, narrow, sample.data(), s, lo, hi);
+        }
         uint32_t za, zb;
         Box box0, box2;
         partition3(b, e, axis, lo, hi, za, zb, box0, box2);
@@ -579,18 +612,46 @@ struct Builder {
         }
     }
 
+    // select for a range below kLarge (or one the sampling kept failing on): serial.
+    void select_serial(uint32_t b, uint32_t e, uint32_t k, int axis, uint32_t skip, Box& left,
+                       Box& right) const {
+        if (e - b >= kBoxedSelect) {
+            select_small<true>(b, e, k, axis, &left, &right);
+            if (k - b <= skip) left = Box();
+            if (e - k - 1 <= skip) right = Box();
+            return;
+        }
+        select_small(b, e, k, axis);
+        left = k - b > skip ? bounds_serial(b, k) : Box();
+        right = e - k - 1 > skip ? bounds_serial(k + 1, e) : Box();
+    }
+
+    // Subtrees above kParallelSubtrees photons build their two halves in parallel.
     void build(uint32_t b, uint32_t e, Box box) const {
+        if (e - b <= kParallelSubtrees) {
+            const TimeInto t(times->below);
+            return build_serial(b, e, box);
+        }
+        const int axis = box.widest_axis();
+        const uint32_t m = b + (e - b) / 2;
+        Box left, right;
+        if (e - b < kLarge) {
+            const TimeInto t(times->below);
+            select(b, e, m, axis, false, leaf, 0, left, right);
+        } else {
+            select(b, e, m, axis, false, leaf, 0, left, right);  // timed inside, piece by piece
+        }
+        p[m].set_split_axis(axis);
+        tbb::parallel_invoke([&] { build(b, m, left); }, [&] { build(m + 1, e, right); });
+    }
+    void build_serial(uint32_t b, uint32_t e, Box box) const {
         while (e - b > leaf) {
             const int axis = box.widest_axis();
             const uint32_t m = b + (e - b) / 2;
             Box left, right;
             select(b, e, m, axis, false, leaf, 0, left, right);
             p[m].set_split_axis(axis);
-            if (e - b > kParallelSubtrees) {
-                tbb::parallel_invoke([&] { build(b, m, left); }, [&] { build(m + 1, e, right); });
-                return;
-            }
-            build(b, m, left);
+            build_serial(b, m, left);
             b = m + 1, box = right;  // loop on the right subtree instead of recursing
         }
         for (uint32_t i = b; i < e; ++i) p[i].set_split_axis(3);
@@ -606,6 +667,7 @@ void PhotonKdTree::save(ByteWriter& out) const {
 }
 
 void PhotonKdTree::load(ByteReader& in) {
+    build_stats_ = {};
     leaf_size_ = in.get<uint32_t>();
     photons_ = in.get_vector<Photon>();
     input_index_ = in.get_vector<uint32_t>();
@@ -675,15 +737,17 @@ void PhotonKdTree::build(std::vector<Photon>&& photons, const KdTreeOptions& opt
     // Taken over before it is permuted, so `photons` may even be this tree's own array.
     std::vector<Photon> tree = std::move(photons);
     std::vector<uint32_t> index(options.keep_input_index ? n : 0);
+    BuildTimes times;
     if (options.keep_input_index) {
         tbb::parallel_for(tbb::blocked_range<uint32_t>(0, n, kScan),
                           [&](const tbb::blocked_range<uint32_t>& r) {
                               for (uint32_t i = r.begin(); i < r.end(); ++i) index[i] = i;
                           });
-        if (n > 0) Builder<true>{tree.data(), index.data(), leaf}.build(0, n, root);
+        if (n > 0) Builder<true>{tree.data(), index.data(), leaf, &times}.build(0, n, root);
     } else if (n > 0) {
-        Builder<false>{tree.data(), nullptr, leaf}.build(0, n, root);
+        Builder<false>{tree.data(), nullptr, leaf, &times}.build(0, n, root);
     }
+    build_stats_ = {double(times.top.load()) * 1e-9, double(times.below.load()) * 1e-9};
     photons_ = std::move(tree);
     input_index_ = std::move(index);
     leaf_size_ = leaf;

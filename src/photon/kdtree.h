@@ -65,6 +65,13 @@ struct KdTreeOptions {
     bool keep_input_index = false;  // remember each photon's index in the build input (+4 B each)
 };
 
+// Where the last build's time went, summed over its threads: the top levels' passes over memory
+// (ranges of 2^18 photons and more: sampling, partitions, exchanges, and the bands they leave) and
+// the levels below them. Not saved with the tree.
+struct KdBuildStats {
+    double top_seconds = 0, below_seconds = 0;
+};
+
 class PhotonKdTree {
 public:
     PhotonKdTree() = default;
@@ -97,6 +104,7 @@ public:
     bool has_input_index() const { return !input_index_.empty() || photons_.empty(); }
     uint32_t input_index(uint32_t i) const { return input_index_[i]; }
     uint32_t leaf_size() const { return leaf_size_; }
+    const KdBuildStats& build_stats() const { return build_stats_; }
     size_t memory_bytes() const {
         return photons_.capacity() * sizeof(Photon) + input_index_.capacity() * sizeof(uint32_t);
     }
@@ -126,6 +134,7 @@ private:
     std::vector<Photon> photons_;
     std::vector<uint32_t> input_index_;
     uint32_t leaf_size_ = 16;
+    KdBuildStats build_stats_;
 };
 
 // Reference answer for tests: the same query by examining every photon. Returns the neighbours

@@ -9,6 +9,7 @@
 #include <tbb/task_arena.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cstring>
 #include <functional>
 #include <set>
@@ -552,6 +553,39 @@ TEST(KdTree, SplitAxisIsTheWidestExtentOfTheNodesPoints) {
         }
         EXPECT_GT(checked, 30000u);
     }
+}
+
+TEST(KdTree, BuildThreadTimesFitTheBuild) {
+    // -v's split of the build's thread time: work on ranges of 2^18 photons and more counts as
+    // top levels (none in a smaller build), the rest below them; on one thread the two together
+    // fit in the build's own time (timing a piece twice, or nested pieces, would not).
+    const auto small = cornell_like(100000, 41), large = cornell_like(700000, 42);
+    for (const auto* input : {&small, &large}) {
+        PhotonKdTree tree;
+        double wall = 0;
+        tbb::task_arena(1).execute([&] {
+            const auto t0 = std::chrono::steady_clock::now();
+            tree.build(*input, with_index(8));
+            wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        });
+        const KdBuildStats& s = tree.build_stats();
+        EXPECT_GT(s.below_seconds, 0.0);
+        if (input == &small) {
+            EXPECT_EQ(s.top_seconds, 0.0);
+        } else {
+            EXPECT_GT(s.top_seconds, 0.0);
+        }
+        EXPECT_LE(s.top_seconds + s.below_seconds, wall);
+    }
+    // A tree read back was not built here: it forgets its last build's figures.
+    std::string bytes;
+    ByteWriter out(bytes);
+    PhotonKdTree(small, with_index(8)).save(out);
+    PhotonKdTree reused(large, with_index(8));
+    ASSERT_GT(reused.build_stats().top_seconds, 0.0);
+    ByteReader in(bytes, "'map'");
+    reused.load(in);
+    EXPECT_EQ(reused.build_stats().top_seconds + reused.build_stats().below_seconds, 0.0);
 }
 
 TEST(KdTree, LargeBuildInvariantsOnDegenerateInputs) {
