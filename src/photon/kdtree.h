@@ -26,7 +26,9 @@
 // band holding the median, selected recursively, so one partition pass over a level does most of
 // the work. Smaller ranges select serially: Floyd-Rivest steps, then quickselect with ninther
 // pivots, both on branchless block partitions (Edelkamp & Weiss, "BlockQuicksort", ESA 2016),
-// and a packed-key selection for the last 32 photons. Runs of equal coordinates (walls,
+// and a packed-key selection for the last 32 photons. From 2^16 photons (beyond the caches on
+// many cores) the partitions also take the children's boxes, block by block as each is
+// finished, so the range is not read again for them. Runs of equal coordinates (walls,
 // duplicates) cannot make either quadratic: a band of one value is finished at once, equal pivots
 // are peeled off, and heapsort backs up unlucky pivot sequences. Subtrees of large ranges build in
 // parallel (oneTBB). Parallel work is cut into fixed-size pieces of each range, never by thread
