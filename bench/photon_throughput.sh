@@ -80,9 +80,11 @@ for t in $threads; do
         faults="$faults ${fault:--}"
         busy=$(sed -n 's/.*photon tracing threads busy: \([0-9.]*\) %.*/\1/p' "$out/pm.log")
         busies="$busies ${busy:--}"
-        top=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1/p' "$out/pm.log")
-        below=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\2/p' "$out/pm.log")
-        tops="$tops ${top:--}" belows="$belows ${below:--}"
+        # "TOP BELOW", or nothing from a build before session 38
+        split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
+        top=- below=-
+        [ -z "$split" ] || top=${split% *} below=${split#* }
+        tops="$tops $top" belows="$belows $below"
         run=$((run + 1))
     done
     # The photon rays and stored photons are the same in every run at a thread count.

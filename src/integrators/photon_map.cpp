@@ -27,6 +27,9 @@ std::string fmt(const char* f, double v) {
     return buf;
 }
 
+// "1 thread", "4 threads".
+std::string threads_text(int n) { return std::to_string(n) + (n == 1 ? " thread" : " threads"); }
+
 // Fills automatic radii from the scene's size.
 PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
     PhotonMapOptions r = o;
@@ -161,9 +164,8 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
         P.stats.add_value(
             "photon tracing threads busy",
             fmt("%.1f %%", 100.0 * traced.batch_seconds / (traced.threads * traced.pipeline_seconds)) +
-                fmt(" (batches %.3f s on ", traced.batch_seconds) + std::to_string(traced.threads) +
-                fmt(traced.threads == 1 ? " thread in %.3f s;" : " threads in %.3f s;",
-                    traced.pipeline_seconds) +
+                fmt(" (batches %.3f s on ", traced.batch_seconds) + threads_text(traced.threads) +
+                fmt(" in %.3f s;", traced.pipeline_seconds) +
                 fmt(" commits %.3f s, serial)", traced.commit_seconds));
     P.stats.add_value("photon tracing rate",
                       fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
@@ -172,9 +174,7 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     P.stats.add_value("photon map build thread time",
                       fmt("top levels %.3f s, ", build_times.top_seconds) +
                           fmt("below them %.3f s", build_times.below_seconds) + fmt(" in %.3f s", build_s) +
-                          (traced.threads > 0 ? " on " + std::to_string(traced.threads) +
-                                                    (traced.threads == 1 ? " thread" : " threads")
-                                              : std::string()));
+                          (traced.threads > 0 ? " on " + threads_text(traced.threads) : std::string()));
     P.stats.add_value("photon map build rate",
                       fmt("%.3g photons/s", build_s > 0 ? double(stored) / build_s : 0.0));
 
