@@ -14,10 +14,16 @@
 #     passes over the whole map (ranges of 2^18 photons and more) and below them: a share that
 #     grows with the threads while the work stays the same is time spent waiting for memory;
 #   - with --big: 100 M global photons (2 threads): peak RSS against the map's own bytes (20 B per
-#     photon) and the build rate. Needs ~3 GB of memory and a few minutes.
+#     photon) and the build rate. Needs ~3 GB of memory and a few minutes;
+#   - with --contend: the stand-in, on a few cores, for many cores' memory pressure. The photonmap
+#     command on 1 thread pinned to the first core, alone and while `memory_bandwidth --contend`
+#     streams read-modify-write passes on all the other cores (PHOS_CONTENDERS threads, default
+#     all), runs alternating: how much each part's time grows (the tracing batches' own time, the
+#     build, and the build's top-s and below-s) says how much of it waits for memory. PHOS_PHOTONS defaults to 16 M here, enough
+#     top levels to time. Needs taskset (util-linux) and at least 2 cores.
 # Ratios, not absolute figures, are what to compare between machines: run it on an idle machine
 # (the load average at the start is printed).
-# Usage: bench/photon_throughput.sh [BUILD_DIR] [--big]
+# Usage: bench/photon_throughput.sh [BUILD_DIR] [--big | --contend]
 # Environment: PHOS_THREADS (thread counts, default "1 2"; e.g. "1 2 4 8 16" for a scaling curve:
 # each row's scaling is against the first count), PHOS_ANCHOR (a prebuilt anchor binary, for a
 # machine without Embree's headers), PHOS_BENCH_DIR (the shared bench folder, default
@@ -30,8 +36,9 @@ set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 build=${1:-$here/../build}
 [ $# -gt 0 ] && shift
-big=0
+big=0 contend=0
 [ "${1:-}" = "--big" ] && big=1
+[ "${1:-}" = "--contend" ] && contend=1
 phos=$build/phos
 shared=${PHOS_BENCH_DIR:-$here/../../shared/bench}
 threads=${PHOS_THREADS:-1 2}
@@ -44,9 +51,11 @@ else
     g++ -O3 -march=native -std=c++17 "$shared/anchors/embree_rays.cpp" -lembree3 -ltbb -o "$out/rays"
 fi
 
-# `photonmap THREADS GLOBAL`: runs the issue's command, leaves -v's output in $out/pm.log.
+# `photonmap THREADS GLOBAL`: runs the issue's command (behind $pin, if set), leaves -v's output in
+# $out/pm.log.
 photonmap() {
-    "$phos" render "$shared/scn/cornell-diffuse.scn" --integrator photonmap --width 64 --height 64 --spp 1 \
+    # shellcheck disable=SC2086 # $pin is a command and its arguments
+    ${pin:-} "$phos" render "$shared/scn/cornell-diffuse.scn" --integrator photonmap --width 64 --height 64 --spp 1 \
         --gather-rays 1 --global "$2" --no-irradiance-cache -v --no-progress --threads "$1" -o "$out/pm.pfm" \
         ${PHOS_ARGS:-} 2> "$out/pm.log" || { cat "$out/pm.log" >&2; exit 2; }
 }
@@ -118,4 +127,57 @@ if [ "$big" = 1 ]; then
     printf '100 M photons (2 threads): %s stored, map %.2f GB, peak RSS %s GB (%.2fx the map), trace %s s, build %s s (%.2f M photons/s)\n' \
         "$stored" "$map_gb" "$peak_gb" "$(calc "$peak_gb / $map_gb")" "$trace" "$build_s" \
         "$(calc "$stored / $build_s / 1000000")"
+fi
+
+if [ "$contend" = 1 ]; then
+    cores=$(nproc)
+    [ "$cores" -ge 2 ] || { echo "--contend needs at least 2 cores" >&2; exit 2; }
+    command -v taskset > /dev/null || { echo "--contend needs taskset (util-linux)" >&2; exit 2; }
+    [ -x "$build/memory_bandwidth" ] || { echo "no memory_bandwidth in $build: build the benches first" >&2; exit 2; }
+    contenders=${PHOS_CONTENDERS:-$((cores - 1))}
+    photons=${PHOS_PHOTONS:-16000000}
+    # `one_thread MODE`: the photonmap command on 1 thread pinned to core 0; with MODE "contended"
+    # the contenders run on cores 1.. meanwhile. Appends "BATCHES BUILD TOP BELOW" to $out/MODE
+    # (BATCHES: the tracing batches' own time, without the pages faulted in: a contender's array
+    # makes the kernel find fresh memory for those, which is not what is measured here).
+    one_thread() {
+        if [ "$1" = contended ]; then
+            taskset -c "1-$contenders" "$build/memory_bandwidth" --contend 1 "$contenders" &
+            hog=$!
+            trap 'kill "$hog" 2> /dev/null; rm -rf "$out"' EXIT
+            sleep 2  # its array written, its passes running
+        fi
+        pin="taskset -c 0"
+        photonmap 1 "$photons"
+        pin=""
+        if [ "$1" = contended ]; then
+            kill "$hog"
+            wait "$hog" 2> /dev/null || true
+            trap 'rm -rf "$out"' EXIT
+        fi
+        split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
+        batches=$(sed -n 's/.*photon tracing threads busy: .*(batches \([0-9.]*\) s.*/\1/p' "$out/pm.log")
+        echo "${batches:--} $(field "time photon map build:") ${split:-- -}" >> "$out/$1"
+    }
+    : > "$out/alone"
+    : > "$out/contended"
+    run=0
+    while [ "$run" -lt "$repeat" ]; do
+        one_thread alone
+        one_thread contended
+        run=$((run + 1))
+    done
+    # `column N FILE`: the median of column N of FILE's lines.
+    column() { cut -d' ' -f"$1" "$2" | median; }
+    printf '\n| 1 thread, %s photons | batches-s | build-s | top-s | below-s |\n| --- | --- | --- | --- | --- |\n' "$photons"
+    printf '| alone | %s | %s | %s | %s |\n' "$(column 1 "$out/alone")" "$(column 2 "$out/alone")" \
+        "$(column 3 "$out/alone")" "$(column 4 "$out/alone")"
+    printf '| %s contending thread(s) | %s | %s | %s | %s |\n' "$contenders" "$(column 1 "$out/contended")" \
+        "$(column 2 "$out/contended")" "$(column 3 "$out/contended")" "$(column 4 "$out/contended")"
+    growth() {
+        a=$(column "$1" "$out/alone") c=$(column "$1" "$out/contended")
+        if [ "$a" = - ] || [ "$c" = - ]; then echo -; else calc "int(($c / $a - 1) * 1000 + 0.5) / 10" | sed 's/^\([0-9]\)/+\1/; s/$/ %/'; fi
+    }
+    printf '| growth | %s | %s | %s | %s |\n' "$(growth 1)" "$(growth 2)" "$(growth 3)" "$(growth 4)"
+    echo "(each figure the median of $repeat run(s), alone and contended alternating)"
 fi

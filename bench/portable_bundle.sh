@@ -4,10 +4,10 @@
 # the 1-16 thread scaling curve): the built phos, the shared libraries it and the anchor link
 # except the C library's own (xz-compressed: ~20 MB in all), the anchor built here with its own
 # build line, bench/memory_bandwidth, the benchmark scene and the bench script. On the other machine:
-# `sh DIR/run.sh [--big]` prints the machine's memory bandwidth at each thread count (a 2 GiB
-# array; PHOS_BANDWIDTH_GIB=0 skips it), then the table for PHOS_THREADS (default "1 2 4 8 16")
-# with PHOS_PHOTONS (default 64 M) and PHOS_ANCHOR_RAYS (default 100 M), enough work for 16 cores
-# to run a few seconds per row.
+# `sh DIR/run.sh [--big | --contend]` prints the machine's memory bandwidth at each thread count
+# (a 2 GiB array; PHOS_BANDWIDTH_GIB=0 skips it), then the table for PHOS_THREADS (default
+# "1 2 4 8 16") with PHOS_PHOTONS (default 64 M) and PHOS_ANCHOR_RAYS (default 100 M), enough
+# work for 16 cores to run a few seconds per row; --big and --contend go to the script.
 # The anchor is built with -march=native here: the other machine needs every instruction set this
 # one has (check with `grep flags /proc/cpuinfo` on both), and a C library at least as new.
 # Usage: bench/portable_bundle.sh [BUILD_DIR] OUT_DIR
