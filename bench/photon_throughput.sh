@@ -19,8 +19,8 @@
 #     command on 1 thread pinned to the first core, alone and while `memory_bandwidth --contend`
 #     streams read-modify-write passes on all the other cores (PHOS_CONTENDERS threads, default
 #     all), runs alternating: how much each part's time grows (the tracing batches' own time, the
-#     build, and the build's top-s and below-s) says how much of it waits for memory. PHOS_PHOTONS defaults to 16 M here, enough
-#     top levels to time. Needs taskset (util-linux) and at least 2 cores.
+#     build, and the build's top-s and below-s) says how much of it waits for memory. PHOS_PHOTONS
+#     defaults to 16 M here, enough top levels to time. Needs taskset (util-linux), 2 cores or more.
 # Ratios, not absolute figures, are what to compare between machines: run it on an idle machine
 # (the load average at the start is printed).
 # Usage: bench/photon_throughput.sh [BUILD_DIR] [--big | --contend]
@@ -40,6 +40,15 @@ big=0 contend=0
 [ "${1:-}" = "--big" ] && big=1
 [ "${1:-}" = "--contend" ] && contend=1
 phos=$build/phos
+if [ "$contend" = 1 ]; then  # checked before the table, not after it
+    cores=$(nproc)
+    [ "$cores" -ge 2 ] || { echo "--contend needs at least 2 cores" >&2; exit 2; }
+    command -v taskset > /dev/null || { echo "--contend needs taskset (util-linux)" >&2; exit 2; }
+    [ -x "$build/memory_bandwidth" ] || { echo "no memory_bandwidth in $build: build the benches first" >&2; exit 2; }
+    contenders=${PHOS_CONTENDERS:-$((cores - 1))}
+    [ "$contenders" -ge 1 ] && [ "$contenders" -lt "$cores" ] ||
+        { echo "PHOS_CONTENDERS must be 1 to $((cores - 1)) (the cores but the first)" >&2; exit 2; }
+fi
 shared=${PHOS_BENCH_DIR:-$here/../../shared/bench}
 threads=${PHOS_THREADS:-1 2}
 out=$(mktemp -d)
@@ -130,11 +139,6 @@ if [ "$big" = 1 ]; then
 fi
 
 if [ "$contend" = 1 ]; then
-    cores=$(nproc)
-    [ "$cores" -ge 2 ] || { echo "--contend needs at least 2 cores" >&2; exit 2; }
-    command -v taskset > /dev/null || { echo "--contend needs taskset (util-linux)" >&2; exit 2; }
-    [ -x "$build/memory_bandwidth" ] || { echo "no memory_bandwidth in $build: build the benches first" >&2; exit 2; }
-    contenders=${PHOS_CONTENDERS:-$((cores - 1))}
     photons=${PHOS_PHOTONS:-16000000}
     # `one_thread MODE`: the photonmap command on 1 thread pinned to core 0; with MODE "contended"
     # the contenders run on cores 1.. meanwhile. Appends "BATCHES BUILD TOP BELOW" to $out/MODE
@@ -151,7 +155,7 @@ if [ "$contend" = 1 ]; then
         photonmap 1 "$photons"
         pin=""
         if [ "$1" = contended ]; then
-            kill "$hog"
+            kill "$hog" 2> /dev/null || true
             wait "$hog" 2> /dev/null || true
             trap 'rm -rf "$out"' EXIT
         fi
@@ -176,7 +180,7 @@ if [ "$contend" = 1 ]; then
         "$(column 2 "$out/contended")" "$(column 3 "$out/contended")" "$(column 4 "$out/contended")"
     growth() {
         a=$(column "$1" "$out/alone") c=$(column "$1" "$out/contended")
-        if [ "$a" = - ] || [ "$c" = - ]; then echo -; else calc "int(($c / $a - 1) * 1000 + 0.5) / 10" | sed 's/^\([0-9]\)/+\1/; s/$/ %/'; fi
+        if [ "$a" = - ] || [ "$c" = - ]; then echo -; else awk "BEGIN { printf \"%+.1f %%\", ($c / $a - 1) * 100 }"; fi
     }
     printf '| growth | %s | %s | %s | %s |\n' "$(growth 1)" "$(growth 2)" "$(growth 3)" "$(growth 4)"
     echo "(each figure the median of $repeat run(s), alone and contended alternating)"
