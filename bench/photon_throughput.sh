@@ -52,7 +52,8 @@ fi
 shared=${PHOS_BENCH_DIR:-$here/../../shared/bench}
 threads=${PHOS_THREADS:-1 2}
 out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+hog=""  # with --contend, the contenders' process while it runs
+trap 'rm -rf "$out"; [ -z "$hog" ] || kill "$hog" 2> /dev/null' EXIT
 echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg), $(nproc) cores"
 if [ -n "${PHOS_ANCHOR:-}" ]; then
     cp "$PHOS_ANCHOR" "$out/rays"
@@ -77,6 +78,11 @@ median() {
         END { if (bad || NR == 0) print "-"; else print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
+# The build's thread time in $out/pm.log (-v): "TOP BELOW", or "- -" from a build before session 38.
+build_split() {
+    split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
+    echo "${split:-- -}"
+}
 
 printf '| %-7s | %13s | %13s | %6s | %8s | %10s | %6s | %13s | %6s | %7s | %13s | %13s | %13s |\n' threads "Embree Mray/s" \
     "photon Mray/s" ratio trace-s fault-in-s busy "build Mphot/s" top-s below-s "Embree scaling" "trace scaling" \
@@ -98,10 +104,8 @@ for t in $threads; do
         faults="$faults ${fault:--}"
         busy=$(sed -n 's/.*photon tracing threads busy: \([0-9.]*\) %.*/\1/p' "$out/pm.log")
         busies="$busies ${busy:--}"
-        # "TOP BELOW", or nothing from a build before session 38
-        split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
-        top=- below=-
-        [ -z "$split" ] || top=${split% *} below=${split#* }
+        split=$(build_split)
+        top=${split% *} below=${split#* }
         tops="$tops $top" belows="$belows $below"
         run=$((run + 1))
     done
@@ -148,7 +152,6 @@ if [ "$contend" = 1 ]; then
         if [ "$1" = contended ]; then
             taskset -c "1-$contenders" "$build/memory_bandwidth" --contend 1 "$contenders" &
             hog=$!
-            trap 'kill "$hog" 2> /dev/null; rm -rf "$out"' EXIT
             sleep 2  # its array written, its passes running
         fi
         pin="taskset -c 0"
@@ -157,11 +160,10 @@ if [ "$contend" = 1 ]; then
         if [ "$1" = contended ]; then
             kill "$hog" 2> /dev/null || true
             wait "$hog" 2> /dev/null || true
-            trap 'rm -rf "$out"' EXIT
+            hog=""
         fi
-        split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
         batches=$(sed -n 's/.*photon tracing threads busy: .*(batches \([0-9.]*\) s.*/\1/p' "$out/pm.log")
-        echo "${batches:--} $(field "time photon map build:") ${split:-- -}" >> "$out/$1"
+        echo "${batches:--} $(field "time photon map build:") $(build_split)" >> "$out/$1"
     }
     : > "$out/alone"
     : > "$out/contended"
