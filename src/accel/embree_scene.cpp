@@ -84,7 +84,7 @@ struct QueryContext {
     CanonicalHit* hit;
 };
 
-// (Two-argument maxima: the initializer-list form was not inlined, 2 % of photon tracing.)
+// (Two-argument maxima: the initializer-list form is not inlined, 2 % of photon tracing.)
 inline double max_abs(D3 v) { return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z))); }
 D3 normalized(D3 v) {
     const double l = std::sqrt(detail::dot(v, v));

@@ -43,8 +43,7 @@ struct ProgressiveOptions {
 // iterations (sppm.cpp), so its direct light converges faster than the photon estimate: at the
 // bench budgets 2 samples gave lower error than 4 on all three bench scenes (cornell-diffuse
 // 0.00039 against 0.00040, cornell-glass-mirror 0.00075 against 0.00078, caustic-point 0.00132
-// against 0.00142), the time going to more iterations. (With independent samples, one left the
-// direct light's noise dominant on area-lit scenes and 4 were chosen.)
+// against 0.00142), the time going to more iterations.
 inline int direct_samples_for(const ProgressiveOptions& o, bool ppm) {
     return o.direct_samples > 0 ? o.direct_samples : ppm ? 16 : 2;
 }

@@ -22,7 +22,7 @@ void HitPointGrid::build(const std::vector<Vec3>& positions, const std::vector<f
     }
     // A level costs every photon one more cell lookup, so classes share a level unless the finer
     // ones hold at least half of the points still to place: then the level splits there and
-    // those points get cells sized by their own radius (a few large pilot discs no longer
+    // those points get cells sized by their own radius (so a few large pilot discs do not
     // inflate every photon's cell). Small classes of tiny radii ride along in the level above.
     size_t left = 0;
     for (int k = 0; k < max_levels_; ++k) left += members[k].size();

@@ -33,8 +33,8 @@
 // are peeled off, and heapsort backs up unlucky pivot sequences. Subtrees of large ranges build in
 // parallel (oneTBB). Parallel work is cut into fixed-size pieces of each range, never by thread
 // count, and every piece's result is a pure function of its input, so the tree is identical at any
-// thread count. About 4x the speed of the previous build (sorted 16-byte keys, 57 B per photon at
-// the peak) at 100 M photons on 2 threads; see bench/kdtree_bench.cpp.
+// thread count. In place (no keys, no copy of the photons) it builds ~23 M photons/s at 100 M
+// photons on 2 threads; see bench/kdtree_bench.cpp and docs/performance.md.
 #pragma once
 
 #include <algorithm>

@@ -1,8 +1,8 @@
 // Projection maps (Jensen 2001, sec. 5.2) for the caustic map: per light, the cells of its emission
 // direction space from which a photon can reach a specular object (mirror, smooth or frosted glass),
 // so caustic photons are emitted only there and weighted by the fraction of the light's emission
-// those cells carry. The caustic map's power stays exact; photons are no longer wasted on the
-// (usually vast) part of the scene that can never give a caustic.
+// those cells carry. The caustic map's power stays exact; no photons are spent on the (usually
+// vast) part of the scene that can never give a caustic.
 //
 // The cells live in the light's primary sample space (the u_dir argument of Light::sample_Le), which
 // works for every light whose direction depends on u_dir alone and whose origin lies in a small

@@ -153,10 +153,10 @@ void sort_by_emission(Slice& s, uint64_t count, bool bounces) {
 
 // Faults in the pages of a map's reserved but unused capacity on all cores: the commits would
 // otherwise take every page fault of the final array (one per 4 kB) in the one thread that runs
-// them (33 ms of the 0.70 s that 4 M photons took on 2 threads; 3 ms after this). Writing raw
+// them (33 ms of the 0.70 s that 4 M photons take on 2 threads; 3 ms faulted in here). Writing raw
 // bytes to storage that holds no objects yet is allowed; insert() constructs the photons there. The
 // range is advised to transparent huge pages first: a 4 kB fault costs ~12 us on these virtual
-// machines (pvm guests), and faulting 4 M photons' 80 MB in 4 kB pages took 0.2 s of a 1.5 s trace.
+// machines (pvm guests), and faulting 4 M photons' 80 MB in 4 kB pages takes 0.2 s of a 1.5 s trace.
 // Returns the bytes faulted in.
 uint64_t fault_in_capacity(std::vector<Photon>& v) {
     // Chunks are the huge pages themselves (2 MiB-aligned): two threads touching halves of one
@@ -367,7 +367,7 @@ public:
     // emitted), and the photons, which carry their raw power (flux x N), are divided by N. The
     // power is rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa
     // step. Four photons at a time (scale_rgbe4, the scalar functions' bits): one at a time this
-    // pass took 2.6 % of the tracing time.
+    // pass would take 2.6 % of the tracing time.
     void finish(const bool wanted[kMapCount]) {
         out_.total_emitted += end_;
         for (int m = 0; m < kMapCount; ++m)
@@ -393,7 +393,7 @@ public:
 private:
     // fault_in_capacity, counted in the statistics: on this project's virtual machines the first
     // touch of memory the host has taken back costs 1-2 s per GB, of memory a process has just
-    // freed ~0.06 s (docs/performance.md, session 34).
+    // freed ~0.06 s (docs/performance.md).
     void fault_in(std::vector<Photon>& v) {
         const auto t0 = std::chrono::steady_clock::now();
         out_.faulted_bytes += fault_in_capacity(v);

@@ -33,7 +33,7 @@ size_t Distribution1D::search(float u, float* pmf, float* remapped) const {
         // Few bins (the triangles of a quad light): the edges at or below x counted without
         // branches. They are a prefix (the sums never fall, and an edge that rounding put above the
         // last one, 1, is above x < 1 too), so the count is the binary search's index; the binary
-        // search's random turns were mispredicted at half of all photon emissions.
+        // search's random turns would be mispredicted at half of all photon emissions.
         i = 0;
         for (size_t k = 1; k < n; ++k) i += cdf_[k] <= x;
     } else {

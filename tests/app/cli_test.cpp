@@ -142,8 +142,8 @@ TEST(Cli, VerbosePrintsStatistics) {
     EXPECT_TRUE(std::filesystem::exists(dir.file("o.exr")));
 }
 
-// A camera beyond what Embree traces (coordinates over 1.8e18) used to stop phos on Embree's
-// assertion (exit 134). Its rays now hit nothing, and phos says why, once.
+// A camera beyond what Embree traces (coordinates over 1.8e18) must not stop phos on Embree's
+// assertion (exit 134): its rays hit nothing, and phos says why, once.
 TEST(Cli, CameraBeyondEmbreesRangeRendersAndSaysSo) {
     TempDir dir;
     ASSERT_TRUE(dir.ok());

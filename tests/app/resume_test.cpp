@@ -152,7 +152,7 @@ TEST(Resume, TimeBudgetAndPreviews) {
     EXPECT_EQ(r.exit_code, 0) << r.output;
     EXPECT_TRUE(std::filesystem::exists(out));
     EXPECT_NE(r.output.find("iterations"), std::string::npos) << r.output;
-    // Every integrator has a time budget now (tests/app/interrupt_test.cpp).
+    // Every integrator has a time budget (tests/app/interrupt_test.cpp).
     const auto path =
         run_phos("render " + kScene + " --integrator path --width 16 --height 16 --time 0.3 -o " + out);
     EXPECT_EQ(path.exit_code, 0) << path.output;

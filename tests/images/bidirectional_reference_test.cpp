@@ -105,9 +105,7 @@ void expect_vcm_converges(const std::string& name, double max_final, double mean
     EXPECT_NEAR(film::mean_ratio(img, ref), 1.0, mean_tolerance);
 }
 
-// Bounds: measured at 16 iterations 0.00096, 0.00502, 0.00878 (128 x 128, seed 3; 0.00125, 0.00489,
-// 0.0264 before per-pixel radii, the automatic light subpath count and --direct-mis-scale; 0.0145,
-// 0.0121, 0.0395 before the stratified sequences, first-vertex light samples and merging), with
+// Bounds: measured at 16 iterations 0.00096, 0.00502, 0.00878 (128 x 128, seed 3), with
 // room for another seed; a broken strategy or weight shows as a mean off by far more than 1-3 % (the
 // caustic-point mean is dominated by the caustic: unbiased strategies measure it 3 % under the
 // reference, see below).

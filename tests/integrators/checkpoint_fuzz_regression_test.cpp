@@ -54,8 +54,8 @@ TEST(CheckpointFuzz, ImageSizesThatOverflowAreRejected) {
     }
 }
 
-// Empty slot and tile lists were copied with memcpy into a null pointer (undefined even for 0 bytes,
-// reported by UBSan); such a checkpoint decodes and re-encodes unchanged.
+// Empty slot and tile lists must not be copied with memcpy into a null pointer (undefined even for
+// 0 bytes, reported by UBSan); such a checkpoint decodes and re-encodes unchanged.
 TEST(CheckpointFuzz, EmptyPartsDecode) {
     const std::string bytes = forged(1, 2, 0, 8);
     const ProgressiveState s = decode_checkpoint(bytes, "'empty parts'");

@@ -1,6 +1,6 @@
 // Regression test: direct light sampled from points lying ON an inward-emitting sphere light (hits
-// on the emitter itself, accurate only to a few ulps) must see the whole interior. Such a point
-// used to be classified "outside" half of the time and then received no light at all.
+// on the emitter itself, accurate only to a few ulps) must see the whole interior. Rounding puts
+// half of such points "outside", where they would receive no light at all.
 #include <gtest/gtest.h>
 
 #include "core/rng.h"

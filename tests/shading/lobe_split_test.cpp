@@ -98,7 +98,7 @@ TEST(LobeSplit, MixedMaterialsChooseByAlbedo) {
 
 TEST(LobeSplit, SmoothGlassIsDeltaWhateverTheShadingNormal) {
     // A tilted shading normal and a grazing wo: sampling the glass may fail here, but the lobe is
-    // still a delta lobe (the old eye path asked a probe sample, which then called it glossy).
+    // still a delta lobe (a probe sample that failed must not make it count as glossy).
     const Bsdf b = make(with(Rgb(0.2f), Rgb(0.0f), 0, Rgb(0.6f)), Vec3(0.8f, 0, 0.6f));
     int probe_failed = 0;
     for (float x : {-0.999f, -0.9f, 0.0f, 0.9f}) {

@@ -54,11 +54,11 @@ void check_data_window(const std::string& path, long long w, long long h, const 
 // OpenEXR trusts a header's sizes before it reads any pixel, so they are checked against the file
 // first, from the bytes alone:
 //  - it allocates (and clears) an attribute's claimed size before it notices that the file is
-//    shorter: a 369-byte file whose string attribute claims 846 MB took 0.6 s, and timed out under
+//    shorter: a 369-byte file whose string attribute claims 846 MB takes 0.6 s, and times out under
 //    the address sanitizer (the image fuzzer's finding);
 //  - opening a scanline file allocates line buffers for a block of lines (up to 32) of the data
 //    window's width, and a tiled one buffers of its tile size: a 148-byte file whose data window is
-//    33.5 M pixels wide asked for 2.2 GB (the fuzzer's next finding). So each part's data window is
+//    33.5 M pixels wide asks for 2.2 GB (another of the fuzzer's findings). So each part's data window is
 //    held to what read_exr accepts (check_data_window), and its
 //    buffers (width x 32 lines, or a tile, times the channels' bytes per pixel) to the bytes of an
 //    image of the plausible pixel count at 16 bytes per pixel.

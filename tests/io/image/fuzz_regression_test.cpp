@@ -81,7 +81,7 @@ TEST(ImageFuzz, JpegHuffmanTableWithTooManyCodesIsRejected) {
 
 // A 22-byte run-length TGA claiming 65535 x 2817 pixels: stb_image allocates the whole image and
 // then loops over every pixel although the file has ended (the fuzzer's timeout). Headers claiming
-// implausibly many pixels for the file's size are now refused before decoding.
+// implausibly many pixels for the file's size are refused before decoding.
 TEST(ImageFuzz, HugeHeaderOnATinyFileIsRejected) {
     TempDir dir;
     const std::string tga = from_hex("00000a00000000000000ffffffff010b1860830a141e");
@@ -95,10 +95,10 @@ TEST(ImageFuzz, HugeHeaderOnATinyFileIsRejected) {
     EXPECT_EQ(ok.at(3, 0), Rgb(0.0f, 1.0f, 0.0f));
 }
 
-// phos's own BMP truncation check multiplied the row size by the height in 64-bit signed
-// arithmetic: 1,819,434,868 pixels wide (the bytes "t_rl" of a mangled HDR header) at 24 bits
-// times 1,735,548,773 rows overflowed (undefined behaviour, reported by UBSan). Such a header is
-// now refused as truncated.
+// phos's own BMP truncation check multiplies the row size by the height, which must not overflow
+// 64-bit signed arithmetic: 1,819,434,868 pixels wide (the bytes "t_rl" of a mangled HDR header) at
+// 24 bits times 1,735,548,773 rows would (undefined behaviour, reported by UBSan). Such a header is
+// refused as truncated.
 TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
     TempDir dir;
     const std::string found = from_hex(
@@ -110,10 +110,10 @@ TEST(ImageFuzz, BmpHeaderWhoseSizeOverflowsIsTruncated) {
 }
 
 // A 31-byte BMP whose 40-byte header is cut off after the height: 7178 x 63236 pixels (top-down)
-// of 8 bits. phos's size check skipped files shorter than the header it reads, and stb read the
-// missing header bytes as zeros (uncompressed) and decoded 454 M pixels of nothing (the fuzzer's
-// 12 s timeout, 2026-11-24, session 25). A BMP must now hold its whole header; the 12-byte core
-// header's 16-bit sizes are checked against the file as well.
+// of 8 bits. stb reads the missing header bytes as zeros (uncompressed) and would decode 454 M
+// pixels of nothing (the fuzzer's 12 s timeout), so the size check must not skip files shorter
+// than the header it reads. A BMP must hold its whole header; the 12-byte core header's 16-bit
+// sizes are checked against the file as well.
 TEST(ImageFuzz, BmpWithATruncatedHeaderIsRejected) {
     TempDir dir;
     const std::string cut = from_hex(
@@ -151,10 +151,10 @@ TEST(ImageFuzz, BmpWithATruncatedHeaderIsRejected) {
     EXPECT_EQ(image.height, 1);
 }
 
-// A 148-byte EXR whose data window is 33,537,537 pixels wide: opening it, OpenEXR allocated line
-// buffers for 32 lines of that width (2.2 GB, the image fuzzer's out-of-memory finding of
-// 2026-11-24, session 25) before phos looked at the window. The header's data window (and the
-// buffers it implies) is now checked from the file's bytes before OpenEXR opens it.
+// A 148-byte EXR whose data window is 33,537,537 pixels wide: opening it, OpenEXR allocates line
+// buffers for 32 lines of that width (2.2 GB, the image fuzzer's out-of-memory finding). The
+// header's data window (and the buffers it implies) is checked from the file's bytes before
+// OpenEXR opens it.
 TEST(ImageFuzz, ExrWithAHugeDataWindowIsRejectedBeforeOpenExrAllocates) {
     TempDir dir;
     const std::string found = from_hex(
@@ -166,10 +166,10 @@ TEST(ImageFuzz, ExrWithAHugeDataWindowIsRejectedBeforeOpenExrAllocates) {
                    "accepted a 148-byte EXR 33.5 M pixels wide");
 }
 
-// Radiance HDR: stb ends the header at a line whose first byte is 0 (it reads lines as C strings),
-// but phos's walk of the run-length scanlines waited for a truly empty line, missed the pixels,
-// and let through a scanline whose last run is cut off, on which stb loops for ever (the fuzzer's
-// timeouts, 2026-11-24, session 25). The walk now ends the header where stb does.
+// Radiance HDR: stb ends the header at a line whose first byte is 0 (it reads lines as C strings).
+// A walk of the run-length scanlines that waits for a truly empty line misses the pixels and lets
+// through a scanline whose last run is cut off, on which stb loops for ever (the fuzzer's
+// timeouts), so phos's walk ends the header where stb does.
 TEST(ImageFuzz, HdrHeaderEndedByANulLineIsWalkedAsStbReadsIt) {
     TempDir dir;
     const std::string found = from_hex(
@@ -179,10 +179,9 @@ TEST(ImageFuzz, HdrHeaderEndedByANulLineIsWalkedAsStbReadsIt) {
                    "accepted a cut-off run-length HDR whose header ends with a NUL line");
 }
 
-// A BMP whose compression field holds no known code (0xBB000000): stb read it as uncompressed
+// A BMP whose compression field holds no known code (0xBB000000): stb reads it as uncompressed
 // pixels, 3 wide and 14,417,922 rows (a negative height: top-down), skipping each row's padding
-// with a seek (the fuzzer's timeout, 2026-11-24); phos's size check left unknown codes to stb.
-// Unknown codes are now refused.
+// with a seek (the fuzzer's timeout). Unknown codes are refused, not left to stb.
 TEST(ImageFuzz, BmpWithAnUnknownCompressionCodeIsRejected) {
     TempDir dir;
     const std::string found = from_hex(
@@ -193,8 +192,8 @@ TEST(ImageFuzz, BmpWithAnUnknownCompressionCodeIsRejected) {
 }
 
 // A 98-byte run-length TGA claiming 512 x 6144 pixels: stb fills what the file lacks, so it
-// decoded 3.1 M pixels (the fuzzer's timeout, 2026-11-24, under load). Run-length packets encode
-// at most 128 pixels in 2 bytes, so TGA headers are now held to 64 pixels per byte; a valid file
+// would decode 3.1 M pixels (the fuzzer's timeout, under load). Run-length packets encode
+// at most 128 pixels in 2 bytes, so TGA headers are held to 64 pixels per byte; a valid file
 // at that limit (one grey value, every packet a full run) still reads.
 TEST(ImageFuzz, RunLengthTgaClaimingMorePixelsThanPacketsCanHoldIsRejected) {
     TempDir dir;
@@ -221,7 +220,7 @@ TEST(ImageFuzz, RunLengthTgaClaimingMorePixelsThanPacketsCanHoldIsRejected) {
 
 // stb_image loops forever on a run-length encoded Radiance HDR scanline that ends early (at the end
 // of the file it reads a "dump" count of 0 again and again): the fuzzer's input below, 8 pixels
-// wide, has a run for one component and then ends. Such files are now refused before decoding.
+// wide, has a run for one component and then ends. Such files are refused before decoding.
 TEST(ImageFuzz, TruncatedRunLengthHdrIsRejected) {
     TempDir dir;
     const std::string header = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1 +X 8\n";
@@ -236,8 +235,8 @@ TEST(ImageFuzz, TruncatedRunLengthHdrIsRejected) {
 
 // OpenEXR allocates and clears an attribute's claimed size before it finds the file too short: in
 // the fuzzer's 369-byte file below, a "string" attribute claims 846 MB (its size field is the
-// bytes "box2"), which took 0.6 s and timed out under the address sanitizer. Attribute sizes are
-// now checked against the file first. Valid files, single- and multi-part, still read.
+// bytes "box2"), which takes 0.6 s and times out under the address sanitizer. Attribute sizes are
+// checked against the file first. Valid files, single- and multi-part, still read.
 TEST(ImageFuzz, ExrAttributeClaimingMoreThanTheFileIsRejected) {
     TempDir dir;
     const std::string found = from_hex(
@@ -286,8 +285,8 @@ TEST(ImageFuzz, ExrAttributeClaimingMoreThanTheFileIsRejected) {
 }
 
 // stb_image multiplies a JPEG block's DC prediction, which the file steers block after block, by a
-// 16-bit quantiser in int: the fuzzer's file below overflowed it (-33215 * 65535), undefined
-// behaviour that UBSan stops on. stb_image.cpp is now compiled with -fwrapv, so the arithmetic
+// 16-bit quantiser in int: the fuzzer's file below overflows it (-33215 * 65535), undefined
+// behaviour that UBSan stops on. stb_image.cpp is compiled with -fwrapv, so the arithmetic
 // wraps by definition: the file decodes to some pixels or is refused, either way without undefined
 // behaviour (this test fails under `scripts/test.sh --sanitize` without the flag).
 TEST(ImageFuzz, JpegWithAnOverflowingDcPredictionIsDefined) {
@@ -307,8 +306,8 @@ TEST(ImageFuzz, JpegWithAnOverflowingDcPredictionIsDefined) {
 }
 
 // stb_image decodes a scan with whatever Huffman table the scan names, defined or not: in the
-// fuzzer's file below the scan's AC table 1 was never defined, and the table's uninitialised
-// limits gave a symbol index of -56837 (an out-of-bounds read; UBSan's finding). Such files are
+// fuzzer's file below the scan's AC table 1 is never defined, and the table's uninitialised
+// limits give a symbol index of -56837 (an out-of-bounds read; UBSan's finding). Such files are
 // refused; a progressive file whose scans use only the tables they need (DC-first scans no AC
 // table, DC refinements none, AC scans no DC table, an AC table defined after the DC scan) is not.
 TEST(ImageFuzz, JpegScanWithAnUndefinedHuffmanTableIsRejected) {
@@ -347,10 +346,10 @@ TEST(ImageFuzz, JpegScanWithAnUndefinedHuffmanTableIsRejected) {
 }
 
 // stb_image's file reader keeps only its first 128 bytes for the rewinds between its format tests:
-// the fuzzer's 245-byte JPEG below starts with 137 fill bytes, so after the JPEG test stb decoded
-// bytes 128.. followed by stale buffer bytes, whose DHT held code counts the file does not, and
-// built a Huffman table past its 257-entry size list (UBSan, stb_image.h:1990); phos's checks had
-// walked the file itself. stb now decodes the bytes phos checked, from memory: the file is refused
+// the fuzzer's 245-byte JPEG below starts with 137 fill bytes, so after the JPEG test stb would
+// decode bytes 128.. followed by stale buffer bytes, whose DHT holds code counts the file does not,
+// and build a Huffman table past its 257-entry size list (UBSan, stb_image.h:1990), bytes phos's
+// checks never saw. stb decodes the bytes phos checked, from memory: the file is refused
 // (its only Huffman table is cut off), and a valid JPEG behind 137 fill bytes reads exactly as
 // without them.
 TEST(ImageFuzz, JpegBehindFillBytesIsDecodedFromTheBytesThatWereChecked) {
@@ -374,8 +373,8 @@ TEST(ImageFuzz, JpegBehindFillBytesIsDecodedFromTheBytesThatWereChecked) {
         for (int c = 0; c < 3; ++c) ASSERT_EQ(filled.pixels[i][c], plain.pixels[i][c]) << i;
 }
 
-// An empty file is refused by every stb-decoded format (the fuzzer's one-byte input: an empty BMP
-// made the BMP check copy from a null pointer once files were read into memory).
+// An empty file is refused by every stb-decoded format (the fuzzer's one-byte input: for an empty
+// BMP the BMP check must not copy from a null pointer).
 TEST(ImageFuzz, EmptyFilesAreRefused) {
     TempDir dir;
     for (const char* name : {"e.png", "e.jpg", "e.jpeg", "e.tga", "e.bmp", "e.hdr"})

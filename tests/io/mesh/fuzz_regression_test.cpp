@@ -39,8 +39,8 @@ const std::string kAsciiHeader =
     "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
     "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
 
-// A face index of 1e300 in an ASCII file used to be converted to long long for the message
-// (undefined behaviour); integer values must now fit their declared type.
+// A face index of 1e300 in an ASCII file must not be converted to long long for the message
+// (undefined behaviour); integer values must fit their declared type.
 TEST(PlyFuzz, HugeAsciiIndexIsOutOfRangeForItsType) {
     expect_ply_error(kAsciiHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 1e300\n", 13,
                      "out of range for its property type");
@@ -49,7 +49,7 @@ TEST(PlyFuzz, HugeAsciiIndexIsOutOfRangeForItsType) {
     expect_ply_error(kAsciiHeader + "0 0 0\n1 0 0\n0 1 0\n3 0 1 -1\n", 13, "out of range");
 }
 
-// Element counts the rest of the file cannot hold used to reserve memory for them (gigabytes, or
+// Element counts the rest of the file cannot hold must not reserve memory for them (gigabytes, or
 // std::bad_alloc) or, for an element without properties, loop that many times.
 TEST(PlyFuzz, ElementCountsAreBoundedByTheFileSize) {
     expect_ply_error(
@@ -68,7 +68,7 @@ TEST(PlyFuzz, ElementCountsAreBoundedByTheFileSize) {
 
 // tinyobjloader's `vw` (skin weight) lines convert their joint ids to int unchecked; "1e38" was
 // undefined behaviour (the fuzzer's input: "vw v 11e38l4" after a binary first line). phos uses no
-// skin weights and now blanks those lines, keeping line numbers for later errors.
+// skin weights and blanks those lines, keeping line numbers for later errors.
 TEST(ObjFuzz, SkinWeightLinesAreIgnored) {
     const std::string found(
         "m\xd0\xc6\x7f\0"

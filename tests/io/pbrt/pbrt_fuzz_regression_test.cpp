@@ -7,8 +7,8 @@
 namespace phos::io::test {
 namespace {
 
-// "integer xresolution" 1e38 was converted to int unchecked (undefined behaviour, reported by
-// UBSan); integer parameters must now fit an int.
+// "integer xresolution" 1e38 must not be converted to int unchecked (undefined behaviour, reported
+// by UBSan); integer parameters must fit an int.
 TEST(PbrtFuzz, IntegerParameterBeyondIntIsAnError) {
     QuietLog quiet;
     PbrtTempDir dir;
@@ -23,8 +23,8 @@ TEST(PbrtFuzz, IntegerParameterBeyondIntIsAnError) {
     expect_pbrt_error(negative, 3, 3, "value out of range", negative);
 }
 
-// A file name longer than the file system allows made std::filesystem::exists throw
-// filesystem_error ("File name too long"), which escaped the loader; it is now a file not found.
+// A file name longer than the file system allows makes std::filesystem::exists throw
+// filesystem_error ("File name too long"), which must not escape the loader: it is a file not found.
 TEST(PbrtFuzz, OverlongFileNameIsNotFound) {
     QuietLog quiet;
     PbrtTempDir dir;

@@ -269,8 +269,8 @@ std::string from_base64(const std::string& text) {
 }
 
 TEST(VolumeGrid, FuzzFindingsAreRefusedCleanly) {
-    // Each input once crashed phos or tripped AddressSanitizer / UBSan (found by
-    // fuzz/volume_fuzzer.cpp); now each is an InputError. Run under scripts/test.sh --sanitize, this
+    // Each input crashes a reader that trusts the file, or trips AddressSanitizer / UBSan (found by
+    // fuzz/volume_fuzzer.cpp); each must be an InputError. Run under scripts/test.sh --sanitize, this
     // also shows that nothing reads outside its buffer on the way.
     testing::TempDir dir;
     std::ifstream in(testing::source_path("tests/io/volume/nvdb_fuzz_findings.txt"));
