@@ -78,7 +78,7 @@ median() {
         END { if (bad || NR == 0) print "-"; else print (NR % 2) ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2 }'
 }
 field() { sed -n "s/.*$1 *\([0-9.e+]*\).*/\1/p" "$out/pm.log" | head -1; }
-# The build's thread time in $out/pm.log (-v): "TOP BELOW", or "- -" from a build before session 38.
+# The build's thread time in $out/pm.log (-v): "TOP BELOW", or "- -" from a phos whose -v lacks it.
 build_split() {
     split=$(sed -n 's/.*photon map build thread time: top levels \([0-9.]*\) s, below them \([0-9.]*\) s.*/\1 \2/p' "$out/pm.log")
     echo "${split:-- -}"
@@ -99,7 +99,7 @@ for t in $threads; do
         photonmap "$t" "${PHOS_PHOTONS:-4000000}"
         traces="$traces $(field "time photon trace:")"
         builds="$builds $(field "time photon map build:")"
-        # (-: a build from before session 34, whose -v has no such line)
+        # (-: a phos whose -v has no such line)
         fault=$(sed -n 's/.*pages faulted in: .* in \([0-9.]*\) s.*/\1/p' "$out/pm.log")
         faults="$faults ${fault:--}"
         busy=$(sed -n 's/.*photon tracing threads busy: \([0-9.]*\) %.*/\1/p' "$out/pm.log")

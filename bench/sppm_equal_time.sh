@@ -3,15 +3,15 @@
 # renders each bench scene at 256x256 with a wall-time budget (--time bounds the whole command,
 # load included; the render stops at the end of the iteration that crosses it) and prints one table
 # row per run: wall time, iterations, relMSE, mean ratio, caustic window, pbrt-v4's relMSE at that
-# time and the goal (a fifth of pbrt-v4's error above the reference's noise; issue 15 raised it from a
-# third). Run it on an idle machine: iterations scale with the
+# time and the goal (a fifth of pbrt-v4's error above the reference's noise). Run it on an idle
+# machine: iterations scale with the
 # CPU time the render actually gets (the load average at the start is printed).
 # Usage: bench/sppm_equal_time.sh [BUILD_DIR] [COLUMNS] [extra phos options...]
 #   COLUMNS: which of pbrt's time columns to run, a subset of "1 2 3 4" (1.5-0.8 s ... 57.6-24 s;
 #   "1 2 3 4" runs the whole table, about 4 minutes), or "goal" (default): the product goal's
 #   budgets, 15 s, 16 s and 24 s (column 3 for the Cornell boxes, 4 for caustic-point).
 # goal = floor + (pbrt - floor) / 5, floor = the reference's own noise (the README's "error above
-# the reference's noise", now at most a fifth of pbrt-v4's).
+# the reference's noise", at most a fifth of pbrt-v4's).
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 . "$here/metrics.sh"
