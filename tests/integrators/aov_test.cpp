@@ -1,6 +1,6 @@
 // The AOV pass (--aov albedo,normal,depth): exact albedo, normal and depth on scenes where they
 // are known, albedo through a mirror and glass and of the sky, name validation, determinism.
-#include "integrators/aov.h"
+#include "render/aov.h"
 
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
@@ -8,7 +8,7 @@
 #include "core/error.h"
 #include "core/stats.h"
 #include "film/film.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 #include "support/shapes.h"
 
 namespace phos::integrators {

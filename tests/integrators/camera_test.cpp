@@ -1,13 +1,13 @@
 // Camera model tests: the field of view spans the shorter image side, projection inverts ray
 // generation, and thin-lens rays through one film point all meet on the focal plane.
-#include "integrators/camera.h"
+#include "render/camera.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "core/stats.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
 namespace {
@@ -25,8 +25,8 @@ TEST(Camera, FieldOfViewSpansTheShorterSide) {
     for (auto [w, h] : {std::pair{256, 256}, std::pair{400, 200}, std::pair{200, 400}}) {
         const CameraModel cam(test_camera(), w, h);
         // The ray through the middle of the shorter side's edge makes half the fov with the axis.
-        const accel::Ray edge = w >= h ? cam.generate_ray(0.5f * float(w), 0, {0.5f, 0.5f})
-                                       : cam.generate_ray(0, 0.5f * float(h), {0.5f, 0.5f});
+        const Ray edge = w >= h ? cam.generate_ray(0.5f * float(w), 0, {0.5f, 0.5f})
+                                : cam.generate_ray(0, 0.5f * float(h), {0.5f, 0.5f});
         EXPECT_NEAR(std::acos(dot(normalize(edge.dir), Vec3(0, 0, -1))), 0.331613f, 1e-5f) << w << "x" << h;
     }
 }
@@ -38,7 +38,7 @@ TEST(Camera, VerticalFieldOfView) {
     c.fov_vertical = true;
     for (auto [w, h] : {std::pair{256, 256}, std::pair{400, 200}, std::pair{200, 400}}) {
         const CameraModel cam(c, w, h);
-        const accel::Ray top = cam.generate_ray(0.5f * float(w), 0, {0.5f, 0.5f});
+        const Ray top = cam.generate_ray(0.5f * float(w), 0, {0.5f, 0.5f});
         EXPECT_NEAR(std::acos(dot(normalize(top.dir), Vec3(0, 0, -1))), 0.331613f, 1e-5f) << w << "x" << h;
     }
 }
@@ -52,7 +52,7 @@ TEST(Camera, NearAndFarClipAlongTheAxis) {
     c.far_clip = 40.0f;
     const CameraModel cam(c, 200, 100);
     for (const auto& [fx, fy] : {std::pair{100.0f, 50.0f}, std::pair{0.5f, 0.5f}, std::pair{199.5f, 70.0f}}) {
-        const accel::Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
+        const Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
         const float cos_a = dot(normalize(r.dir), Vec3(0, 0, -1));
         EXPECT_NEAR(r.tmin * length(r.dir) * cos_a, 0.25f, 1e-5f);
         EXPECT_NEAR(r.tmax * length(r.dir) * cos_a, 40.0f, 1e-3f);
@@ -61,8 +61,8 @@ TEST(Camera, NearAndFarClipAlongTheAxis) {
 
 TEST(Camera, ImageRightIsCrossOfForwardAndUpAndTopIsUp) {
     const CameraModel cam(test_camera(), 100, 100);
-    const accel::Ray right = cam.generate_ray(99.5f, 50, {0.5f, 0.5f});
-    const accel::Ray top = cam.generate_ray(50, 0.5f, {0.5f, 0.5f});
+    const Ray right = cam.generate_ray(99.5f, 50, {0.5f, 0.5f});
+    const Ray top = cam.generate_ray(50, 0.5f, {0.5f, 0.5f});
     EXPECT_GT(right.dir.x, 0.1f);
     EXPECT_GT(top.dir.y, 0.1f);
 }
@@ -71,7 +71,7 @@ TEST(Camera, ProjectInvertsGenerateRay) {
     const CameraModel cam(test_camera(), 320, 240);
     for (float fx : {3.5f, 100.25f, 319.0f})
         for (float fy : {0.5f, 120.0f, 239.5f}) {
-            const accel::Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
+            const Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
             float px, py;
             ASSERT_TRUE(cam.project(r.origin + r.dir * 7.0f, px, py));
             EXPECT_NEAR(px, fx, 1e-3f);
@@ -87,13 +87,13 @@ TEST(Camera, ThinLensRaysMeetOnTheFocalPlane) {
     const Vec3 focus_ref = [&] {
         scene::Camera pin = c;
         pin.lens_radius = 0;
-        const accel::Ray r = CameraModel(pin, 64, 64).generate_ray(20.3f, 41.7f, {0.5f, 0.5f});
+        const Ray r = CameraModel(pin, 64, 64).generate_ray(20.3f, 41.7f, {0.5f, 0.5f});
         return r.origin + r.dir * (2.5f / dot(normalize(r.dir), Vec3(0, 0, -1)));
     }();
     float spread = 0;
     for (float u : {0.1f, 0.4f, 0.9f})
         for (float v : {0.05f, 0.6f, 0.95f}) {
-            const accel::Ray r = cam.generate_ray(20.3f, 41.7f, {u, v});
+            const Ray r = cam.generate_ray(20.3f, 41.7f, {u, v});
             // Origins are spread over the lens disk...
             EXPECT_LE(length(r.origin - c.eye), c.lens_radius * 1.0001f);
             spread = std::max(spread, length(r.origin - c.eye));
@@ -107,7 +107,7 @@ TEST(Camera, ThinLensRaysMeetOnTheFocalPlane) {
 }
 
 TEST(Camera, FramesScenesWithoutACamera) {
-    accel::Bounds b;
+    Bounds b;
     b.extend(Vec3(-1, 0, -2));
     b.extend(Vec3(3, 1, 0));
     const scene::Camera c = CameraModel::frame_bounds(b);
@@ -145,8 +145,8 @@ TEST(Camera, DepthOfFieldOverrideKeepsTheFramingOfCameralessScenes) {
     EXPECT_NEAR(fx, 16, 1e-3f);
     EXPECT_NEAR(fy, 16, 1e-3f);
     // ...and its rays start on the lens, not all at one point.
-    const accel::Ray a = P.camera.generate_ray(16, 16, {0.1f, 0.1f});
-    const accel::Ray b = P.camera.generate_ray(16, 16, {0.9f, 0.9f});
+    const Ray a = P.camera.generate_ray(16, 16, {0.1f, 0.1f});
+    const Ray b = P.camera.generate_ray(16, 16, {0.9f, 0.9f});
     EXPECT_GT(length(a.origin - b.origin), 0.005f);
 }
 

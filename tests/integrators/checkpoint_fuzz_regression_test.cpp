@@ -7,7 +7,7 @@
 #include <string>
 
 #include "core/error.h"
-#include "integrators/progressive_checkpoint.h"
+#include "render/progressive_checkpoint.h"
 
 namespace phos::integrators {
 namespace {

@@ -1,7 +1,7 @@
 // Progressive-render checkpoints: exact round trip (option list included), and refusal
 // (InputError with a clear reason) of truncated, corrupted, foreign, other-version and
 // other-render files, naming each differing option with both values.
-#include "integrators/progressive_checkpoint.h"
+#include "render/progressive_checkpoint.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
