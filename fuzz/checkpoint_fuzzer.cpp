@@ -1,4 +1,4 @@
-// libFuzzer harness for the checkpoint decoder (integrators/progressive_checkpoint.h). The input is
+// libFuzzer harness for the checkpoint decoder (render/progressive_checkpoint.h). The input is
 // decoded as given and, so the fuzzer gets past the checksum, once more with a valid checksum
 // appended. A decoded state must be self-consistent and re-encode to exactly the same bytes.
 #include <string>

@@ -514,7 +514,7 @@ int run_render(const RenderCommand& command) {
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
     Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet || !dist::root()));
-    // --trace-pixel: the integrator records that pixel's camera samples (integrators/path_recorder.h).
+    // --trace-pixel: the integrator records that pixel's camera samples (render/path_recorder.h).
     std::optional<render::PathRecorder> trace;
     if (cmd.run.trace_x >= 0) trace.emplace(cmd.run.trace_x, cmd.run.trace_y);
     // Under MPI: every rank has set up without error, or none renders (a failing rank said why).

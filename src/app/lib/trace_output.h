@@ -1,5 +1,5 @@
 // --trace-pixel X Y and --trace-json FILE: the checks made before rendering, and the report of the
-// recorded camera samples (integrators/path_recorder.h) as text on stdout and as JSON.
+// recorded camera samples (render/path_recorder.h) as text on stdout and as JSON.
 #pragma once
 
 #include <string>
