@@ -7,12 +7,12 @@
 #include <nanoflann.hpp>
 
 #include "core/stats.h"
-#include "integrators/prepared.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
 #include "io/load_scene.h"
 #include "photon/hitpoint_grid.h"
 #include "photon/photon_path.h"
+#include "render/prepared.h"
 
 namespace phos {
 namespace {
@@ -28,17 +28,17 @@ const Data& data() {
         Data d;
         static const scene::Scene s =
             io::load_scene(std::string(PHOS_SHARED_DIR) + "/bench/scn/cornell-diffuse.scn");
-        integrators::RenderOptions opt;
+        render::RenderOptions opt;
         opt.width = opt.height = 256;
         static Stats stats;
-        static integrators::Prepared P(s, opt, {}, stats);
-        const integrators::CameraModel::Footprint fp = P.camera.pixel_footprint();
+        static render::Prepared P(s, opt, {}, stats);
+        const render::CameraModel::Footprint fp = P.camera.pixel_footprint();
         RayCounts rays;
         for (int y = 0; y < 256; ++y)
             for (int x = 0; x < 256; ++x) {
                 Sampler sampler(1, uint64_t(y * 256 + x));
                 integrators::sppm::VisiblePoint vp;
-                const accel::Ray ray = P.camera.generate_ray(x + 0.5f, y + 0.5f, {0.5f, 0.5f});
+                const Ray ray = P.camera.generate_ray(x + 0.5f, y + 0.5f, {0.5f, 0.5f});
                 integrators::sppm::trace_eye_path(P, ray, sampler, 1, vp, rays);
                 if (!vp.bsdf) continue;
                 const float r = integrators::ProgressiveOptions{}.radius_pixels * fp.at(vp.path_length);

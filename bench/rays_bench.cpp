@@ -85,13 +85,13 @@ const scene::Scene& analytic_scene() {
 constexpr int kWidth = 256, kHeight = 256;
 
 // Pinhole camera outside the scene looking at its centre.
-std::vector<accel::Ray> camera_rays(const accel::Bounds& b) {
+std::vector<Ray> camera_rays(const Bounds& b) {
     const Vec3 target = b.center();
     const Vec3 eye = target + Vec3(0, 0.5f, -0.8f) * length(b.extent());
     const Vec3 fwd = normalize(target - eye), right = normalize(cross(Vec3(0, 1, 0), fwd)),
                up = cross(fwd, right);
     const float tan_half = std::tan(0.5f * 45.0f * kPi / 180.0f);
-    std::vector<accel::Ray> rays;
+    std::vector<Ray> rays;
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const float sx = (2 * (float(x) + 0.5f) / kWidth - 1) * tan_half;
@@ -101,9 +101,9 @@ std::vector<accel::Ray> camera_rays(const accel::Bounds& b) {
     return rays;
 }
 
-std::vector<accel::Ray> random_rays(const accel::Bounds& b) {
+std::vector<Ray> random_rays(const Bounds& b) {
     Sampler rng(42);
-    std::vector<accel::Ray> rays(size_t(kWidth) * kHeight);
+    std::vector<Ray> rays(size_t(kWidth) * kHeight);
     for (auto& r : rays) {
         r.origin = b.lo + b.extent() * Vec3(rng.next(), rng.next(), rng.next());
         const float z = 1 - 2 * rng.next(), ph = 2 * kPi * rng.next(),
@@ -115,7 +115,7 @@ std::vector<accel::Ray> random_rays(const accel::Bounds& b) {
 
 struct Fixture {
     accel::EmbreeScene scene;
-    std::vector<accel::Ray> camera, random;
+    std::vector<Ray> camera, random;
     explicit Fixture(const scene::Scene& sc)
         : scene(sc), camera(camera_rays(scene.bounds())), random(random_rays(scene.bounds())) {}
 };
@@ -129,11 +129,11 @@ Fixture& analytic_fixture() {
     return f;
 }
 
-void run(benchmark::State& state, const accel::EmbreeScene& es, const std::vector<accel::Ray>& rays,
+void run(benchmark::State& state, const accel::EmbreeScene& es, const std::vector<Ray>& rays,
          bool occlusion) {
     size_t hits = 0;
     for (auto _ : state) {
-        for (const accel::Ray& r : rays) {
+        for (const Ray& r : rays) {
             if (occlusion) {
                 hits += es.occluded(r);
             } else {

@@ -141,7 +141,7 @@ image("rgb-half.exr", "exr", exr(["R", "G", "B"], 2, 2, 1))
 image("y-float.exr", "exr", exr(["Y"], 3, 1, 2))
 image("rgba-half.exr", "exr", exr(["A", "B", "G", "R"], 1, 2, 1))
 
-# ---- checkpoints (integrators/progressive_checkpoint.cpp, version 4 with the integrator payload) ----
+# ---- checkpoints (render/progressive_checkpoint.cpp, version 4 with the integrator payload) ----
 
 
 def hash_bytes(data):

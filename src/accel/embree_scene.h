@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "accel/ray.h"
+#include "core/bounds.h"
 #include "scene/scene.h"
 
 namespace phos::accel {
@@ -13,17 +14,6 @@ namespace phos::accel {
 namespace detail {
 struct CanonicalHit;  // accel/analytic.h
 }
-
-struct Bounds {
-    Vec3 lo{kInf}, hi{-kInf};
-    bool empty() const { return lo.x > hi.x; }
-    Vec3 center() const { return (lo + hi) * 0.5f; }
-    Vec3 extent() const { return hi - lo; }
-    void extend(Vec3 p) {
-        lo = min(lo, p);
-        hi = max(hi, p);
-    }
-};
 
 // Conventions of the hits (pbrt's where pbrt has one):
 // - Triangles (meshes, and boxes as 12 triangles): ng is the counter-clockwise winding normal of

@@ -1,4 +1,5 @@
-// Rays, surface hits and robust ray spawning shared by every integrator and the photon tracer.
+// Surface hits and robust ray spawning shared by every integrator and the photon tracer (the ray
+// itself is core/ray.h).
 #pragma once
 
 #include <emmintrin.h>
@@ -6,17 +7,11 @@
 #include <cmath>
 
 #include "core/frame.h"
+#include "core/ray.h"
 #include "core/vec.h"
 #include "scene/medium.h"
 
 namespace phos::accel {
-
-struct Ray {
-    Vec3 origin;
-    Vec3 dir;  // need not be normalised; t is measured in units of |dir|
-    float tmin = 0.0f;
-    float tmax = kInf;
-};
 
 // Everything shading needs to know about the closest hit.
 struct SurfaceHit {

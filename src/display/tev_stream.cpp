@@ -21,10 +21,10 @@ std::vector<std::string> channels_of(const std::vector<std::string>& layers) {
 
 }  // namespace
 
-void TevStream::start(const LiveImage& image, const io::TevAddress& address, const std::string& name) {
+void TevStream::start(const LiveImage& image, const TevAddress& address, const std::string& name) {
     thread_ = std::thread([this, &image, address, name] {
         using clock = std::chrono::steady_clock;
-        io::TevClient tev;
+        TevClient tev;
         if (!tev.connect(address)) {
             log::warn("--tev: " + tev.error() + "; not streaming (is tev running?)");
             return;

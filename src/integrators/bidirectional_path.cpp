@@ -37,7 +37,7 @@ int medium_towards(const Vertex& v, Vec3 dir) {
 
 Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler) {
     if (!a.in_medium && !b.in_medium) {
-        const accel::Ray ray = accel::spawn_ray_between(a.hit, b.hit);
+        const Ray ray = accel::spawn_ray_between(a.hit, b.hit);
         return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir),
                                              sampler);
     }
@@ -46,9 +46,9 @@ Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, S
 }
 
 Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler) {
-    accel::Ray ray;
+    Ray ray;
     if (a.in_medium) {
-        ray = accel::Ray{a.p, target - a.p, 0.0f, 1 - 1e-4f};
+        ray = Ray{a.p, target - a.p, 0.0f, 1 - 1e-4f};
     } else {
         ray = accel::spawn_ray_to(a.hit, target);
     }
@@ -56,7 +56,7 @@ Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& s
 }
 
 Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
-                    const accel::Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta) {
+                    const Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta) {
     Vertex v;
     v.length = length;
     v.beta = beta;
@@ -100,8 +100,8 @@ bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mo
     return true;
 }
 
-accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk) {
-    if (v.in_medium) return accel::Ray{v.p, wi};
+Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk) {
+    if (v.in_medium) return Ray{v.p, wi};
     walk.leave(v.hit, wi);
     return accel::spawn_ray(v.hit, wi);
 }
@@ -135,7 +135,7 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
     SubpathMis mis = start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(), at_infinity, f);
     Rgb beta = e.weight * (1.0f / pmf);
     const Rgb beta0 = beta;
-    accel::Ray ray = e.ray;
+    Ray ray = e.ray;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.scene.lights[li].medium);
     Vec3 from = e.ray.origin;

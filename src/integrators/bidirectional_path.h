@@ -9,10 +9,14 @@
 
 #include "core/rng.h"
 #include "core/stats.h"
-#include "integrators/prepared.h"
 #include "integrators/vcm_mis.h"
+#include "render/prepared.h"
 #include "shading/bsdf.h"
 #include "shading/surface_walk.h"
+
+namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+}  // namespace phos::integrators
 
 namespace phos::integrators::vcm {
 
@@ -57,7 +61,7 @@ Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::Transp
 // The vertex a subpath's walk reached with `event` (Surface or Medium) after `length` segments,
 // arriving with throughput `beta` (its MIS state is the caller's).
 Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
-                    const accel::Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta);
+                    const Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta);
 // |cos| of unit direction w with v's shading normal (1 in a medium).
 inline float cos_at(const Vertex& v, Vec3 w) {
     return v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, w));
@@ -72,7 +76,7 @@ bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mo
                    bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta,
                    float go_on = 1);
 // The ray leaving v in direction wi; the walk follows the medium change at a surface.
-accel::Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
+Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 
 // Transmittance between two vertices (0 if blocked): media crossed included.
 Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler);

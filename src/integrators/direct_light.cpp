@@ -2,11 +2,13 @@
 #include "integrators/direct_light.h"
 
 #include "core/warp.h"
-#include "integrators/path_recorder.h"
+#include "render/path_recorder.h"
 #include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+
 namespace {
 
 // Records a light sample for --trace-pixel (path_recorder.h): `value` is what it adds unoccluded
@@ -54,7 +56,7 @@ Rgb light_contribution(const Prepared& P, size_t i, const accel::SurfaceHit& hit
         if (r) record_light(*r, i, hit.p, ls, choose_pmf, 1, Rgb(0.0f), -1, Rgb(0.0f));
         return Rgb(0.0f);
     }
-    const accel::Ray shadow =
+    const Ray shadow =
         ls.distance < kInf ? accel::spawn_ray_to(hit, ls.p_light) : accel::spawn_ray(hit, ls.wi);
     ++rays.shadow;
     Rgb T(1.0f);
@@ -104,7 +106,7 @@ Rgb light_in_medium(const Prepared& P, const shading::LightLiSample& ls, Vec3 p,
     if (!(ls.pdf > 0) || ls.L.is_black()) return Rgb(0.0f);
     const float phase = P.media[medium].phase().eval(wo, ls.wi);
     if (!(phase > 0)) return Rgb(0.0f);
-    accel::Ray shadow;
+    Ray shadow;
     if (ls.distance < kInf) {
         shadow = accel::ray_to(p, ls.p_light);
     } else {

@@ -4,9 +4,10 @@
 
 #include "core/rng.h"
 #include "core/stats.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 // One light chosen in proportion to its power, one point on it, one shadow ray. With `mis`, area
 // and infinite lights are weighted against BSDF sampling by the power heuristic (the caller then

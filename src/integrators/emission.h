@@ -2,9 +2,10 @@
 // emitter) and the .scn glow and ambient terms, with the one rule for which rays see which.
 #pragma once
 
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 // The scattering vertex a ray was BSDF-sampled from (a non-delta lobe), for weighting emission it
 // finds against light sampling at that vertex (multiple importance sampling, power heuristic).

@@ -8,9 +8,10 @@
 
 #include "core/progress.h"
 #include "film/film.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 class Integrator {
 public:

@@ -9,12 +9,13 @@
 #include <string>
 #include <vector>
 
-#include "integrators/options.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
+#include "render/options.h"
 #include "scene/scene.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 struct MemoryItem {
     std::string name;  // "photon maps", "scene", "accelerator", "film"...

@@ -7,12 +7,14 @@
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/factory.h"
-#include "integrators/path_recorder.h"
-#include "integrators/pixel_loop.h"
-#include "integrators/pixel_trace.h"
+#include "render/path_recorder.h"
+#include "render/pixel_loop.h"
+#include "render/pixel_trace.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+
 namespace {
 
 // Where the path is, for the split into components (pixel_loop.h, RadianceParts): x is the first
@@ -75,12 +77,12 @@ Stage next_stage(Stage s, bool delta_bounce) {
 }  // namespace
 
 void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
-    const RadianceFn plain = [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+    const RadianceFn plain = [&](const Ray& ray, Sampler& sampler, RayCounts& rays) {
         return radiance(prepared, ray, sampler, rays);
     };
     if (prepared.options.layers)
         render_layers(prepared, film, budget_, "path", progress, integrator_layers("path"),
-                      [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                      [&](const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });
     else
@@ -88,7 +90,7 @@ void PathIntegrator::render(const Prepared& prepared, film::Film& film, Progress
     trace_pixel_samples(prepared, film, plain);  // --trace-pixel (pixel_trace.h)
 }
 
-Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays,
                              RadianceParts* parts) {
     const scene::Scene& scene = P.scene;
     Rgb L(0.0f), beta(1.0f);
@@ -128,7 +130,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler
             specular_bounce = false;
             stage = next_stage(stage, false);
             from = {p, pdf};
-            ray = accel::Ray{p, wi};
+            ray = Ray{p, wi};
             ++rays.bounce;
             if (!survives_roulette(depth, beta, sampler)) break;
             continue;

@@ -4,11 +4,14 @@
 
 #include "core/rng.h"
 #include "integrators/integrator.h"
-#include "integrators/render_budget.h"
+#include "render/render_budget.h"
+
+namespace phos::render {
+struct RadianceParts;  // pixel_loop.h
+}  // namespace phos::render
 
 namespace phos::integrators {
-
-struct RadianceParts;  // pixel_loop.h
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 class PathIntegrator : public Integrator {
 public:
@@ -20,7 +23,7 @@ public:
     // at the first surface x seen directly, its emission, the light sampled at it and the emission
     // its BSDF sample finds are direct, light found after x through delta bounces only is caustic,
     // the rest indirect. --layers records them.
-    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+    static Rgb radiance(const Prepared& prepared, Ray ray, Sampler& sampler, RayCounts& rays,
                         RadianceParts* parts = nullptr);
 
 private:

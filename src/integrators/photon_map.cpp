@@ -11,14 +11,16 @@
 #include "core/stats.h"
 #include "dist/ranks.h"
 #include "integrators/factory.h"
-#include "integrators/path_recorder.h"
 #include "integrators/photon_map_radiance.h"
-#include "integrators/pixel_loop.h"
-#include "integrators/pixel_trace.h"
 #include "photon/beam_estimate.h"
 #include "photon/projection_map.h"
+#include "render/path_recorder.h"
+#include "render/pixel_loop.h"
+#include "render/pixel_trace.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+
 namespace {
 
 std::string fmt(const char* f, double v) {
@@ -204,7 +206,7 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
     if (P.options.layers) {
         render_layers(
             P, film, budget_, "photonmap", progress, integrator_layers("photonmap"),
-            [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+            [&](const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                 parts = R.camera_ray(ray, sampler, rays);
                 return parts.total();
             },
@@ -213,7 +215,7 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
     }
     render_samples(
         P, film, budget_, "photonmap", progress,
-        [&](int x, int y, const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+        [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
             film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total());
         },
         payload);
@@ -250,7 +252,7 @@ void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& 
     if (requested_trace()) {
         const PhotonMapOptions o = resolve(options_, P);
         const PhotonMapRadiance R(P, o, maps);
-        trace_pixel_samples(P, film, [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+        trace_pixel_samples(P, film, [&](const Ray& ray, Sampler& sampler, RayCounts& rays) {
             return R.camera_ray(ray, sampler, rays).total();
         });
     }

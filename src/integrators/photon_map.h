@@ -10,11 +10,12 @@
 
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
-#include "integrators/render_budget.h"
 #include "photon/photon_maps.h"
 #include "photon/tracer.h"
+#include "render/render_budget.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 // The maps pass 1 builds (photon/photon_maps.h).
 using photon::PhotonMaps;

@@ -23,12 +23,13 @@
 
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
-#include "integrators/path_recorder.h"
-#include "integrators/pixel_loop.h"
+#include "render/path_recorder.h"
+#include "render/pixel_loop.h"
 #include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 using photon::kCausticMap;
 using photon::kGlobalMap;
@@ -68,7 +69,7 @@ Rgb PhotonMapRadiance::estimate(int m, const photon::SurfaceQuery& q, Vec3 wo,
     return l.estimate;
 }
 
-RadianceParts PhotonMapRadiance::camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const {
+RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts& rays) const {
     RadianceParts out;
     Rgb beta(1.0f);
     bool via_delta = false;
@@ -167,7 +168,7 @@ Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading:
     return sum * (1.0f / float(n));
 }
 
-Rgb PhotonMapRadiance::gather_ray(accel::Ray ray, int medium, Sampler& sampler, RayCounts& rays) const {
+Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCounts& rays) const {
     Rgb L(0.0f), beta(1.0f);
     const shading::MediaSet* media = P_.active_media();
     shading::SurfaceWalk walk(P_.accel, media, medium);

@@ -5,18 +5,19 @@
 #include "core/rng.h"
 #include "core/stats.h"
 #include "integrators/photon_map.h"
-#include "integrators/pixel_loop.h"
-#include "integrators/prepared.h"
 #include "photon/beam_estimate.h"
 #include "photon/estimate.h"
 #include "photon/volume_estimate.h"
+#include "render/pixel_loop.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 class PhotonMapRadiance {
 public:
     PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps);
-    RadianceParts camera_ray(accel::Ray ray, Sampler& sampler, RayCounts& rays) const;
+    RadianceParts camera_ray(Ray ray, Sampler& sampler, RayCounts& rays) const;
 
     // Indirect radiance reflected at a non-specular hit towards wo by final gathering.
     Rgb final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo, int medium,
@@ -25,7 +26,7 @@ public:
     // bounces, then takes the global estimate (or the irradiance cache) at each non-specular hit;
     // emitters give nothing. In media it samples a free flight and, where the ray scatters, takes
     // the light in-scattered there (light sampling plus the volume maps).
-    Rgb gather_ray(accel::Ray ray, int medium, Sampler& sampler, RayCounts& rays) const;
+    Rgb gather_ray(Ray ray, int medium, Sampler& sampler, RayCounts& rays) const;
 
     // Light scattered towards the camera along one stretch of a camera ray in a medium (Jensen &
     // Christensen 1998, eq. 12: by the beam radiance estimate or by ray marching, as

@@ -7,13 +7,14 @@
 
 #include <tbb/parallel_for.h>
 
-#include "integrators/path_recorder.h"
-#include "integrators/pixel_loop.h"
-#include "integrators/progressive_budget.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
+#include "render/path_recorder.h"
+#include "render/pixel_loop.h"
+#include "render/progressive_budget.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
@@ -33,7 +34,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         Sampler sampler(ro.seed, 0x70706d657965ULL, i);
         const Vec2 jitter = eye == 1 ? Vec2{0.5f, 0.5f} : stratified_sample(s, eye, sampler.next2());
         const Vec2 lens = sampler.next2();
-        const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+        const Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
         ++rays.camera;
         return trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
     };

@@ -8,11 +8,12 @@
 #include "core/low_discrepancy.h"
 #include "dist/ranks.h"
 #include "film/tiles.h"
-#include "integrators/path_recorder.h"
-#include "integrators/progressive_budget.h"
 #include "integrators/sppm_core.h"
+#include "render/path_recorder.h"
+#include "render/progressive_budget.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
@@ -56,7 +57,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         const uint64_t key = Sampler(ro.seed, 0x6579657365717563ULL, pixel).next_bits();
         const Vec2 jitter = padded_point2(uint32_t(it), hash_combine(key, 1));
         const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
-        const accel::Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+        const Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
         ++rays.camera;
         const LightSampleSequence lights{uint32_t(it), hash_combine(key, 3)};
         return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &lights);

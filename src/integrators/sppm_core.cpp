@@ -20,10 +20,14 @@
 #include "core/log.h"
 #include "dist/ranks.h"
 #include "integrators/direct_light.h"
-#include "integrators/progressive_budget.h"
 #include "integrators/sppm.h"
 #include "photon/photon_path.h"
+#include "render/progressive_budget.h"
 #include "shading/phase.h"
+
+namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+}  // namespace phos::integrators
 
 namespace phos::integrators::sppm {
 

@@ -19,14 +19,18 @@
 #include "core/rng.h"
 #include "film/film.h"
 #include "film/tiles.h"
-#include "integrators/path_recorder.h"
-#include "integrators/prepared.h"
-#include "integrators/progressive_checkpoint.h"
 #include "integrators/progressive_options.h"
-#include "integrators/render_budget.h"
 #include "integrators/sppm_pixel_stats.h"
 #include "photon/hitpoint_grid.h"
+#include "render/path_recorder.h"
+#include "render/prepared.h"
+#include "render/progressive_checkpoint.h"
+#include "render/render_budget.h"
 #include "shading/bsdf.h"
+
+namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+}  // namespace phos::integrators
 
 namespace phos::integrators::sppm {
 
@@ -53,7 +57,7 @@ struct VisiblePoint {
 // With `light_sequence`, the light samples come from stratified per-pixel sequences instead of
 // `sampler` (see LightSampleSequence).
 struct LightSampleSequence;
-Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
+Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays, const LightSampleSequence* light_sequence = nullptr);
 
 // Light sample k of iteration i's eye path (n samples per path) as point i × n + k of two padded

@@ -7,15 +7,19 @@
 #include "core/low_discrepancy.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
-#include "integrators/path_recorder.h"
 #include "integrators/sppm_core.h"
+#include "render/path_recorder.h"
 #include "shading/surface_walk.h"
+
+namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+}  // namespace phos::integrators
 
 namespace phos::integrators::sppm {
 
 using shading::Bsdf;
 
-Rgb trace_eye_path(const Prepared& P, accel::Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
+Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays, const LightSampleSequence* light_sequence) {
     vp.bsdf.reset();
     vp.medium = -1;

@@ -18,16 +18,16 @@
 #include <cmath>
 #include <cstdint>
 
+#include "render/progressive_checkpoint.h"
+
+namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+}  // namespace phos::integrators
+
 namespace phos::integrators::sppm {
 
-// Statistics of one hit-point slot (SPPM: one per pixel; PPM: one per pixel and eye sample).
-// Plain doubles: saved bit for bit in checkpoints (progressive_checkpoint.h).
-struct PixelStats {
-    double n = 0;                  // accumulated photon count N (fractional after α-reduction)
-    double r2 = 0;                 // squared radius R² (0 = not yet initialised)
-    double tau[3] = {0, 0, 0};     // accumulated, radius-reduced flux τ (unnormalised)
-    double direct[3] = {0, 0, 0};  // sum over iterations of direct light + emission seen
-};
+// The statistics of one hit-point slot (render/progressive_checkpoint.h saves them bit for bit).
+using render::PixelStats;
 
 // Eq. 9: the photon count after an iteration that found m photons, of which α are kept.
 inline double next_n(double n, double alpha, double m) { return n + alpha * m; }

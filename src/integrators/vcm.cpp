@@ -18,13 +18,15 @@
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/bidirectional_path.h"
-#include "integrators/progressive_budget.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
 #include "integrators/vertex_grid.h"
+#include "render/progressive_budget.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
+
 namespace {
 
 using vcm::Scattering;
@@ -390,9 +392,9 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
 void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, bool full) {
     const Prepared& P = C.P;
     const scene::Scene& scene = P.scene;
-    const accel::Ray first = P.camera.generate_ray(fx, fy, lens);
+    const Ray first = P.camera.generate_ray(fx, fy, lens);
     ++C.rays.camera;
-    accel::Ray ray = first;
+    Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
     SubpathMis mis = camera_pdf > 0 ? vcm::start_camera(camera_pdf) : SubpathMis{};
     Rgb beta(1.0f);
@@ -509,7 +511,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
 // the distance from the camera to the scene's centre.
 float base_radius(const Prepared& P, const ProgressiveOptions& o) {
     if (o.radius > 0) return o.radius;
-    const accel::Bounds b = P.accel.bounds();
+    const Bounds b = P.accel.bounds();
     const float d = b.empty() ? 1.0f : length(b.center() - P.camera.eye());
     const float r = o.radius_pixels * P.camera.pixel_footprint().at(d);
     return r > 0 ? r : 1e-3f * (b.empty() ? 1.0f : length(b.extent()));
@@ -587,7 +589,7 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
             const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
             Sampler sampler(ro.seed, 0x7663706966ULL, i);
             sppm::VisiblePoint vp;
-            const accel::Ray ray = P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f));
+            const Ray ray = P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f));
             ++rays.camera;
             sppm::trace_eye_path(P, ray, sampler, 0, vp, rays);
             if (!vp.bsdf) continue;

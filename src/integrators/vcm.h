@@ -9,9 +9,10 @@
 
 #include "integrators/integrator.h"
 #include "integrators/progressive_options.h"
-#include "integrators/render_budget.h"
+#include "render/render_budget.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 class VcmIntegrator final : public Integrator {
 public:

@@ -6,24 +6,25 @@
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "integrators/factory.h"
-#include "integrators/path_recorder.h"
-#include "integrators/pixel_loop.h"
-#include "integrators/pixel_trace.h"
+#include "render/path_recorder.h"
+#include "render/pixel_loop.h"
+#include "render/pixel_trace.h"
 #include "shading/surface_walk.h"
 
 namespace phos::integrators {
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progress& progress) {
     if (prepared.active_media())
         log::warn(
             "whitted renders the scene as if its participating media were vacuum; path, photonmap, "
             "ppm and sppm render them");
-    const RadianceFn plain = [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays) {
+    const RadianceFn plain = [&](const Ray& ray, Sampler& sampler, RayCounts& rays) {
         return radiance(prepared, ray, sampler, rays);
     };
     if (prepared.options.layers)
         render_layers(prepared, film, budget_, "whitted", progress, integrator_layers("whitted"),
-                      [&](const accel::Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                      [&](const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                           return radiance(prepared, ray, sampler, rays, &parts);
                       });
     else
@@ -31,7 +32,7 @@ void WhittedIntegrator::render(const Prepared& prepared, film::Film& film, Progr
     trace_pixel_samples(prepared, film, plain);  // --trace-pixel (pixel_trace.h)
 }
 
-Rgb WhittedIntegrator::radiance(const Prepared& P, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+Rgb WhittedIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays,
                                 RadianceParts* parts) {
     Rgb L(0.0f), beta(1.0f);
     shading::SurfaceWalk walk(P.accel);

@@ -4,11 +4,14 @@
 
 #include "core/rng.h"
 #include "integrators/integrator.h"
-#include "integrators/render_budget.h"
+#include "render/render_budget.h"
+
+namespace phos::render {
+struct RadianceParts;  // pixel_loop.h
+}  // namespace phos::render
 
 namespace phos::integrators {
-
-struct RadianceParts;  // pixel_loop.h
+using namespace render;  // the render support the algorithms are written over (src/render/)
 
 class WhittedIntegrator : public Integrator {
 public:
@@ -17,7 +20,7 @@ public:
     // Radiance arriving at the camera along `ray`. With `parts`, also its split into components
     // (pixel_loop.h): what the first surface seen sends by its own emission and light sampling is
     // direct, everything found through the recursion (mirrors and glass) specular.
-    static Rgb radiance(const Prepared& prepared, accel::Ray ray, Sampler& sampler, RayCounts& rays,
+    static Rgb radiance(const Prepared& prepared, Ray ray, Sampler& sampler, RayCounts& rays,
                         RadianceParts* parts = nullptr);
 
 private:

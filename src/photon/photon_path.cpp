@@ -17,7 +17,7 @@ bool packets_possible(const PhotonScene& ps) {
 
 namespace phos::photon::detail {
 
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power, int& medium) {
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium) {
     if (ps.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = ps.lights.choose(sampler.next(), pmf);

@@ -96,10 +96,10 @@ namespace detail {
 // Emits the photon: picks a light by power and samples a ray from it. Returns false when the
 // scene has no light with power. `power` is the sample weight divided by the light's pmf;
 // `medium` is the light's medium.
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power, int& medium);
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium);
 // The same through a projection map (defined in projection_map.cpp).
-bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
-                    Rgb& power, int& medium);
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power,
+                    int& medium);
 // Calls the visitor and tells whether the path goes on (visitors returning void always go on).
 template <class Visitor, class Hit>
 bool visit_hit(Visitor& visit, const Hit& h) {
@@ -123,7 +123,7 @@ bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler,
 // state of each lane of the photon tracer's wavefront, tracer.cpp).
 struct PhotonState {
     Sampler sampler;
-    accel::Ray ray;
+    Ray ray;
     Rgb power;
     int medium = -1;
     int bounces = 0;
@@ -218,7 +218,7 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
             st.power *= 1.0f / q;
             Vec3 wi;
             ps.media->operator[](walk.medium()).phase().sample(walk.medium_wo(), st.sampler.next2(), wi);
-            st.ray = accel::Ray{walk.medium_point(), wi};
+            st.ray = Ray{walk.medium_point(), wi};
             st.after_diffuse = true;
             st.after_specular = false;
             ++st.bounces;
@@ -245,7 +245,7 @@ uint64_t trace_photons(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint
     uint64_t photon[16];
     uint32_t rays[16] = {};
     bool live[16] = {};
-    accel::Ray ray[16];
+    Ray ray[16];
     accel::SurfaceHit hit[16];
     bool found[16];
     uint64_t next = 0;
@@ -263,7 +263,7 @@ uint64_t trace_photons(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint
         int n = 16;
         while (n > 0 && !live[n - 1]) --n;
         for (int k = 0; k < n; ++k)
-            ray[k] = live[k] ? lane[k].ray : accel::Ray{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};  // not traced
+            ray[k] = live[k] ? lane[k].ray : Ray{Vec3(0.0f), Vec3(0.0f), 0.0f, 0.0f};  // not traced
         ps.accel.intersect16(ray, n, hit, found);
         for (int k = 0; k < n; ++k) {
             if (!live[k]) continue;

@@ -8,8 +8,8 @@ namespace phos::photon {
 namespace {
 
 // Object-space bounding box of a shape (analytic shapes conservatively).
-accel::Bounds object_bounds(const scene::Shape& s) {
-    accel::Bounds b;
+Bounds object_bounds(const scene::Shape& s) {
+    Bounds b;
     using K = scene::Shape::Kind;
     switch (s.kind) {
         case K::Mesh:
@@ -54,12 +54,12 @@ BoundingSphere world_sphere(const scene::Shape& s, const Transform& t) {
         pts.reserve(s.mesh.positions.size());
         for (const Vec3& p : s.mesh.positions) pts.push_back(t.point(p));
     } else {
-        const accel::Bounds b = object_bounds(s);
+        const Bounds b = object_bounds(s);
         for (int i = 0; i < 8; ++i)
             pts.push_back(
                 t.point(Vec3(i & 1 ? b.hi.x : b.lo.x, i & 2 ? b.hi.y : b.lo.y, i & 4 ? b.hi.z : b.lo.z)));
     }
-    accel::Bounds w;
+    Bounds w;
     for (const Vec3& p : pts) w.extend(p);
     if (w.empty()) return {Vec3(0.0f), -1};
     const Vec3 c = w.center();
@@ -68,9 +68,7 @@ BoundingSphere world_sphere(const scene::Shape& s, const Transform& t) {
     return {c, std::sqrt(r2) * 1.001f + 1e-6f};
 }
 
-BoundingSphere sphere_of(const accel::Bounds& b) {
-    return {b.center(), 0.5f * length(b.extent()) * 1.001f + 1e-6f};
-}
+BoundingSphere sphere_of(const Bounds& b) { return {b.center(), 0.5f * length(b.extent()) * 1.001f + 1e-6f}; }
 
 float angle_between(Vec3 a, Vec3 b) {  // unit vectors; atan2 form is accurate at small angles
     return std::atan2(length(cross(a, b)), dot(a, b));
@@ -126,7 +124,7 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
             // lattice of u_pos for a few u_dir values.
             const Vec2 dir_probes[3] = {{0.13f, 0.21f}, {0.71f, 0.87f}, {0.42f, 0.58f}};
             constexpr int P = 17;
-            accel::Bounds origins;
+            Bounds origins;
             bool separable = !L.is_infinite();
             Vec3 ref_dir[3];
             for (int k = 0; k < 3; ++k) ref_dir[k] = L.sample_Le({0.5f, 0.5f}, dir_probes[k]).ray.dir;
@@ -204,8 +202,7 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
     if (fraction_ > 0) choose_ = shading::Distribution1D(weights);
 }
 
-bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ray, Rgb& power,
-                         int& medium) const {
+bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium) const {
     if (empty()) return false;
     float pmf = 0;
     const size_t li = choose_.sample_discrete(sampler.next(), &pmf);
@@ -226,8 +223,8 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, accel::Ray& ra
 }
 
 namespace detail {
-bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, accel::Ray& ray,
-                    Rgb& power, int& medium) {
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power,
+                    int& medium) {
     return map.emit(ps, sampler, ray, power, medium);
 }
 }  // namespace detail

@@ -17,11 +17,11 @@ constexpr float kInfinity = std::numeric_limits<float>::infinity();
 bool finite3(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
 // Intersection of two boxes (empty if they do not overlap).
-accel::Bounds intersect(const accel::Bounds& a, const accel::Bounds& b) {
-    accel::Bounds r;
+Bounds intersect(const Bounds& a, const Bounds& b) {
+    Bounds r;
     r.lo = max(a.lo, b.lo);
     r.hi = min(a.hi, b.hi);
-    if (r.lo.x > r.hi.x || r.lo.y > r.hi.y || r.lo.z > r.hi.z) return accel::Bounds{};
+    if (r.lo.x > r.hi.x || r.lo.y > r.hi.y || r.lo.z > r.hi.z) return Bounds{};
     return r;
 }
 
@@ -59,12 +59,12 @@ public:
         return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
     }
 
-    accel::Bounds bounds() const override { return bounds_; }
+    Bounds bounds() const override { return bounds_; }
 
     // The samples whose trilinear support (i - 1, i + 1) touches the box: floor(s_lo) ..
     // floor(s_hi) + 1. sample_coords is monotone in p, so every point of the box maps in between.
-    float max_density(const accel::Bounds& box) const override {
-        const accel::Bounds b = intersect(box, bounds_);
+    float max_density(const Bounds& box) const override {
+        const Bounds b = intersect(box, bounds_);
         if (b.empty()) return 0.0f;
         const Vec3 lo = sample_coords(b.lo), hi = sample_coords(b.hi);
         const int x0 = std::max(0, int(std::floor(lo.x))), x1 = std::min(nx_ - 1, int(std::floor(hi.x)) + 1);
@@ -97,7 +97,7 @@ private:
     int nx_, ny_, nz_;
     std::vector<float> values_;
     Vec3 p0_, p1_;
-    accel::Bounds bounds_;
+    Bounds bounds_;
 };
 
 // A NanoVDB float grid, sampled trilinearly in index space (voxel centres at integer coordinates,
@@ -157,10 +157,10 @@ public:
         return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
     }
 
-    accel::Bounds bounds() const override { return bounds_; }
+    Bounds bounds() const override { return bounds_; }
 
-    float max_density(const accel::Bounds& box) const override {
-        const accel::Bounds b = intersect(box, bounds_);
+    float max_density(const Bounds& box) const override {
+        const Bounds b = intersect(box, bounds_);
         if (b.empty()) return 0.0f;
         // The box in index space (its 8 corners: the map may rotate), then the voxels whose
         // values a trilinear lookup inside it can read, with one voxel of slack for rounding.
@@ -268,7 +268,7 @@ private:
     std::shared_ptr<const void> keep_;
     const Grid* grid_ = nullptr;
     float ilo_[3], ihi_[3];  // index-space box where the density may be non-zero
-    accel::Bounds bounds_;
+    Bounds bounds_;
     int bsize_ = 8, borigin_[3] = {0, 0, 0}, nb_[3] = {1, 1, 1};
     std::vector<float> block_max_;
 };
@@ -293,7 +293,7 @@ std::unique_ptr<DensityGrid> make_density_grid(const scene::Medium& medium) {
 namespace {
 // The coordinate of grid plane k (0..res) along an axis: the one formula the cell boxes and the
 // DDA share.
-float plane(const accel::Bounds& b, int axis, int k, int res) {
+float plane(const Bounds& b, int axis, int k, int res) {
     if (k >= res) return b.hi[axis];
     return b.lo[axis] + (b.hi[axis] - b.lo[axis]) * (float(k) / float(res));
 }
@@ -306,7 +306,7 @@ MajorantGrid::MajorantGrid(const DensityGrid& grid, int res)
     for (int z = 0; z < res_; ++z)
         for (int y = 0; y < res_; ++y)
             for (int x = 0; x < res_; ++x) {
-                accel::Bounds cell;
+                Bounds cell;
                 const int c[3] = {x, y, z};
                 for (int a = 0; a < 3; ++a) {
                     // A little slack so that points the DDA puts in this cell, up to rounding,

@@ -17,9 +17,9 @@ public:
     virtual ~DensityGrid() = default;
     virtual float density(Vec3 p) const = 0;
     // Medium-space box outside which the density is 0 (never empty for a valid grid).
-    virtual accel::Bounds bounds() const = 0;
+    virtual Bounds bounds() const = 0;
     // An upper bound of density(p) over every p in `box` (medium space), interpolation included.
-    virtual float max_density(const accel::Bounds& box) const = 0;
+    virtual float max_density(const Bounds& box) const = 0;
 };
 
 // The density grid of a UniformGrid or Sparse medium (nullptr for a homogeneous one). Throws
@@ -55,11 +55,11 @@ public:
 
     int resolution() const { return res_; }
     float max_at(int x, int y, int z) const { return max_[size_t((z * res_ + y) * res_ + x)]; }
-    const accel::Bounds& bounds() const { return bounds_; }
+    const Bounds& bounds() const { return bounds_; }
 
 private:
     int res_;
-    accel::Bounds bounds_;
+    Bounds bounds_;
     std::vector<float> max_;
 };
 

@@ -14,7 +14,7 @@
 
 namespace phos::shading {
 
-SceneSphere SceneSphere::from_bounds(const accel::Bounds& b) {
+SceneSphere SceneSphere::from_bounds(const Bounds& b) {
     SceneSphere s;
     if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi)) {
         s.radius = 1;
@@ -46,8 +46,7 @@ const char* kind_name(scene::Light::Kind k) {
 
 }  // namespace
 
-LightSet::LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds,
-                   const LightOptions& options) {
+LightSet::LightSet(const scene::Scene& scene, const Bounds& scene_bounds, const LightOptions& options) {
     const SceneSphere sphere = SceneSphere::from_bounds(scene_bounds);
     using K = scene::Light::Kind;
     for (size_t i = 0; i < scene.lights.size(); ++i) {

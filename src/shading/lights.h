@@ -20,7 +20,7 @@ struct SceneSphere {
     Vec3 center{0.0f};
     float radius = 0;
     // Empty bounds give the unit sphere at the origin (nothing to hit, but no NaNs either).
-    static SceneSphere from_bounds(const accel::Bounds& bounds);
+    static SceneSphere from_bounds(const Bounds& bounds);
 };
 
 struct LightLiSample {
@@ -34,9 +34,9 @@ struct LightLiSample {
 };
 
 struct LightLeSample {
-    accel::Ray ray;  // leaves the light (unit direction); tmin skips the emitting surface itself
-    Vec3 n;          // surface normal at the origin (area lights), else the direction
-    Rgb Le;          // emitted radiance (area) or intensity (point/spot) along the ray
+    Ray ray;  // leaves the light (unit direction); tmin skips the emitting surface itself
+    Vec3 n;   // surface normal at the origin (area lights), else the direction
+    Rgb Le;   // emitted radiance (area) or intensity (point/spot) along the ray
     float pdf_pos = 1, pdf_dir = 1;
     // Flux carried by this one sample: Le * |cos| / (pdf_pos * pdf_dir). Averaging over N samples
     // gives the light's power; a photon's power is weight / N (times 1/P(choose light)).
@@ -79,7 +79,7 @@ public:
 // when options.legacy_attenuation is off.
 class LightSet {
 public:
-    LightSet(const scene::Scene& scene, const accel::Bounds& scene_bounds, const LightOptions& options = {});
+    LightSet(const scene::Scene& scene, const Bounds& scene_bounds, const LightOptions& options = {});
     ~LightSet();
     size_t size() const { return lights_.size(); }
     const Light& operator[](size_t i) const { return *lights_[i]; }

@@ -5,18 +5,18 @@
 
 namespace phos::shading {
 
-bool SurfaceWalk::cross(accel::Ray& ray, const accel::SurfaceHit& hit) {
+bool SurfaceWalk::cross(Ray& ray, const accel::SurfaceHit& hit) {
     if (++crossings_ > kMaxCrossings) return false;
     medium_ = medium_after(hit, ray.dir, medium_);
     ray = accel::spawn_ray(hit, ray.dir);
     return true;
 }
 
-SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit) {
+SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit) {
     return next_segments(ray, hit, [](const Medium&, Vec3, Vec3, float) {});
 }
 
-Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, accel::Ray ray, int medium,
+Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
                          Sampler& sampler) {
     if (!media || !media->active()) return accel.occluded(ray) ? Rgb(0.0f) : Rgb(1.0f);
     const scene::Scene& scene = accel.scene();
@@ -34,7 +34,7 @@ Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media,
         if (!found) return T;
         // Continue beyond the interface towards the same end point.
         medium = SurfaceWalk::medium_after(hit, ray.dir, medium);
-        accel::Ray next = accel::spawn_ray(hit, ray.dir);
+        Ray next = accel::spawn_ray(hit, ray.dir);
         if (ray.tmax < kInf) {
             const Vec3 end = ray.origin + ray.dir * ray.tmax;
             next.tmax = dot(end - next.origin, ray.dir) / dot(ray.dir, ray.dir);

@@ -41,7 +41,7 @@ public:
     // Follows `ray` to the next scattering surface, stepping through interfaces (each step
     // continues from the interface along the same direction), ignoring the media's scattering and
     // absorption (only the medium index is followed). On return `ray` is the last segment's ray.
-    Event next(accel::Ray& ray, accel::SurfaceHit& hit);
+    Event next(Ray& ray, accel::SurfaceHit& hit);
 
     // The same with free-flight sampling in the media crossed (medium_tracking.h): returns Medium
     // when the path scatters in a medium, multiplies `beta` by the tracking weights, and adds to
@@ -49,18 +49,18 @@ public:
     // stretch in a medium, calls on_stretch(const Medium&, Vec3 o, Vec3 d, float t_end) with the
     // whole stretch up to the next surface (as next_segments does) while `beta` still holds the
     // throughput before it: for estimators that integrate over the stretch (single scattering).
-    Event next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted) {
+    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted) {
         return next(ray, hit, sampler, beta, emitted, [](const Medium&, Vec3, Vec3, float) {});
     }
     template <class OnStretch>
-    Event next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted,
+    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted,
                OnStretch&& on_stretch);
 
     // The same without sampling: calls visit(const Medium&, Vec3 o, Vec3 d, float t_end) for
     // every stretch of the ray travelled in a medium before the returned event (d unit, t_end in
     // scene units, kInf for a ray that escapes), for estimators that integrate along the ray.
     template <class Visit>
-    Event next_segments(accel::Ray& ray, accel::SurfaceHit& hit, Visit&& visit);
+    Event next_segments(Ray& ray, accel::SurfaceHit& hit, Visit&& visit);
 
     // The path scatters at surface `hit` into direction `dir`: sets the medium it travels in next.
     void leave(const accel::SurfaceHit& hit, Vec3 dir) { medium_ = medium_after(hit, dir, medium_); }
@@ -85,7 +85,7 @@ public:
 
 private:
     // Steps through interface `hit` (updating the medium); false when too many were crossed.
-    bool cross(accel::Ray& ray, const accel::SurfaceHit& hit);
+    bool cross(Ray& ray, const accel::SurfaceHit& hit);
 
     const accel::EmbreeScene& accel_;
     const MediaSet* media_;
@@ -100,13 +100,13 @@ private:
 // ray.tmax: 0 if a scattering surface blocks it, else the product of the media's transmittances
 // over the stretches between the interfaces it crosses. Without active media this is a plain
 // occlusion test.
-Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, accel::Ray ray, int medium,
+Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
                          Sampler& sampler);
 
 // ---- implementation ----
 
 template <class OnStretch>
-SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
+SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
                                      Rgb& emitted, OnStretch&& on_stretch) {
     const scene::Scene& scene = accel_.scene();
     while (true) {
@@ -137,7 +137,7 @@ SurfaceWalk::Event SurfaceWalk::next(accel::Ray& ray, accel::SurfaceHit& hit, Sa
 }
 
 template <class Visit>
-SurfaceWalk::Event SurfaceWalk::next_segments(accel::Ray& ray, accel::SurfaceHit& hit, Visit&& visit) {
+SurfaceWalk::Event SurfaceWalk::next_segments(Ray& ray, accel::SurfaceHit& hit, Visit&& visit) {
     const scene::Scene& scene = accel_.scene();
     while (true) {
         ++rays_;

@@ -132,7 +132,7 @@ TEST(BruteForce, EmbreeAgreesWithReferenceOnRandomRays) {
     const int kRays = 6000;
     int hits = 0, failures = 0, analytic_hits = 0, instance_hits = 0;
     for (int k = 0; k < kRays; ++k) {
-        accel::Ray ray;
+        Ray ray;
         const int mode = k % 5;
         const Vec3 target =
             rs.targets[rng.next_index(uint32_t(rs.targets.size()))] + random_in(rng, Vec3(-1.0f), Vec3(1.0f));
@@ -177,7 +177,7 @@ TEST(BruteForce, EmbreeAgreesWithReferenceOnRandomRays) {
             ok = ok && std::sqrt(dotd(dp, dp)) < 1e-5 * (std::sqrt(dotd(pr, pr)) + 1) + 1e-6 * scale;
             ok = ok && std::fabs(length(hit.ng) - 1) < 1e-5 && std::fabs(length(hit.ns) - 1) < 1e-5;
             // Nothing lies in front of the closest hit; the hit itself blocks a slightly longer ray.
-            accel::Ray shorter = ray, longer = ray;
+            Ray shorter = ray, longer = ray;
             shorter.tmax = float(ref->t * (1 - 1e-4));
             longer.tmax = float(ref->t * (1 + 1e-4));
             ok = ok && (shorter.tmax <= shorter.tmin || !es.occluded(shorter)) && es.occluded(longer);
@@ -220,7 +220,7 @@ TEST_P(PacketKernels, PacketHitsEqualSingleRayHits) {
     int hits = 0, analytic_hits = 0, mismatches = 0;
     for (int round = 0; round < 600; ++round) {
         const int n = 1 + int(rng.next_index(16));
-        accel::Ray rays[16];
+        Ray rays[16];
         for (int k = 0; k < n; ++k) {
             const Vec3 target = rs.targets[rng.next_index(uint32_t(rs.targets.size()))] +
                                 random_in(rng, Vec3(-1.0f), Vec3(1.0f));
@@ -269,18 +269,18 @@ TEST(BruteForce, RaysBeyondEmbreesRangeMiss) {
     const RandomScene rs = make_random_scene(8);
     const accel::EmbreeScene es(rs.scene);
     accel::SurfaceHit hit;
-    const accel::Ray reach{Vec3(0, 0, 1e18f), Vec3(0, 0, -1)}, far{Vec3(0, 0, 1e20f), Vec3(0, 0, -1)};
+    const Ray reach{Vec3(0, 0, 1e18f), Vec3(0, 0, -1)}, far{Vec3(0, 0, 1e20f), Vec3(0, 0, -1)};
     int reached = 0;
     for (const Vec3& t : rs.targets) {
-        const accel::Ray r{reach.origin, t - reach.origin};
+        const Ray r{reach.origin, t - reach.origin};
         reached += es.intersect(r, hit);
     }
     ASSERT_GT(reached, 0);  // within range, the scene is hit from that far
     for (const Vec3& t : rs.targets) {
-        const accel::Ray r{far.origin, t - far.origin};
+        const Ray r{far.origin, t - far.origin};
         EXPECT_FALSE(es.intersect(r, hit));
         EXPECT_FALSE(es.occluded(r));
-        accel::Ray packet[2] = {r, reach};
+        Ray packet[2] = {r, reach};
         accel::SurfaceHit hits[2];
         bool found[2];
         es.intersect16(packet, 2, hits, found);

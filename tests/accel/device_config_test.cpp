@@ -57,13 +57,13 @@ TEST(EmbreeConfig, AnAcceptedConfigurationTracesTheScene) {
         ASSERT_EQ(embree_config_error(config), "");
         const accel::EmbreeScene accel(s, config);
         accel::SurfaceHit hit;
-        ASSERT_TRUE(accel.intersect(accel::Ray{Vec3(0.5f, 0.5f, 5), Vec3(0, 0, -1)}, hit)) << config;
+        ASSERT_TRUE(accel.intersect(Ray{Vec3(0.5f, 0.5f, 5), Vec3(0, 0, -1)}, hit)) << config;
         EXPECT_NEAR(hit.t, 3.0f, 1e-5f) << config;
         EXPECT_EQ(hit.shape, 0) << config;
-        ASSERT_TRUE(accel.intersect(accel::Ray{Vec3(0, 0, 1.5f), Vec3(0, 0, -1)}, hit)) << config;
+        ASSERT_TRUE(accel.intersect(Ray{Vec3(0, 0, 1.5f), Vec3(0, 0, -1)}, hit)) << config;
         EXPECT_NEAR(hit.t, 0.5f, 1e-5f) << config;
         EXPECT_EQ(hit.shape, 1) << config;
-        EXPECT_FALSE(accel.intersect(accel::Ray{Vec3(0, 3, 5), Vec3(0, 0, -1)}, hit)) << config;
+        EXPECT_FALSE(accel.intersect(Ray{Vec3(0, 3, 5), Vec3(0, 0, -1)}, hit)) << config;
     }
 }
 

@@ -17,11 +17,11 @@ namespace {
 using scene::Shape;
 
 // A ray from outside the bounds aimed at a random point inside them.
-accel::Ray ray_at(Sampler& rng, const accel::Bounds& b) {
+Ray ray_at(Sampler& rng, const Bounds& b) {
     const Vec3 c = b.center();
     const float r = length(b.extent());
     const Vec3 target = random_in(rng, c - b.extent() * 0.4f, c + b.extent() * 0.4f);
-    accel::Ray ray;
+    Ray ray;
     ray.origin = c + random_unit(rng) * (2 * r);
     ray.dir = target - ray.origin;
     return ray;
@@ -39,7 +39,7 @@ void check_convex_self_intersection(const scene::Scene& sc, int trials, uint64_t
         ++hits;
         Vec3 dir = random_unit(rng);
         if (std::fabs(dot(dir, h.ng)) < 1e-3f) continue;  // skip true grazing
-        const accel::Ray r = accel::spawn_ray(h, dir);
+        const Ray r = accel::spawn_ray(h, dir);
         accel::SurfaceHit h2;
         const bool got = es.intersect(r, h2);
         if (dot(dir, h.ng) > 0) {
@@ -142,7 +142,7 @@ void check_sphere_on_floor(const Shape& ball, int floor_index, scene::Scene sc) 
     for (int k = 0; k < 3000; ++k) {
         // A point on the floor 1e-6 .. 1e-1 away from the contact point, reached from below.
         const float rho = std::pow(10.0f, -6 + 5 * rng.next()), phi = 2 * kPi * rng.next();
-        accel::Ray probe{{rho * std::cos(phi), -1, rho * std::sin(phi)}, {0, 1, 0}};
+        Ray probe{{rho * std::cos(phi), -1, rho * std::sin(phi)}, {0, 1, 0}};
         accel::SurfaceHit h;
         ASSERT_TRUE(es.intersect(probe, h));
         if (h.shape != floor_index) continue;  // the ball is (numerically) first at the contact
@@ -199,7 +199,7 @@ void check_closed(const Shape& s, Inside inside, Edge edge, Sampler& rng) {
     for (int path = 0; path < 300; ++path) {
         // Start inside, aiming straight at an edge or corner every other path.
         const Vec3 lo = inside(), lt = path % 2 ? edge() : inside();
-        accel::Ray ray{s.to_world.point(lo), s.to_world.point(lt) - s.to_world.point(lo)};
+        Ray ray{s.to_world.point(lo), s.to_world.point(lt) - s.to_world.point(lo)};
         EXPECT_TRUE(es.occluded(ray));
         for (int bounce = 0; bounce < 20; ++bounce) {
             accel::SurfaceHit h;
@@ -269,7 +269,7 @@ TEST(Spawn, ShadowRaysStopShortOfTheirTarget) {
         ASSERT_TRUE(
             es.intersect({{1.8f * rng.next() - 0.9f, 3, 1.8f * rng.next() - 0.9f}, {0, 1, 0}}, light_hit));
         ASSERT_EQ(light_hit.shape, 1);
-        const accel::Ray to = accel::spawn_ray_to(floor_hit, light_hit.p);
+        const Ray to = accel::spawn_ray_to(floor_hit, light_hit.p);
         EXPECT_LT(to.tmax, 1.0f);
         EXPECT_FALSE(es.occluded(to));
         EXPECT_FALSE(es.occluded(accel::spawn_ray_between(floor_hit, light_hit)));

@@ -20,7 +20,7 @@ scene::Scene single(Shape s) {
     return sc;
 }
 
-accel::SurfaceHit hit_of(const scene::Scene& sc, accel::Ray ray) {
+accel::SurfaceHit hit_of(const scene::Scene& sc, Ray ray) {
     const accel::EmbreeScene es(sc);
     accel::SurfaceHit h;
     EXPECT_TRUE(es.intersect(ray, h));
@@ -92,7 +92,7 @@ TEST(Surface, RayIntervalIsRespected) {
 }
 
 TEST(Orientation, ReverseOrientationAndMirroringFlipAnalyticNormals) {
-    const accel::Ray ray{{0, 0, 5}, {0, 0, -1}};
+    const Ray ray{{0, 0, 5}, {0, 0, -1}};
     Shape s = sphere({0, 0, 0}, 1);
     expect_vec(hit_of(single(s), ray).ng, {0, 0, 1});
     s.reverse_orientation = true;
@@ -108,7 +108,7 @@ TEST(Orientation, ReverseOrientationAndMirroringFlipAnalyticNormals) {
 TEST(Orientation, TriangleWindingReverseAndMirror) {
     // Counter-clockwise seen from +y: the front faces up.
     Shape q = quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
-    const accel::Ray down{{0.2f, 3, 0.1f}, {0, -1, 0}}, up{{0.2f, -3, 0.1f}, {0, 1, 0}};
+    const Ray down{{0.2f, 3, 0.1f}, {0, -1, 0}}, up{{0.2f, -3, 0.1f}, {0, 1, 0}};
     expect_vec(hit_of(single(q), down).ng, {0, 1, 0});
     expect_vec(hit_of(single(q), up).ng, {0, 1, 0});  // geometric: not turned towards the ray
     Shape r = q;
@@ -131,7 +131,7 @@ TEST(Orientation, TriangleWindingReverseAndMirror) {
 TEST(Orientation, ShadingNormalsOrientTheGeometricNormal) {
     Shape q = quad({-1, 0, -1}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1});
     q.mesh.normals.assign(4, Vec3(0, -1, 0));
-    const accel::Ray down{{0.2f, 3, 0.1f}, {0, -1, 0}};
+    const Ray down{{0.2f, 3, 0.1f}, {0, -1, 0}};
     accel::SurfaceHit h = hit_of(single(q), down);
     expect_vec(h.ng, {0, -1, 0});
     expect_vec(h.ns, {0, -1, 0});
@@ -273,7 +273,7 @@ TEST(Surface, DiskCylinderConeParameters) {
     h = hit_of(single(c), {{5, 0.5f, 0}, {-1, 0, 0}});
     expect_vec(h.ng, {1, 0, 0});
     EXPECT_NEAR(h.uv.y, 0.75f, 1e-5);
-    const accel::Ray along{{0.2f, 5, 0}, {0, -1, 0}};
+    const Ray along{{0.2f, 5, 0}, {0, -1, 0}};
     {
         const scene::Scene open = single(c);
         EXPECT_FALSE(accel::EmbreeScene(open).occluded(along));
@@ -349,17 +349,16 @@ TEST(Bounds, TightAroundAllGeometry) {
     obj.shapes.push_back(sphere({0, 0, 0}, 1));
     sc.objects.push_back(obj);
     sc.instances.push_back({0, Transform::translate({0, -10, 0}) * Transform::scale({1, 3, 1})});
-    const accel::Bounds b = accel::EmbreeScene(sc).bounds();
+    const Bounds b = accel::EmbreeScene(sc).bounds();
     const float s = std::sqrt(0.5f);
     expect_vec(b.lo, {-5, -13, -1}, 1e-3f);
     expect_vec(b.hi, {10 + s, 4, 5}, 1e-3f);
-    const accel::Bounds d =
-        accel::EmbreeScene(single(disk({10, 0, 0}, normalize(Vec3(1, 1, 0)), 1))).bounds();
+    const Bounds d = accel::EmbreeScene(single(disk({10, 0, 0}, normalize(Vec3(1, 1, 0)), 1))).bounds();
     expect_vec(d.lo, {10 - s, -s, -1}, 1e-4f);
     expect_vec(d.hi, {10 + s, s, 1}, 1e-4f);
     Shape c = cylinder({0, 0, 0}, {0, 1, 0}, 1, 4, true);
     c.to_world = Transform::rotate(90, {0, 0, 1});
-    const accel::Bounds cb = accel::EmbreeScene(single(c)).bounds();
+    const Bounds cb = accel::EmbreeScene(single(c)).bounds();
     expect_vec(cb.lo, {-2, -1, -1}, 1e-4f);
     expect_vec(cb.hi, {2, 1, 1}, 1e-4f);
 }
@@ -389,7 +388,7 @@ TEST(Threads, ConcurrentQueriesMatchSerialOnes) {
     sc.shapes.push_back(cone({3, 0, 0}, {0, 1, 0}, 1, 2));
     const accel::EmbreeScene es(sc);
     const int n = 4000;
-    std::vector<accel::Ray> rays(n);
+    std::vector<Ray> rays(n);
     Sampler rng(3);
     for (auto& r : rays) r = {random_in(rng, Vec3(-6.0f), Vec3(6.0f)), random_unit(rng)};
     std::vector<float> serial(n), parallel(n, -1);

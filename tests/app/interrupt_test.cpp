@@ -16,8 +16,8 @@
 #include <filesystem>
 #include <thread>
 
-#include "integrators/progressive_checkpoint.h"
 #include "io/image/image_io.h"
+#include "render/progressive_checkpoint.h"
 #include "test_util.h"
 
 namespace phos::testing {
@@ -108,7 +108,7 @@ TEST_P(KilledRender, ResumesToTheSameBytes) {
     const int status = render.wait();
     ASSERT_TRUE(WIFSIGNALED(status)) << "the render finished before it could be killed";
     EXPECT_FALSE(std::filesystem::exists(dir.file("killed.pfm")));
-    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    const render::ProgressiveState saved = render::load_checkpoint(ckpt);
     EXPECT_EQ(saved.integrator, c.integrator);
     EXPECT_GT(saved.iterations, 0u);
     EXPECT_LT(saved.iterations, saved.target_iterations);
@@ -187,7 +187,7 @@ TEST(Interrupt, SigintWritesTheImageSoFarAndResumesExactly) {
     const double mean = image_mean(out), ref_mean = image_mean(dir.file("ref.pfm"));
     EXPECT_NEAR(mean, ref_mean, 0.03 * ref_mean) << "the interrupted image is not normalised by its samples";
 
-    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    const render::ProgressiveState saved = render::load_checkpoint(ckpt);
     uint32_t most = 0;
     for (uint32_t s : saved.tile_samples) most = std::max(most, s);
     const std::string total = std::to_string(most + 3);
@@ -215,7 +215,7 @@ TEST(Interrupt, SigtermOnSppmExits143WithImageAndCheckpoint) {
     ASSERT_TRUE(WIFEXITED(status)) << "status " << status;
     EXPECT_EQ(WEXITSTATUS(status), 143);
     EXPECT_TRUE(std::filesystem::exists(out)) << read_bytes(dir.file("log"));
-    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    const render::ProgressiveState saved = render::load_checkpoint(ckpt);
     EXPECT_GE(saved.iterations, 2u);
     EXPECT_NE(read_bytes(dir.file("log")).find("of 100000 iterations"), std::string::npos);
 }

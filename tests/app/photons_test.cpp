@@ -12,8 +12,8 @@
 #include <sstream>
 
 #include "integrators/photon_map.h"
-#include "integrators/prepared.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos::testing {
@@ -163,10 +163,10 @@ TEST(Photons, PlyHoldsEveryStoredPhotonWithTheMapsPower) {
 
     // The maps' own photons and power, traced in this process.
     const scene::Scene scene = io::load_scene(kScene, {});
-    integrators::RenderOptions ro;
+    render::RenderOptions ro;
     ro.seed = 3;
     Stats stats;
-    const integrators::Prepared prepared(scene, ro, {}, stats);
+    const render::Prepared prepared(scene, ro, {}, stats);
     integrators::PhotonMapOptions pm;
     pm.global.photons = 5000;
     pm.caustic.photons = 2000;

@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <thread>
 
-#include "integrators/progressive_checkpoint.h"
+#include "render/progressive_checkpoint.h"
 #include "test_util.h"
 
 namespace phos::testing {
@@ -45,7 +45,7 @@ TEST(Resume, KilledRenderResumesToTheSameImage) {
     waitpid(pid, &status, 0);
     ASSERT_TRUE(WIFSIGNALED(status)) << "the render finished before it could be killed";
     EXPECT_FALSE(std::filesystem::exists(dir.file("killed.pfm")));
-    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    const render::ProgressiveState saved = render::load_checkpoint(ckpt);
     EXPECT_GT(saved.iterations, 0u);
     EXPECT_LT(saved.iterations, 40u);
     std::printf("killed after checkpoint of iteration %llu\n",
@@ -68,7 +68,7 @@ TEST(Resume, EmbreeConfigIsNotPartOfTheIdentity) {
         run_phos("render " + kScene + kArgs + " --iterations 3 --embree-config isa=sse4.2 --checkpoint " +
                  ckpt + " -o " + dir.file("first.pfm"));
     ASSERT_EQ(first.exit_code, 0) << first.output;
-    const integrators::ProgressiveState saved = integrators::load_checkpoint(ckpt);
+    const render::ProgressiveState saved = render::load_checkpoint(ckpt);
     ASSERT_FALSE(saved.options.empty());
     for (const auto& [flag, value] : saved.options) EXPECT_EQ(flag.find("embree"), std::string::npos) << flag;
     const auto resumed = run_phos("render " + kScene + kArgs + " --iterations 5 --resume " + ckpt + " -o " +

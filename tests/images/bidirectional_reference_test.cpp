@@ -16,9 +16,9 @@
 #include "film/film.h"
 #include "film/metrics.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -27,12 +27,12 @@ namespace {
 Image render_with(const std::string& name, const std::string& integrator, int spp,
                   const integrators::ProgressiveOptions& progressive, int size = 128, uint64_t seed = 3) {
     const scene::Scene s = io::load_scene(testing::shared_path("bench/scn/" + name + ".scn"));
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = size;
     opt.spp = spp;
     opt.seed = seed;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
     integrators::IntegratorConfig config;

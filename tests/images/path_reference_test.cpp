@@ -6,9 +6,9 @@
 #include "film/film.h"
 #include "film/metrics.h"
 #include "integrators/path.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -16,13 +16,13 @@ namespace {
 
 Image render_path(const std::string& scene_file, int spp) {
     const scene::Scene s = io::load_scene(scene_file);
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = 256;
     opt.spp = spp;
     opt.max_depth = 16;
     opt.seed = 1;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
     integrators::PathIntegrator().render(prepared, film, progress);

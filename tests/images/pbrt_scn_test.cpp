@@ -11,9 +11,9 @@
 #include "film/film.h"
 #include "film/metrics.h"
 #include "integrators/path.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -21,12 +21,12 @@ namespace {
 
 Image render_path(const std::string& file, int size, int spp) {
     const scene::Scene s = io::load_scene(file);
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = size;
     opt.spp = spp;
     opt.seed = 9;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(size, size);
     Progress progress(false);
     integrators::PathIntegrator().render(prepared, film, progress);

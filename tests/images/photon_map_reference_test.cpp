@@ -11,9 +11,9 @@
 #include "film/metrics.h"
 #include "integrators/path.h"
 #include "integrators/photon_map.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -27,13 +27,13 @@ struct Render {
 Render render_pm(const std::string& scene_name, int size, int spp, const integrators::PhotonMapOptions& o,
                  uint64_t seed = 1) {
     const scene::Scene s = io::load_scene(testing::shared_path("bench/scn/" + scene_name + ".scn"));
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = size;
     opt.spp = spp;
     opt.seed = seed;
     opt.layers = true;  // the tests read the component layers
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     Render r{Image{}, film::Film(size, size)};
     Progress progress(false);
     integrators::PhotonMapIntegrator(o).render(prepared, r.film, progress);
@@ -109,12 +109,12 @@ TEST(PhotonMapReference, CausticPointCausticIsWhereTheReferenceHasIt) {
 TEST(PhotonMapReference, FinalGatherAgreesWithPathTracing) {
     // cornell-diffuse at 64x64: photon map with final gather against the path tracer at 256 spp.
     const scene::Scene s = io::load_scene(testing::shared_path("bench/scn/cornell-diffuse.scn"));
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = 64;
     opt.spp = 256;
     opt.seed = 3;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film path_film(64, 64);
     Progress progress(false);
     integrators::PathIntegrator().render(prepared, path_film, progress);

@@ -15,9 +15,9 @@
 #include "film/metrics.h"
 #include "integrators/path.h"
 #include "integrators/photon_map.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -27,12 +27,12 @@ Image render(const std::string& file, const std::string& integrator, int size, i
     log::set_quiet(true);
     const scene::Scene s = io::load_scene(file);
     log::set_quiet(false);
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = size;
     opt.spp = spp;
     opt.seed = 3;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(size, size);
     Progress progress(false);
     if (integrator == "path") {
@@ -93,11 +93,11 @@ TEST(SceneFormatRender, TextureIsLookedUpAtThePlysUv) {
     log::set_quiet(true);
     const scene::Scene s = io::load_scene(file);
     log::set_quiet(false);
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     Stats stats;
-    integrators::Prepared P(s, opt, {}, stats);
+    render::Prepared P(s, opt, {}, stats);
     const auto albedo_at = [&](float x, float y) {
-        accel::Ray ray;
+        Ray ray;
         ray.origin = {x, y, 3};
         ray.dir = {0, 0, -1};
         accel::SurfaceHit hit;

@@ -13,10 +13,10 @@
 #include "film/metrics.h"
 #include "integrators/path.h"
 #include "integrators/ppm.h"
-#include "integrators/prepared.h"
 #include "integrators/sppm.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -25,12 +25,12 @@ namespace {
 Image render(const std::string& name, const std::string& integrator, int iterations, int size = 256,
              uint64_t photons = 50000) {
     const scene::Scene s = io::load_scene(testing::shared_path("bench/scn/" + name + ".scn"));
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = size;
     opt.spp = iterations;
     opt.seed = 3;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
     integrators::ProgressiveOptions po;

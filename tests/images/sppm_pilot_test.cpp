@@ -5,10 +5,10 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "film/metrics.h"
-#include "integrators/prepared.h"
 #include "integrators/sppm.h"
 #include "integrators/sppm_core.h"
 #include "io/load_scene.h"
+#include "render/prepared.h"
 #include "test_util.h"
 
 namespace phos {
@@ -28,12 +28,12 @@ TEST(SppmPilot, RadiusHoldsKPhotonsWithinBounds) {
 
 Image render_sppm(int iterations, double radius_photons) {
     const scene::Scene s = io::load_scene(testing::shared_path("bench/scn/caustic-point.scn"));
-    integrators::RenderOptions opt;
+    render::RenderOptions opt;
     opt.width = opt.height = 64;
     opt.spp = iterations;
     opt.seed = 5;
     Stats stats;
-    integrators::Prepared prepared(s, opt, {}, stats);
+    render::Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
     integrators::ProgressiveOptions po;

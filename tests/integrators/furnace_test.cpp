@@ -8,8 +8,8 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "integrators/path.h"
-#include "integrators/prepared.h"
 #include "integrators/whitted.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
 namespace {

@@ -10,7 +10,7 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 #include "support/shapes.h"
 
 namespace phos::integrators {

@@ -30,8 +30,8 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
 #include "io/image/image_io.h"
+#include "render/prepared.h"
 #include "support/shapes.h"
 #include "test_util.h"
 

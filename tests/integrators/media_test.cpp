@@ -12,7 +12,7 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 
 namespace phos::integrators {
 namespace {

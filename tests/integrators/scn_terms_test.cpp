@@ -6,7 +6,7 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 #include "support/shapes.h"
 
 namespace phos::integrators {

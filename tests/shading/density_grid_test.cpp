@@ -174,7 +174,7 @@ TEST(DensityGrid, SparseMatchesEquivalentUniformGrid) {
         const auto ug = make_density_grid(u), sg = make_density_grid(s);
         ASSERT_NE(sg, nullptr);
         // The sparse bounds hold the uniform ones (they reach one voxel beyond the active voxels).
-        const accel::Bounds sb = sg->bounds();
+        const Bounds sb = sg->bounds();
         for (int a = 0; a < 3; ++a) {
             EXPECT_LE(sb.lo[a], u.p0[a] + 1e-4f);
             EXPECT_GE(sb.hi[a], u.p1[a] - 1e-4f);
@@ -194,12 +194,12 @@ TEST(DensityGrid, SparseMatchesEquivalentUniformGrid) {
 // For random boxes (inside, straddling and outside the bounds) max_density bounds the density
 // at random points of the box.
 void check_max_density(const DensityGrid& grid, Rng& rng, int boxes, int points_per_box) {
-    const accel::Bounds b = grid.bounds();
+    const Bounds b = grid.bounds();
     const Vec3 ext = b.extent();
     for (int i = 0; i < boxes; ++i) {
         const Vec3 c = uniform3(rng, b.lo - ext * 0.2f, b.hi + ext * 0.2f);
         const Vec3 half = uniform3(rng, Vec3(0), ext * (i % 3 == 0 ? 0.02f : 0.3f));
-        accel::Bounds box;
+        Bounds box;
         box.lo = c - half;
         box.hi = c + half;
         const float m = grid.max_density(box);
@@ -239,7 +239,7 @@ TEST(DensityGrid, SparseMaxDensityIsTight) {
     m.sparse.buffer = std::shared_ptr<const void>(handle, handle->data());
     m.sparse.bytes = handle->size();
     const auto grid = make_density_grid(m);
-    accel::Bounds near, far;
+    Bounds near, far;
     near.lo = Vec3(-0.1f), near.hi = Vec3(0.1f);
     far.lo = Vec3(20), far.hi = Vec3(30);
     EXPECT_FLOAT_EQ(grid->density(Vec3(0)), 7.0f);
@@ -248,7 +248,7 @@ TEST(DensityGrid, SparseMaxDensityIsTight) {
 }
 
 // Reference slab clip of o + t d, t in [t0, t1), against `b`; false if empty.
-bool clip(const accel::Bounds& b, Vec3 o, Vec3 d, float t0, float t1, float& lo, float& hi) {
+bool clip(const Bounds& b, Vec3 o, Vec3 d, float t0, float t1, float& lo, float& hi) {
     lo = t0, hi = t1;
     for (int a = 0; a < 3; ++a) {
         if (d[a] == 0) {
@@ -300,7 +300,7 @@ TEST(MajorantGrid, CellsBoundTheDensity) {
     const auto grid = make_density_grid(random_uniform_medium(rng, 24));
     MajorantGrid maj(*grid, 8);
     ASSERT_EQ(maj.resolution(), 8);
-    const accel::Bounds b = maj.bounds();
+    const Bounds b = maj.bounds();
     for (int i = 0; i < 20000; ++i) {
         const Vec3 p = uniform3(rng, b.lo, b.hi);
         const Vec3 u = (p - b.lo) * Vec3(8 / b.extent().x, 8 / b.extent().y, 8 / b.extent().z);
@@ -311,7 +311,7 @@ TEST(MajorantGrid, CellsBoundTheDensity) {
 
 void check_random_rays(const DensityGrid& grid, int res, Rng& rng) {
     const MajorantGrid maj(grid, res);
-    const accel::Bounds b = maj.bounds();
+    const Bounds b = maj.bounds();
     const Vec3 ext = b.extent();
     for (int i = 0; i < 3000; ++i) {
         Vec3 o = uniform3(rng, b.lo - ext, b.hi + ext);

@@ -14,8 +14,8 @@
 namespace phos::shading {
 namespace {
 
-accel::Bounds unit_bounds() {
-    accel::Bounds b;
+Bounds unit_bounds() {
+    Bounds b;
     b.extend({-1, -1, -1});
     b.extend({1, 1, 1});
     return b;

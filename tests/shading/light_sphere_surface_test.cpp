@@ -18,7 +18,7 @@ TEST(SphereLight, PointsOnTheSurfaceSeeTheWholeInterior) {
     sphere.radius = 1;
     sphere.reverse_orientation = true;  // emits inwards
     s.add_area_light(sphere, Rgb(1.0f));
-    accel::Bounds b;
+    Bounds b;
     b.extend(Vec3(-1.0f));
     b.extend(Vec3(1.0f));
     const LightSet lights(s, b);

@@ -28,8 +28,8 @@ scene::Scene layers(const std::vector<float>& interfaces, float wall) {
     return s;
 }
 
-accel::Ray ray_along_z(Vec3 origin, float speed) {
-    accel::Ray r;
+Ray ray_along_z(Vec3 origin, float speed) {
+    Ray r;
     r.origin = origin;
     r.dir = Vec3(0, 0, speed);
     return r;
@@ -39,7 +39,7 @@ TEST(SurfaceWalk, StepsThroughInterfacesToTheScatteringSurface) {
     const scene::Scene s = layers({1.0f, 2.0f}, 3.0f);
     const accel::EmbreeScene accel(s);
     SurfaceWalk walk(accel);
-    accel::Ray ray = ray_along_z({0.25f, -0.5f, 0}, 2.0f);  // |dir| = 2: t is half the distance
+    Ray ray = ray_along_z({0.25f, -0.5f, 0}, 2.0f);  // |dir| = 2: t is half the distance
     accel::SurfaceHit hit;
     ASSERT_EQ(walk.next(ray, hit), SurfaceWalk::Event::Surface);
     EXPECT_EQ(hit.material, 1);
@@ -57,7 +57,7 @@ TEST(SurfaceWalk, EscapesAndKeepsCountingOverTheWholePath) {
     const scene::Scene s = layers({1.0f}, 3.0f);
     const accel::EmbreeScene accel(s);
     SurfaceWalk walk(accel);
-    accel::Ray ray = ray_along_z({0, 0, 0}, 1.0f);
+    Ray ray = ray_along_z({0, 0, 0}, 1.0f);
     accel::SurfaceHit hit;
     ASSERT_EQ(walk.next(ray, hit), SurfaceWalk::Event::Surface);
     // Back towards -z from the wall: through the interface again, then out of the scene.
@@ -75,7 +75,7 @@ TEST(SurfaceWalk, GivesUpAfterTooManyCrossings) {
     const scene::Scene s = layers(many, 10.0f);
     const accel::EmbreeScene accel(s);
     SurfaceWalk walk(accel);
-    accel::Ray ray = ray_along_z({0, 0, 0}, 1.0f);
+    Ray ray = ray_along_z({0, 0, 0}, 1.0f);
     accel::SurfaceHit hit;
     EXPECT_EQ(walk.next(ray, hit), SurfaceWalk::Event::Lost);
     EXPECT_EQ(walk.crossings(), SurfaceWalk::kMaxCrossings + 1);

@@ -23,7 +23,7 @@
 #include "core/log.h"
 #include "core/spelling.h"
 #include "dist/ranks.h"
-#include "integrators/progressive_checkpoint.h"
+#include "render/progressive_checkpoint.h"
 
 namespace phos::app {
 namespace {
@@ -355,7 +355,7 @@ int run_cli(int argc, char** argv) {
                 if (resume.empty())
                     throw InputError(
                         "render: give a scene file (or --resume CHECKPOINT to continue a render)");
-                const integrators::ProgressiveState saved = integrators::load_checkpoint(resume);
+                const render::ProgressiveState saved = render::load_checkpoint(resume);
                 if (saved.command_line.empty())
                     throw InputError("checkpoint " + resume + ": it does not record its render's arguments");
                 render_args = merge_arguments(*render, saved.command_line, render_args);

@@ -22,8 +22,8 @@
 #include "core/stats.h"
 #include "display/photon_viewer.h"
 #include "integrators/photon_map.h"
-#include "integrators/prepared.h"
 #include "io/image/atomic_write.h"
+#include "render/prepared.h"
 
 namespace phos::app {
 namespace {
@@ -44,7 +44,7 @@ const options::Table& photons_run_options() {
 }
 
 const options::Table& photons_sampling_options() {
-    static const options::Table t = only(integrators::sampling_options(), {"seed"});
+    static const options::Table t = only(render::sampling_options(), {"seed"});
     return t;
 }
 
@@ -165,9 +165,9 @@ int run_photons(const PhotonsCommand& command) {
         check_memory(estimate, scene, stats);
     }
 
-    const integrators::RenderOptions& opt = cmd.render;
-    const integrators::PrepareOptions prep = prepare_options(cmd);
-    std::optional<integrators::Prepared> prepared;
+    const render::RenderOptions& opt = cmd.render;
+    const render::PrepareOptions prep = prepare_options(cmd);
+    std::optional<render::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");
         prepared.emplace(scene, opt, prep, stats);

@@ -31,12 +31,12 @@
 #include "display/tev_stream.h"
 #include "dist/ranks.h"
 #include "film/film.h"
-#include "integrators/aov.h"
 #include "integrators/factory.h"
-#include "integrators/prepared.h"
-#include "integrators/progressive_checkpoint.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
+#include "render/aov.h"
+#include "render/prepared.h"
+#include "render/progressive_checkpoint.h"
 #include "scene/emission_lights.h"
 
 namespace phos::app {
@@ -127,7 +127,7 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     const char* file_or_default = st.width || st.height ? "scene file" : "default";
     const char* aspect =
         st.width || st.height ? "the scene file's aspect ratio" : "the default square aspect";
-    integrators::RenderOptions& r = cmd.render;
+    render::RenderOptions& r = cmd.render;
     const bool w = cmd.was_given("width"), h = cmd.was_given("height");
     if (cmd.was_given("resolution") || (w && h)) {
         src.size = "command line";
@@ -215,8 +215,8 @@ std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cm
 // render identity that checkpoints carry, and turns --iterations / --time / --resume into the
 // sample or iteration count.
 void setup_budget(RenderCommand& cmd, const std::string& output, bool progressive) {
-    integrators::RenderBudget& p = cmd.budget;
-    integrators::RenderOptions& opt = cmd.render;
+    render::RenderBudget& p = cmd.budget;
+    render::RenderOptions& opt = cmd.render;
     const int iterations = cmd.progressive.iterations;
     if (iterations > 0 && (cmd.was_given("spp") || cmd.was_given("aa")) && opt.spp != iterations)
         throw InputError("--spp and --iterations disagree");
@@ -224,18 +224,17 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
     if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
 
     // The render's identity: scene bytes and every option that changes the image.
-    integrators::ProgressiveState& id = p.identity;
+    render::ProgressiveState& id = p.identity;
     {
         std::ifstream f(cmd.scene_path, std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-        id.scene_hash = integrators::hash_bytes(bytes.data(), bytes.size());
+        id.scene_hash = render::hash_bytes(bytes.data(), bytes.size());
     }
     id.options = image_options(cmd);  // named in the message when a resume does not match
     id.command_line = cmd.command_line;
 
     if (!p.resume_path.empty()) {
-        auto saved =
-            std::make_shared<integrators::ProgressiveState>(integrators::load_checkpoint(p.resume_path));
+        auto saved = std::make_shared<render::ProgressiveState>(render::load_checkpoint(p.resume_path));
         if (!count_given && p.time <= 0) {  // continue to the saved render's own count
             uint64_t target = saved->target_iterations;
             if (!progressive) target /= uint64_t(std::max(1, opt.dof_samples));  // saved in camera samples
@@ -251,9 +250,9 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
         if (dist::root()) check_writable(path, "checkpoint");
         // A checkpoint that cannot be written (disk full, read-only) leaves the previous one intact
         // and the render goes on: its image may still be written at the end.
-        p.on_checkpoint = [path](const integrators::ProgressiveState& s) {
+        p.on_checkpoint = [path](const render::ProgressiveState& s) {
             try {
-                integrators::save_checkpoint(path, s);
+                render::save_checkpoint(path, s);
             } catch (const InputError& e) {
                 log::warn(std::string(e.what()) +
                           "; the checkpoint was not saved (the previous one is intact)");
@@ -274,10 +273,10 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
 }
 
 // The film layers to write: the integrator's components with --layers, the AOVs asked for.
-std::vector<std::string> written_layers(const film::Film& film, const integrators::RenderOptions& opt) {
+std::vector<std::string> written_layers(const film::Film& film, const render::RenderOptions& opt) {
     std::vector<std::string> out;
     for (const std::string& name : film.layer_names()) {
-        const auto& aovs = integrators::aov_names();
+        const auto& aovs = render::aov_names();
         const bool is_aov = std::find(aovs.begin(), aovs.end(), name) != aovs.end();
         if (is_aov ? std::find(opt.aovs.begin(), opt.aovs.end(), name) != opt.aovs.end() : opt.layers)
             out.push_back(name);
@@ -287,8 +286,8 @@ std::vector<std::string> written_layers(const film::Film& film, const integrator
 
 // What a render completed, for -v and the interrupt warning: "12 of 64 iterations", "37.5 of 64
 // samples per pixel (59 %)".
-std::string work_done(const integrators::RenderBudget::Done& done, bool progressive, size_t pixels) {
-    const bool counted = done.target < integrators::kUnboundedIterations;
+std::string work_done(const render::RenderBudget::Done& done, bool progressive, size_t pixels) {
+    const bool counted = done.target < render::kUnboundedIterations;
     if (progressive)
         return std::to_string(done.units) + (counted ? " of " + std::to_string(done.target) : "") +
                " iterations";
@@ -376,8 +375,8 @@ scene::Scene load_render_scene(const RenderCommand& cmd) {
     return scene;
 }
 
-integrators::PrepareOptions prepare_options(const RenderCommand& cmd) {
-    integrators::PrepareOptions prep;
+render::PrepareOptions prepare_options(const RenderCommand& cmd) {
+    render::PrepareOptions prep;
     prep.bsdf.schlick = cmd.scene.schlick;
     prep.lights.legacy_attenuation = cmd.scene.legacy_attenuation;
     prep.lens_radius = cmd.render.lens_radius;
@@ -438,8 +437,8 @@ int run_render(const RenderCommand& command) {
     // Watching the render (--preview, --tev): the render copies finished tiles and frames into the
     // live image, which the window's and the stream's threads read.
     std::unique_ptr<display::LiveImage> live;
-    std::optional<io::TevAddress> tev_address;
-    if (!cmd.run.tev.empty()) tev_address = io::parse_tev_address(cmd.run.tev);  // a bad one: exit 2 now
+    std::optional<display::TevAddress> tev_address;
+    if (!cmd.run.tev.empty()) tev_address = display::parse_tev_address(cmd.run.tev);  // a bad one: exit 2 now
     if (cmd.run.preview || tev_address) {
         live = std::make_unique<display::LiveImage>(cmd.render.width, cmd.render.height);
         display::LiveImage* l = live.get();
@@ -449,11 +448,11 @@ int run_render(const RenderCommand& command) {
 
     integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, cmd.budget};
     auto integrator = integrators::make_integrator(integrator_name, config);
-    const integrators::RenderOptions& opt = cmd.render;
+    const render::RenderOptions& opt = cmd.render;
     check_memory(cmd, scene, stats);  // refuses before any work when the memory would not do
 
-    const integrators::PrepareOptions prep = prepare_options(cmd);
-    std::optional<integrators::Prepared> prepared;
+    const render::PrepareOptions prep = prepare_options(cmd);
+    std::optional<render::Prepared> prepared;
     {
         ScopedTimer t(stats, "prepare");
         prepared.emplace(scene, opt, prep, stats);
@@ -515,15 +514,15 @@ int run_render(const RenderCommand& command) {
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
     Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet || !dist::root()));
-    // --trace-pixel: the integrator records that pixel's camera samples (integrators/path_recorder.h).
-    std::optional<integrators::PathRecorder> trace;
+    // --trace-pixel: the integrator records that pixel's camera samples (render/path_recorder.h).
+    std::optional<render::PathRecorder> trace;
     if (cmd.run.trace_x >= 0) trace.emplace(cmd.run.trace_x, cmd.run.trace_y);
     // Under MPI: every rank has set up without error, or none renders (a failing rank said why).
     if (dist::distributed() && dist::agree_start(true).any_failed) return 2;
     std::vector<std::string> rank_lines;  // -v under MPI: each rank's render time and rays
     {
         ScopedTimer t(stats, "render");
-        const integrators::TraceRequest request(trace ? &*trace : nullptr);
+        const render::TraceRequest request(trace ? &*trace : nullptr);
         const auto t0 = std::chrono::steady_clock::now();
         integrator->render(*prepared, film, progress);
         if (dist::distributed()) {
@@ -542,7 +541,7 @@ int run_render(const RenderCommand& command) {
         return interrupt::requested() || cmd.budget.done->interrupted
                    ? interrupt::exit_status(interrupt::signal_number())
                    : 0;
-    const integrators::RenderBudget::Done& done = *cmd.budget.done;
+    const render::RenderBudget::Done& done = *cmd.budget.done;
     const bool interrupted = done.interrupted || interrupt::requested();
     const int status = interrupted ? interrupt::exit_status(interrupt::signal_number()) : 0;
     if (interrupted && !done.started) {
@@ -553,7 +552,7 @@ int run_render(const RenderCommand& command) {
     }
     if (!opt.aovs.empty() && !interrupted) {
         ScopedTimer t(stats, "aov");
-        integrators::render_aovs(*prepared, film);
+        render::render_aovs(*prepared, film);
     } else if (!opt.aovs.empty()) {
         log::warn("interrupted: the auxiliary images (--aov) are not written");
     }

@@ -5,7 +5,7 @@
 #include <string>
 
 #include "app/lib/render_options.h"
-#include "integrators/prepared.h"
+#include "render/prepared.h"
 #include "scene/scene.h"
 
 namespace phos::app {
@@ -22,7 +22,7 @@ std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Sc
 // which then names the preset.
 void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, std::string& spp_source);
 // How the scene is prepared for rendering (shading switches, --dof lens).
-integrators::PrepareOptions prepare_options(const RenderCommand& cmd);
+render::PrepareOptions prepare_options(const RenderCommand& cmd);
 
 // Where layer `layer` of `output` is written: out.png -> out.caustic.png.
 std::string layer_path(const std::string& output, const std::string& layer);

@@ -159,12 +159,12 @@ const std::vector<std::pair<std::string, std::string>>& quality_preset(const std
 
 std::vector<BoundTable> RenderCommand::tables() {
     return {{&run_options(), &run},
-            {&integrators::image_options(), &render},
-            {&integrators::sampling_options(), &render},
+            {&render::image_options(), &render},
+            {&render::sampling_options(), &render},
             {&scene_options(), &scene},
             {&integrators::photon_map_options(), &photon_map},
             {&integrators::progressive_options(), &progressive},
-            {&integrators::budget_options(), &budget}};
+            {&render::budget_options(), &budget}};
 }
 
 std::vector<const options::Table*> all_tables() {

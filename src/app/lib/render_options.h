@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "core/option_table.h"
-#include "integrators/options.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
-#include "integrators/render_budget.h"
+#include "render/options.h"
+#include "render/render_budget.h"
 
 namespace phos::app {
 
@@ -66,10 +66,10 @@ struct RenderCommand {
     std::string scene_path;
     RunOptions run;
     SceneOptions scene;
-    integrators::RenderOptions render;
+    render::RenderOptions render;
     integrators::PhotonMapOptions photon_map;
     integrators::ProgressiveOptions progressive;
-    integrators::RenderBudget budget;
+    render::RenderBudget budget;
     // Names (without dashes) of the options given on the command line.
     std::set<std::string> given;
     // The arguments of this render (for checkpoints: a bare --resume replays them).

@@ -13,14 +13,14 @@
 namespace phos::app {
 namespace {
 
-using integrators::kTraceTerms;
-using integrators::TracedLight;
-using integrators::TracedLookup;
-using integrators::TracedPass;
-using integrators::TracedPath;
-using integrators::TracedVertex;
-using integrators::TracedVisiblePoint;
-using integrators::TraceTerm;
+using render::kTraceTerms;
+using render::TracedLight;
+using render::TracedLookup;
+using render::TracedPass;
+using render::TracedPath;
+using render::TracedVertex;
+using render::TracedVisiblePoint;
+using render::TraceTerm;
 
 // Photons listed per pass in the text (the JSON has them all).
 constexpr size_t kTextPhotons = 8;
@@ -77,15 +77,15 @@ void text_details(std::string& out, const TracedVertex& v) {
     std::string adds;
     for (int t = 0; t < kTraceTerms; ++t)
         if (!v.terms[t].is_black())
-            adds += (adds.empty() ? "" : ", ") + std::string(integrators::trace_term_name(TraceTerm(t))) +
-                    " " + rgb(v.terms[t]);
+            adds += (adds.empty() ? "" : ", ") + std::string(render::trace_term_name(TraceTerm(t))) + " " +
+                    rgb(v.terms[t]);
     if (!adds.empty()) out += "      adds " + adds + "\n";
 }
 
 void text_vertex(std::string& out, size_t index, const TracedVertex& v) {
-    out += "  " + std::to_string(index) + " " + integrators::trace_event_name(v.event);
+    out += "  " + std::to_string(index) + " " + render::trace_event_name(v.event);
     if (v.placed) out += " at " + vec(v.position);
-    if (v.event == integrators::TraceEvent::Escaped) out += " along " + vec(v.direction);
+    if (v.event == render::TraceEvent::Escaped) out += " along " + vec(v.direction);
     out += where(v) + ", throughput " + rgb(v.throughput) + "\n";
     text_details(out, v);
     if (v.sampled)
@@ -123,7 +123,7 @@ void text_visible_point(std::string& out, const TracedVisiblePoint& vp) {
 void json_details(JsonWriter& w, const TracedVertex& v) {
     w.key("radiance").begin_object();
     for (int t = 0; t < kTraceTerms; ++t)
-        if (!v.terms[t].is_black()) w.field(integrators::trace_term_name(TraceTerm(t)), v.terms[t]);
+        if (!v.terms[t].is_black()) w.field(render::trace_term_name(TraceTerm(t)), v.terms[t]);
     w.end_object();
     w.key("lights").begin_array();
     for (const TracedLight& l : v.lights) {
@@ -154,7 +154,7 @@ void json_details(JsonWriter& w, const TracedVertex& v) {
 }
 
 void json_vertex(JsonWriter& w, const TracedVertex& v) {
-    w.begin_object(6).field("event", integrators::trace_event_name(v.event));
+    w.begin_object(6).field("event", render::trace_event_name(v.event));
     if (v.placed) w.field("position", v.position);
     if (v.surface) {
         w.field("normal", v.normal).field("shape", v.shape);
@@ -166,7 +166,7 @@ void json_vertex(JsonWriter& w, const TracedVertex& v) {
     }
     if (v.medium >= 0) w.field("medium", v.medium);
     w.field("throughput", v.throughput);
-    if (v.sampled || v.event == integrators::TraceEvent::Escaped) w.field("direction", v.direction);
+    if (v.sampled || v.event == render::TraceEvent::Escaped) w.field("direction", v.direction);
     if (v.sampled) w.field("pdf", v.pdf).field("weight", v.weight);
     json_details(w, v);
     w.end_object();
@@ -231,7 +231,7 @@ void check_trace_options(const RunOptions& run, int width, int height) {
         throw InputError("--trace-json '" + run.trace_json + "' is a directory");
 }
 
-std::string trace_text(const integrators::PathRecorder& trace, const TraceHeader& header) {
+std::string trace_text(const render::PathRecorder& trace, const TraceHeader& header) {
     const auto& paths = trace.paths();
     const bool progressive = !paths.empty() && paths.front().visible_point.has_value();
     std::string out = "trace of pixel (" + std::to_string(trace.x()) + ", " + std::to_string(trace.y()) +
@@ -252,7 +252,7 @@ std::string trace_text(const integrators::PathRecorder& trace, const TraceHeader
     return out;
 }
 
-std::string trace_json(const integrators::PathRecorder& trace, const TraceHeader& header) {
+std::string trace_json(const render::PathRecorder& trace, const TraceHeader& header) {
     JsonWriter w;
     w.begin_object();
     w.key("pixel").begin_array().value(trace.x()).value(trace.y()).end_array();
@@ -278,7 +278,7 @@ std::string trace_json(const integrators::PathRecorder& trace, const TraceHeader
     return w.str() + "\n";
 }
 
-void report_trace(const integrators::PathRecorder& trace, const TraceHeader& header,
+void report_trace(const render::PathRecorder& trace, const TraceHeader& header,
                   const std::string& json_path) {
     const std::string text = trace_text(trace, header);
     std::fwrite(text.data(), 1, text.size(), stdout);

@@ -1,11 +1,11 @@
 // --trace-pixel X Y and --trace-json FILE: the checks made before rendering, and the report of the
-// recorded camera samples (integrators/path_recorder.h) as text on stdout and as JSON.
+// recorded camera samples (render/path_recorder.h) as text on stdout and as JSON.
 #pragma once
 
 #include <string>
 
 #include "core/vec.h"
-#include "integrators/path_recorder.h"
+#include "render/path_recorder.h"
 
 namespace phos::app {
 
@@ -23,13 +23,12 @@ struct TraceHeader {
 
 // One block per camera sample (PPM / SPPM: per eye path, with its visible point, photon passes and
 // statistics), then the pixel's value.
-std::string trace_text(const integrators::PathRecorder& trace, const TraceHeader& header);
+std::string trace_text(const render::PathRecorder& trace, const TraceHeader& header);
 // {"pixel": [x, y], "integrator": ..., "value": [r, g, b], "paths": [{"sample": s, "vertices": [...],
 // "contribution": [r, g, b]}, ...]} (docs/usage.md lists every field).
-std::string trace_json(const integrators::PathRecorder& trace, const TraceHeader& header);
+std::string trace_json(const render::PathRecorder& trace, const TraceHeader& header);
 
 // Prints trace_text to stdout and writes trace_json to `json_path` (if not empty) atomically.
-void report_trace(const integrators::PathRecorder& trace, const TraceHeader& header,
-                  const std::string& json_path);
+void report_trace(const render::PathRecorder& trace, const TraceHeader& header, const std::string& json_path);
 
 }  // namespace phos::app

@@ -1,0 +1,67 @@
+// The render-time camera: turns a scene::Camera into primary rays for a given image size —
+// pinhole, thin lens (depth of field) or orthographic. Image x grows to the right, y downwards.
+#pragma once
+
+#include "accel/embree_scene.h"
+#include "accel/ray.h"
+#include "scene/camera.h"
+
+namespace phos::render {
+
+class CameraModel {
+public:
+    // The width of one pixel projected into the scene along a camera path of length d (distance
+    // travelled from the lens, through mirrors and glass included): offset + slope d. It scales
+    // density-estimation radii to the image's resolution.
+    struct Footprint {
+        float offset = 0, slope = 0;
+        float at(float distance) const { return offset + slope * distance; }
+    };
+
+    CameraModel(const scene::Camera& camera, int width, int height);
+    // A camera for scenes without one: frames `bounds` from the +z side.
+    static scene::Camera frame_bounds(const Bounds& bounds);
+
+    // Ray through film position (fx, fy) in pixels (0..width, 0..height), lens sample `u_lens`.
+    Ray generate_ray(float fx, float fy, Vec2 u_lens) const;
+    // Projects a world point to film coordinates through the pinhole at eye(); returns false if it
+    // is behind the camera or outside the image. Light tracing (connect), tests and debugging tools.
+    bool project(Vec3 p, float& fx, float& fy) const;
+    // The pixel footprint measured at the image centre (between the centres of two neighbouring
+    // pixels' rays, lens centre): constant offset for orthographic views, slope for perspective.
+    Footprint pixel_footprint() const;
+
+    // Bidirectional methods (Veach 1997, sec. 10.2; pbrt's camera importance): the camera as the
+    // end of a light path. With an image plane of area A at distance 1 (the whole film), a ray that
+    // leaves the lens at angle theta to the viewing axis has solid-angle density
+    // 1 / (A cos^3 theta) per camera sample, whatever the pixel: direction_pdf. 0 for an
+    // orthographic camera (its directions form a delta, light paths cannot reach it) or a direction
+    // behind the camera.
+    float direction_pdf(Vec3 unit_dir) const;
+    // Light paths reaching the camera (light tracing, the t = 1 strategy): a point on the lens seen
+    // from `ref` (a lens sample for a thin lens) and the film position its ray lands on. A light
+    // path with throughput beta at ref adds beta f |cos_ref| T direction_pdf / distance^2 to that
+    // pixel's mean over camera samples (the pinhole's and the thin lens's importance; the lens
+    // area cancels against the lens sample's density).
+    struct Connection {
+        float fx = 0, fy = 0;  // film position in pixels
+        Vec3 lens;             // the point on the lens
+        Vec3 wi;               // unit direction from ref towards `lens`
+        float distance = 0;    // from ref to `lens`
+        float pdf_dir = 0;     // direction_pdf of the camera ray lens -> ref
+    };
+    // False when `ref` is behind the camera, outside the image, outside the near and far clip
+    // distances, or the camera is orthographic.
+    bool connect(Vec3 ref, Vec2 u_lens, Connection& c) const;
+
+    Vec3 eye() const { return eye_; }
+    Vec3 forward() const { return forward_; }
+
+private:
+    scene::Camera cam_;
+    int width_, height_;
+    Vec3 eye_, forward_, right_, up_;
+    float half_w_, half_h_;  // image-plane half extents at distance 1 (perspective) or in units
+};
+
+}  // namespace phos::render

@@ -1,0 +1,90 @@
+// Tile-parallel pixel loop in sample passes (see pixel_loop.h for the determinism argument and
+// sample_passes.h for budgets, interrupts and checkpoints).
+#include "render/pixel_loop.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "render/sample_passes.h"
+
+namespace phos::render {
+
+void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
+                         const SampleFn& sample, RayCounts& rays) {
+    const RenderOptions& opt = prepared.options;
+    for (int y = tile.y0; y < tile.y1; ++y)
+        for (int x = tile.x0; x < tile.x1; ++x) {
+            const uint64_t pixel = uint64_t(y) * uint64_t(opt.width) + uint64_t(x);
+            const uint64_t scramble = Sampler(opt.seed, pixel, 0x7069786a6974ULL).next_bits();
+            for (uint32_t s = s0; s < s1; ++s) {
+                Sampler sampler(opt.seed, pixel, uint64_t(s));
+                const Vec2 jitter = pixel_sample_position(s, scramble);
+                const Vec2 lens = sampler.next2();
+                const Ray ray = prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                ++rays.camera;
+                sample(x, y, ray, sampler, rays);
+            }
+        }
+}
+
+void for_each_sample(const Prepared& prepared, int samples, const SampleFn& sample,
+                     const std::function<void(const RayCounts& rays)>& tile_done) {
+    const auto tiles = film::make_tiles(prepared.options.width, prepared.options.height);
+    tbb::parallel_for(size_t(0), tiles.size(), [&](size_t t) {
+        RayCounts rays;
+        render_tile_samples(prepared, tiles[t], 0, uint32_t(std::max(1, samples)), sample, rays);
+        if (tile_done) tile_done(rays);
+    });
+}
+
+void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                    const std::string& integrator, Progress& progress, const SampleFn& sample,
+                    const std::function<void(std::string& payload)>& payload) {
+    SamplePasses passes(prepared, film, budget, integrator, progress, payload);
+    while (passes.next()) {
+        tbb::parallel_for(size_t(0), passes.tiles().size(), [&](size_t t) {
+            const auto [first, last] = passes.range(t);
+            if (first == last || passes.stopped()) return;  // done, or abandoned on an interrupt
+            RayCounts rays;
+            render_tile_samples(prepared, passes.tiles()[t], first, last, sample, rays);
+            passes.tile_done(t, rays);
+        });
+        passes.after_pass();
+    }
+    passes.finish();
+}
+
+void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
+    render_samples(prepared, film, budget, integrator, progress,
+                   [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
+                       film.add_sample(x, y, radiance(ray, sampler, rays));
+                   });
+}
+
+void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                   const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
+                   const PartsFn& parts, const std::function<void(std::string& payload)>& payload) {
+    // Layers are created before the parallel loop (creation is not thread-safe).
+    constexpr Rgb RadianceParts::*kParts[] = {&RadianceParts::direct, &RadianceParts::caustic,
+                                              &RadianceParts::indirect, &RadianceParts::specular};
+    constexpr const char* kNames[] = {"direct", "caustic", "indirect", "specular"};
+    std::vector<std::pair<film::Layer*, Rgb RadianceParts::*>> out;
+    for (const std::string& name : layers) {
+        const auto it = std::find(std::begin(kNames), std::end(kNames), name);
+        if (it == std::end(kNames)) throw std::invalid_argument("render_layers: unknown layer " + name);
+        out.emplace_back(&film.layer(name), kParts[it - std::begin(kNames)]);
+    }
+    render_samples(
+        prepared, film, budget, integrator, progress,
+        [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
+            RadianceParts p;
+            film.add_sample(x, y, parts(ray, sampler, rays, p));
+            for (const auto& [layer, part] : out) layer->add(x, y, p.*part);
+        },
+        payload);
+}
+
+}  // namespace phos::render

@@ -1,0 +1,35 @@
+// Building the prepared scene: BVH, light set (with scene bounds for directional/infinite lights),
+// and the camera (framing the bounds when the scene has none).
+#include "render/prepared.h"
+
+namespace phos::render {
+
+scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
+                                   const PrepareOptions& prepare) {
+    scene::Camera camera = scene.camera ? *scene.camera : CameraModel::frame_bounds(accel.bounds());
+    if (prepare.lens_radius >= 0) {
+        camera.lens_radius = prepare.lens_radius;
+        camera.focal_distance = prepare.focal_distance;
+    }
+    return camera;
+}
+
+Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, const PrepareOptions& prepare,
+                   Stats& stats_)
+    : scene(scene_),
+      accel(scene_, prepare.embree_config.empty() ? nullptr : prepare.embree_config.c_str()),
+      lights(scene_, accel.bounds(), prepare.lights),
+      media(scene_),
+      camera(camera_for(scene_, accel, prepare), options_.width, options_.height),
+      options(options_),
+      bsdf_options(prepare.bsdf),
+      bsdfs(scene_, bsdf_options),
+      stats(stats_) {}
+
+Rgb Prepared::escaped(Vec3 dir) const {
+    Rgb L(0.0f);
+    for (size_t i : lights.infinite_lights()) L += lights[i].Le(Vec3(0.0f), dir);
+    return L;
+}
+
+}  // namespace phos::render

@@ -1,0 +1,64 @@
+// Everything an integrator needs that is derived once from the scene: the Embree BVH, the light
+// set, the camera model and the shading options, plus the statistics sink.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "accel/embree_scene.h"
+#include "core/stats.h"
+#include "render/camera.h"
+#include "render/options.h"
+#include "scene/scene.h"
+#include "shading/bsdf.h"
+#include "shading/lights.h"
+#include "shading/material_bsdfs.h"
+#include "shading/medium.h"
+
+namespace phos::render {
+
+struct PrepareOptions {
+    shading::BsdfOptions bsdf;
+    shading::LightOptions lights;
+    // --dof: thin-lens aperture radius and focal distance replacing the camera's (also for the
+    // camera framed for scenes without one); ignored when lens_radius < 0.
+    float lens_radius = -1;
+    float focal_distance = 1;
+    // Embree's device configuration (accel/device_config.h; empty: Embree's choice).
+    std::string embree_config;
+};
+
+class Prepared {
+public:
+    Prepared(const scene::Scene& scene, const RenderOptions& options, const PrepareOptions& prepare,
+             Stats& stats);
+
+    const scene::Scene& scene;
+    accel::EmbreeScene accel;
+    shading::LightSet lights;
+    shading::MediaSet media;
+    CameraModel camera;
+    RenderOptions options;
+    shading::BsdfOptions bsdf_options;
+    shading::MaterialBsdfs bsdfs;  // every material's BSDF, placed at hits by bsdf()
+    Stats& stats;
+
+    // The BSDF at a hit (material looked up and textured).
+    shading::Bsdf bsdf(const accel::SurfaceHit& hit) const { return bsdfs.at(hit); }
+    // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit).
+    Rgb emitted(const accel::SurfaceHit& hit, Vec3 wo) const {
+        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo) : Rgb(0.0f);
+    }
+    // Radiance arriving along an escaped ray with direction `dir` from infinite lights.
+    Rgb escaped(Vec3 dir) const;
+    // The media walks and shadow rays use (null when no ray can travel in a medium).
+    const shading::MediaSet* active_media() const { return media.active() ? &media : nullptr; }
+    // The medium camera rays start in.
+    int camera_medium() const { return media.active() ? scene.camera_medium : -1; }
+
+private:
+    static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
+                                    const PrepareOptions& prepare);
+};
+
+}  // namespace phos::render
