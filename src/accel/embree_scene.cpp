@@ -150,6 +150,12 @@ std::string where(const scene::Shape& s) { return s.origin.empty() ? std::string
 
 struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
+    // Whether intersect16 hands its rays to Embree's packet kernels. Embree's 16-wide kernels and
+    // the kernels of the CPU's own best ISA give the single-ray kernels' hits to the bit; an ISA
+    // capped below an AVX-512 CPU's (--embree-config isa=avx2) splits a 16-ray packet into 8-wide
+    // kernels whose triangle hits differ from its single-ray ones in the last bits of t, p and uv.
+    // There the lanes are traced one by one, so a hit never depends on the call that found it.
+    bool packets = true;
     RTCScene top = nullptr;
     std::vector<RTCScene> object_scenes;
     // A vector: nothing keeps pointers to a mesh's record, and every hit indexes it (through a
@@ -372,6 +378,8 @@ EmbreeScene::EmbreeScene(const scene::Scene& scene, const char* device_config)
         throw InputError("cannot create the Embree device (error " +
                          std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
     rtcSetDeviceErrorFunction(im.device, &Impl::on_error, &im);
+    im.packets = rtcGetDeviceProperty(im.device, RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED) != 0 ||
+                 !__builtin_cpu_supports("avx512f");
 
     // One scene per object first: instances need their scenes committed.
     im.object_scenes.assign(scene.objects.size(), nullptr);
@@ -612,6 +620,10 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
 }
 
 void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* found) const {
+    if (!impl_->packets) {
+        for (int k = 0; k < n; ++k) found[k] = intersect(rays[k], hits[k]);
+        return;
+    }
     alignas(64) RTCRayHit16 rh;
     alignas(64) int valid[16];
     // The analytic callbacks' exact hits, one per lane: a lane's entry is written before its hit
