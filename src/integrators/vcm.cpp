@@ -18,8 +18,8 @@
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/bidirectional_path.h"
-#include "integrators/sppm.h"
-#include "integrators/sppm_core.h"
+#include "integrators/eye_path.h"
+#include "integrators/pilot_radius.h"
 #include "integrators/vertex_grid.h"
 #include "render/progressive_budget.h"
 #include "shading/surface_walk.h"
@@ -571,7 +571,7 @@ int light_paths_per_pixel(const ProgressiveOptions& o, double mergeable_per_path
 //    base sqrt(--radius-photons / m), at least one pixel footprint (a sharp caustic keeps its
 //    edge) and at most base (radii up to twice base where light is sparse biased the point-light
 //    caustic's window by 20 % at 128 x 128);
-//  - with --edge-aware-radius, bounded at geometric edges as SPPM's (sppm_core.h: a disc reaching
+//  - with --edge-aware-radius, bounded at geometric edges as SPPM's (pilot_radius.h: a disc reaching
 //    across a corner, a contact or a light's rim averages light vertices from another surface or
 //    a shadowed strip, and the kernel's bias gathers there).
 // The grid's cells are sized by `base`, the largest radius. Pixels whose ray finds no such surface
@@ -588,10 +588,10 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
         for (int x = 0; x < ro.width; ++x) {
             const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
             Sampler sampler(ro.seed, 0x7663706966ULL, i);
-            sppm::VisiblePoint vp;
+            VisiblePoint vp;
             const Ray ray = P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f));
             ++rays.camera;
-            sppm::trace_eye_path(P, ray, sampler, 0, vp, rays);
+            trace_eye_path(P, ray, sampler, 0, vp, rays);
             if (!vp.bsdf) continue;
             p[i] = vp.p;
             n[i] = vp.bsdf->geometric_normal();
@@ -613,7 +613,7 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
                 r2[i] = std::max(r2_min[i], r2[i] * o.radius_photons / double(m));
         });
     }
-    if (o.edge_aware_radius) sppm::bound_radii_at_edges(p, n, r2, r2_min);
+    if (o.edge_aware_radius) bound_radii_at_edges(p, n, r2, r2_min);
     std::vector<float> r(pixels);
     for (size_t i = 0; i < pixels; ++i) r[i] = r2[i] > 0 ? float(std::sqrt(r2[i])) : base;
     return r;
