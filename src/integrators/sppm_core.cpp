@@ -415,6 +415,35 @@ void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps
     grid.build(pos, r2);
 }
 
+void photon_iteration(const Prepared& P, PhotonAccumulator& acc, const std::vector<VisiblePoint>& vps,
+                      ProgressiveState& state, photon::HitPointGrid& grid, uint64_t pass, uint64_t photons,
+                      float alpha, const PilotRadius* pilot) {
+    RayCounts rays;
+    rays.photon = acc.photon_pass(P, vps, state.slots, grid, P.options.seed, pass, photons);
+    P.stats.add_rays(rays);
+    if (pilot) {
+        acc.pilot(state.slots, vps, *pilot);
+        return;
+    }
+    // N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old.
+    state.photons_emitted += photons;
+    acc.update(state.slots, vps, alpha);
+}
+
+void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudget& budget,
+                   const std::function<void()>& resolve_film) {
+    if (trace) trace->end_pass(state.photons_emitted, [&](size_t s) { return state.slots[s]; });
+    budget.after_iteration(resolve_film);
+}
+
+void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                        ProgressiveBudget& budget, const std::function<void()>& resolve_film) {
+    resolve_film();
+    budget.finish();
+    P.stats.add_value(name, std::to_string(state.iterations) + " iterations, " +
+                                std::to_string(state.photons_emitted) + " photons");
+}
+
 void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double slot_weight,
              double direct_scale, uint64_t photons_emitted, film::Film& film, bool layers,
              const std::vector<uint8_t>& volume_slot) {

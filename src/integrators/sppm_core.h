@@ -1,6 +1,6 @@
 // The parts PPM and SPPM share: the photon pass that splats photons into the hit points' integer
 // accumulators, the per-point update (whose equations, Hachisuka & Jensen 2009 eq. 9-12, are in
-// sppm_pixel_stats.h), the final pixel estimate, and the start of a render (fresh or resumed). The
+// sppm_pixel_stats.h), the photon half and the end of an iteration, the final pixel estimate. The
 // eye path to a visible point is in eye_path.h, the pilot's radius rule in pilot_radius.h; the
 // iteration loop itself is in ppm.cpp and sppm.cpp, with progressive_budget.h keeping its count,
 // time, previews and checkpoints.
@@ -27,6 +27,7 @@
 #include "photon/hitpoint_grid.h"
 #include "render/path_recorder.h"
 #include "render/prepared.h"
+#include "render/progressive_budget.h"
 #include "render/progressive_checkpoint.h"
 #include "render/render_budget.h"
 #include "shading/bsdf.h"
@@ -189,6 +190,22 @@ void bound_radii_at_edges(const std::vector<VisiblePoint>& vps, std::vector<Pixe
 // Builds the grid over the visible points with their current radii.
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
                 const std::vector<PixelStats>& stats);
+
+// The photon half of iteration `pass` of PPM or SPPM: the photon pass (its `photons` photons within
+// each visible point's radius in state.slots add M_i and β Φ_i), then the progressive update of
+// every slot (eq. 9-11), whose photons join N_emitted; with `pilot` (SPPM's first iteration), the
+// pilot's radii instead (PhotonAccumulator::pilot), its photons dropped.
+void photon_iteration(const Prepared& P, PhotonAccumulator& acc, const std::vector<VisiblePoint>& vps,
+                      ProgressiveState& state, photon::HitPointGrid& grid, uint64_t pass, uint64_t photons,
+                      float alpha, const PilotRadius* pilot = nullptr);
+// The end of a PPM or SPPM iteration: --trace-pixel's record of the pass (the slots after the
+// update), then the budget's count, checkpoint and preview (`resolve_film` fills the film).
+void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudget& budget,
+                   const std::function<void()>& resolve_film);
+// The end of a PPM or SPPM render: the final image, the budget's finish, and the -v line
+// "`name`: N iterations, M photons".
+void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                        ProgressiveBudget& budget, const std::function<void()>& resolve_film);
 
 // Final radiance of each pixel: slot_weight × the sum over its `slots_per_pixel` slots of
 // direct × direct_scale + τ / (π R² N_emitted) (eq. 12; τ / (4/3 π R³ N_emitted) for the slots
