@@ -7,8 +7,8 @@
 #include <nanoflann.hpp>
 
 #include "core/stats.h"
-#include "integrators/sppm.h"
-#include "integrators/sppm_core.h"
+#include "integrators/eye_path.h"
+#include "integrators/progressive_options.h"
 #include "io/load_scene.h"
 #include "photon/hitpoint_grid.h"
 #include "photon/photon_path.h"
@@ -37,9 +37,9 @@ const Data& data() {
         for (int y = 0; y < 256; ++y)
             for (int x = 0; x < 256; ++x) {
                 Sampler sampler(1, uint64_t(y * 256 + x));
-                integrators::sppm::VisiblePoint vp;
+                integrators::VisiblePoint vp;
                 const Ray ray = P.camera.generate_ray(x + 0.5f, y + 0.5f, {0.5f, 0.5f});
-                integrators::sppm::trace_eye_path(P, ray, sampler, 1, vp, rays);
+                integrators::trace_eye_path(P, ray, sampler, 1, vp, rays);
                 if (!vp.bsdf) continue;
                 const float r = integrators::ProgressiveOptions{}.radius_pixels * fp.at(vp.path_length);
                 d.pos.push_back(vp.p);

@@ -74,30 +74,29 @@ Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const 
     return v;
 }
 
-bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta,
-                   float go_on) {
+std::optional<Direction> continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode,
+                                       const ScatterTerms& terms, Sampler& sampler, SubpathState& path) {
     float pdf = 0, pdf_rev = 0;
-    delta = false;
+    Direction d;
     if (v.in_medium) {
         const shading::PhaseFunction& phase = P.media[v.medium].phase();
-        pdf = phase.sample(v.wo, sampler.next2(), wi);
-        pdf_rev = phase.eval(wi, v.wo);
+        pdf = phase.sample(v.wo, sampler.next2(), d.wi);
+        pdf_rev = phase.eval(d.wi, v.wo);
     } else {
         const float u_lobe = sampler.next();
         const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), mode);
-        if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) return false;
-        wi = bs->wi;
-        beta *= bs->weight;
-        delta = bs->is_specular();
+        if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) return std::nullopt;
+        d.wi = bs->wi;
+        path.beta *= bs->weight;
+        d.delta = bs->is_specular();
         pdf = bs->pdf;
-        if (!delta) pdf_rev = v.bsdf->pdf(wi, v.wo);
+        if (!d.delta) pdf_rev = v.bsdf->pdf(d.wi, v.wo);
     }
-    if (delta)
-        scatter_delta(mis, cos_at(v, wi));
+    if (d.delta)
+        scatter_delta(path.mis, cos_at(v, d.wi));
     else
-        scatter(mis, cos_at(v, wi), pdf * go_on, pdf_rev, merge_here, f);
-    return true;
+        scatter(path.mis, cos_at(v, d.wi), pdf * terms.go_on, pdf_rev, terms.merge_here, terms.factors);
+    return d;
 }
 
 Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk) {
@@ -116,8 +115,8 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
     return beta.is_finite() && !beta.is_black();
 }
 
-bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
-                      int merge_from, bool merge_terms, std::vector<Vertex>& out, RayCounts& rays) {
+bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler& sampler,
+                      std::vector<Vertex>& out, RayCounts& rays) {
     if (P.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = P.lights.choose(sampler.next(), pmf);
@@ -132,9 +131,9 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
     const float direct_pdf = direct_density(pmf, e.pdf_pos, e.pdf_dir, at_infinity);
     const float emit_pdf = pmf * e.pdf_pos * e.pdf_dir;
     const float cos_light = area ? std::fabs(dot(e.n, e.ray.dir)) : 1.0f;
-    SubpathMis mis = start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(), at_infinity, f);
-    Rgb beta = e.weight * (1.0f / pmf);
-    const Rgb beta0 = beta;
+    SubpathState path{e.weight * (1.0f / pmf), start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(),
+                                                           at_infinity, rules.factors)};
+    const Rgb beta0 = path.beta;
     Ray ray = e.ray;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.scene.lights[li].medium);
@@ -143,31 +142,31 @@ bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, con
     for (int segments = 1;; ++segments) {
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);  // light paths ignore media's own emission (only camera paths see it)
-        const auto event = media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+        const auto event = media ? walk.next(ray, hit, sampler, path.beta, emitted) : walk.next(ray, hit);
         ++rays.photon;
         if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
             break;
-        Vertex v = reach_vertex(P, event, walk, ray, hit, segments, beta);
+        Vertex v = reach_vertex(P, event, walk, ray, hit, segments, path.beta);
         v.delta_chain = delta_chain;
         // The first segment from a light at infinity has no distance to convert (its start is a
         // direction).
-        arrive(mis, length(v.p - from), cos_at(v, v.wo), !(segments == 1 && at_infinity));
-        v.mis = mis;
+        arrive(path.mis, length(v.p - from), cos_at(v, v.wo), !(segments == 1 && at_infinity));
+        v.mis = path.mis;
         const bool scatters_smoothly = v.in_medium || v.bsdf->has_non_specular();
-        v.mergeable = merge_from > 0 && segments >= merge_from && !v.in_medium && scatters_smoothly;
+        v.mergeable =
+            rules.merge_from > 0 && segments >= rules.merge_from && !v.in_medium && scatters_smoothly;
         if (scatters_smoothly) out.push_back(v);
-        if (segments >= max_segments) break;
+        if (segments >= rules.max_segments) break;
 
         // Scatter: the phase function or the BSDF (importance transport).
-        Vec3 wi;
-        bool delta = false;
-        if (!continue_from(P, v, shading::TransportMode::Importance, f, v.mergeable && merge_terms, sampler,
-                           mis, beta, wi, delta))
-            break;
-        delta_chain = delta_chain && delta;
-        if (!survives(segments, beta, beta0, sampler)) break;
+        const std::optional<Direction> d =
+            continue_from(P, v, shading::TransportMode::Importance,
+                          {rules.factors, v.mergeable && rules.merge_terms}, sampler, path);
+        if (!d) break;
+        delta_chain = delta_chain && d->delta;
+        if (!survives(segments, path.beta, beta0, sampler)) break;
         from = v.p;
-        ray = leave_vertex(v, wi, walk);
+        ray = leave_vertex(v, d->wi, walk);
     }
     return true;
 }

@@ -66,15 +66,31 @@ Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const 
 inline float cos_at(const Vertex& v, Vec3 w) {
     return v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, w));
 }
+// What a subpath carries from vertex to vertex: its throughput and its MIS state.
+struct SubpathState {
+    Rgb beta;
+    SubpathMis mis;
+};
+// How the MIS state takes a scattering at a vertex: the iteration's factors, whether merging at the
+// vertex is a strategy (scatter's `mergeable`), and the probability with which the caller chose to
+// go on from the vertex at all (a factor of the direction's density; the caller divides beta by
+// it).
+struct ScatterTerms {
+    MisFactors factors;
+    bool merge_here = false;
+    float go_on = 1;
+};
+// A direction a subpath goes on in: unit wi, away from the vertex, and whether a delta lobe chose
+// it.
+struct Direction {
+    Vec3 wi;
+    bool delta = false;
+};
 // The subpath goes on from v: samples a direction (the BSDF in `mode`, the phase function in a
-// medium), multiplies beta by its weight and updates the MIS state `mis` (scatter or
-// scatter_delta, with merging at v a strategy when `merge_here`); sets wi and whether the lobe was
-// a delta. False when nothing was sampled. `go_on`: the probability with which the caller chose to
-// go on from v at all (a factor of the direction's density in the MIS state; the caller divides
-// beta by it).
-bool continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode, const MisFactors& f,
-                   bool merge_here, Sampler& sampler, SubpathMis& mis, Rgb& beta, Vec3& wi, bool& delta,
-                   float go_on = 1);
+// medium), multiplies path.beta by its weight and updates path.mis (scatter or scatter_delta).
+// Nothing when nothing was sampled.
+std::optional<Direction> continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode,
+                                       const ScatterTerms& terms, Sampler& sampler, SubpathState& path);
 // The ray leaving v in direction wi; the walk follows the medium change at a surface.
 Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 
@@ -88,14 +104,21 @@ Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& s
 // relative to its start (`beta0`), at least 5 %; survivors are reweighted.
 bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler);
 
-// The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk of
-// at most `max_segments` segments. Appends the vertices connections and merging can use (those
-// with a non-delta lobe, and medium vertices) to `out`; surface vertices at least
-// `merge_from` segments from the light are mergeable (0: none). With `merge_terms`, merging at
-// them is a strategy of the paths the subpath continues into (vcm merging at every camera vertex);
-// without, a light vertex merges only as the camera's first non-delta vertex, which no longer
-// light subpath reaches (vcm_mis.h). Returns false when no light emits.
-bool trace_light_path(const Prepared& P, Sampler& sampler, int max_segments, const MisFactors& f,
-                      int merge_from, bool merge_terms, std::vector<Vertex>& out, RayCounts& rays);
+// How light subpaths are traced: at most `max_segments` segments, the MIS `factors`; surface
+// vertices at least `merge_from` segments from the light are mergeable (0: none). With
+// `merge_terms`, merging at them is a strategy of the paths the subpath continues into (vcm merging
+// at every camera vertex); without, a light vertex merges only as the camera's first non-delta
+// vertex, which no longer light subpath reaches (vcm_mis.h).
+struct LightSubpathRules {
+    int max_segments = 1;
+    MisFactors factors;
+    int merge_from = 0;
+    bool merge_terms = false;
+};
+// The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk.
+// Appends the vertices connections and merging can use (those with a non-delta lobe, and medium
+// vertices) to `out`. Returns false when no light emits.
+bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler& sampler,
+                      std::vector<Vertex>& out, RayCounts& rays);
 
 }  // namespace phos::integrators::vcm

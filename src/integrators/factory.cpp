@@ -2,6 +2,7 @@
 #include "integrators/factory.h"
 
 #include "core/error.h"
+#include "integrators/bdpt.h"
 #include "integrators/path.h"
 #include "integrators/photon_map.h"
 #include "integrators/ppm.h"
@@ -41,8 +42,8 @@ std::unique_ptr<Integrator> make_integrator(const std::string& name, const Integ
     if (name == "photonmap") return std::make_unique<PhotonMapIntegrator>(config.photon_map, config.budget);
     if (name == "ppm") return std::make_unique<PpmIntegrator>(config.progressive, config.budget);
     if (name == "sppm") return std::make_unique<SppmIntegrator>(config.progressive, config.budget);
-    if (name == "bdpt") return std::make_unique<VcmIntegrator>(true, config.progressive, config.budget);
-    if (name == "vcm") return std::make_unique<VcmIntegrator>(false, config.progressive, config.budget);
+    if (name == "bdpt") return std::make_unique<BdptIntegrator>(config.progressive, config.budget);
+    if (name == "vcm") return std::make_unique<VcmIntegrator>(config.progressive, config.budget);
     throw InputError("unknown integrator '" + name + "'");
 }
 

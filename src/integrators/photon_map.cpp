@@ -1,18 +1,17 @@
 // Orchestration of the two-pass photon mapper (see photon_map.h): option checks, pass 1 (tracing,
-// k-d trees, irradiance cache, -v statistics) and pass 2's deterministic tile loop.
+// k-d trees, beams and caches; its -v statistics in photon/map_report.h) and pass 2's tile loop.
 #include "integrators/photon_map.h"
 
 #include <chrono>
-#include <cstdio>
 
 #include "core/error.h"
 #include "core/interrupt.h"
-#include "core/log.h"
 #include "core/stats.h"
 #include "dist/ranks.h"
 #include "integrators/factory.h"
 #include "integrators/photon_map_radiance.h"
 #include "photon/beam_estimate.h"
+#include "photon/map_report.h"
 #include "photon/projection_map.h"
 #include "render/path_recorder.h"
 #include "render/pixel_loop.h"
@@ -22,15 +21,6 @@ namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
 namespace {
-
-std::string fmt(const char* f, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
-
-// "1 thread", "4 threads".
-std::string threads_text(int n) { return std::to_string(n) + (n == 1 ? " thread" : " threads"); }
 
 // Fills automatic radii from the scene's size.
 PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
@@ -50,17 +40,9 @@ bool has_delta_materials(const scene::Scene& scene) {
     return false;
 }
 
-}  // namespace
-
-// The options arrive validated against their table (integrators/factory.cpp).
-PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)
-    : options_(options), budget_(std::move(budget)) {}
-
-PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounces) const {
-    const PhotonMapOptions o = resolve(options_, P);
-    PhotonMaps maps;
+// What pass 1 traces: only the maps pass 2 will read, each to its target.
+photon::TraceOptions trace_options(const PhotonMapOptions& o, const Prepared& P, bool record_bounces) {
     photon::TraceOptions to;
-    // Only the maps pass 2 will read are traced.
     to.wanted[photon::kGlobalMap] = o.photon_viz || (o.indirect_light && !o.fast_global);
     to.wanted[photon::kCausticMap] = !o.photon_viz && o.caustics && has_delta_materials(P.scene);
     to.wanted[photon::kIndirectMap] = !o.photon_viz && o.indirect_light && o.fast_global;
@@ -84,116 +66,92 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     to.seed = P.options.seed;
     to.caustic_projection = o.projection_maps;
     to.record_bounces = record_bounces;
+    return to;
+}
 
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs, P.active_media()};
-    auto t0 = std::chrono::steady_clock::now();
-    photon::TracedPhotons traced = photon::trace_photons(ps, to);
-    const double trace_s = seconds_since(t0);
-    P.stats.add_time("photon trace", trace_s);
-    RayCounts rc;
-    rc.photon = traced.rays;
-    P.stats.add_rays(rc);
-
-    t0 = std::chrono::steady_clock::now();
-    const uint64_t stored = traced.stored();
+// The k-d trees over the traced photons, built in place (the traced array becomes the tree's: no
+// second copy at the peak); with `record_bounces` each photon's bounce count in tree order.
+// Returns the trees' thread time by level, summed.
+photon::KdBuildStats build_trees(photon::TracedPhotons& traced, PhotonMaps& maps, bool record_bounces) {
     photon::KdBuildStats build_times;
     for (int m = 0; m < photon::kMapCount; ++m) {
         photon::KdTreeOptions ko;
         ko.keep_input_index = record_bounces;
-        // In place: the traced array becomes the tree's (no second copy at the peak).
         maps.map[m].build(std::move(traced.photons[m]), ko);
         build_times.top_seconds += maps.map[m].build_stats().top_seconds;
         build_times.below_seconds += maps.map[m].build_stats().below_seconds;
         maps.emitted[m] = traced.emitted[m];
-        if (record_bounces) {  // into tree order
+        if (record_bounces) {
             maps.bounces[m].resize(maps.map[m].size());
             for (uint32_t i = 0; i < maps.map[m].size(); ++i)
                 maps.bounces[m][i] = traced.bounces[m][maps.map[m].input_index(i)];
         }
         std::vector<photon::Photon>().swap(traced.photons[m]);
     }
-    const double build_s = seconds_since(t0);
-    P.stats.add_time("photon map build", build_s);
-    if (o.volume_estimate == VolumeEstimate::Beam &&
-        (!maps.volume().empty() || !maps.volume_caustic().empty())) {
-        // Each volume photon's kernel radius from its k nearest neighbours, then the spheres' BVH.
-        t0 = std::chrono::steady_clock::now();
-        maps.volume_beams.build(photon::photon_spheres(maps.volume(), o.volume.samples, o.volume.radius));
-        maps.volume_caustic_beams.build(
-            photon::photon_spheres(maps.volume_caustic(), o.volume_caustic.samples, o.volume_caustic.radius));
-        P.stats.add_time("beam BVH build", seconds_since(t0));
-        P.stats.add_value(
-            "beam BVH memory",
-            fmt("%.3g MB",
-                double(maps.volume_beams.memory_bytes() + maps.volume_caustic_beams.memory_bytes()) / 1e6));
-    }
+    return build_times;
+}
 
-    P.stats.add_value("photons emitted", std::to_string(traced.total_emitted));
-    for (int m = 0; m < photon::kMapCount; ++m) {
-        if (!to.wanted[m]) continue;
-        P.stats.add_value(std::string(photon::map_name(m)) + " map",
-                          std::to_string(maps.map[m].size()) + " photons from " +
-                              std::to_string(maps.emitted[m]) + " emitted" +
-                              (traced.reached[m]      ? ""
-                               : P.lights.size() == 0 ? " (no lights)"
-                                                      : " (emission cap reached before the budget)"));
-        // Without lights nothing is emitted: the app's no-lights warning says so, not --max-emitted.
-        if (!traced.reached[m] && to.target[m] > 0 && P.lights.size() > 0)
-            log::warn_once(std::string("pm-cap-") + photon::map_name(m),
-                           std::string("photon map: the ") + photon::map_name(m) + " map got " +
-                               std::to_string(maps.map[m].size()) + " of " + std::to_string(to.target[m]) +
-                               " photons before the emission cap (--max-emitted)");
-    }
-    if (to.wanted[photon::kCausticMap] && o.projection_maps)
-        P.stats.add_value(
-            "caustic projection maps",
-            fmt("%.3g %% of the emitted power aimed at specular objects", 100.0 * traced.caustic_fraction) +
-                fmt(", built in %.3f s", traced.projection_seconds) +
-                fmt(", caustic tracing %.3g stored photons/s",
-                    traced.caustic_seconds > 0 ? double(maps.caustic().size()) / traced.caustic_seconds
-                                               : 0.0));
-    P.stats.add_value("bytes per photon", std::to_string(sizeof(photon::Photon)));
-    if (dist::distributed())  // each rank traced its batches; all received every batch
-        P.stats.add_value("photon batches exchanged (MPI)",
-                          fmt("%.3g MB", double(traced.exchanged_bytes) * 1e-6) +
-                              fmt(" in %.3f s", traced.exchange_seconds));
-    P.stats.add_value("photon map pages faulted in",
-                      fmt("%.3g MB", double(traced.faulted_bytes) * 1e-6) +
-                          fmt(" in %.3f s of the trace", traced.fault_in_seconds));
-    // How busy the tracing threads were: below ~95 % the pipeline waits (commits, the last
-    // batches); at ~100 % a rate that grows less than the thread count is the cores' own speed.
-    if (traced.pipeline_seconds > 0 && traced.threads > 0)
-        P.stats.add_value(
-            "photon tracing threads busy",
-            fmt("%.1f %%", 100.0 * traced.batch_seconds / (traced.threads * traced.pipeline_seconds)) +
-                fmt(" (batches %.3f s on ", traced.batch_seconds) + threads_text(traced.threads) +
-                fmt(" in %.3f s;", traced.pipeline_seconds) +
-                fmt(" commits %.3f s, serial)", traced.commit_seconds));
-    P.stats.add_value("photon tracing rate",
-                      fmt("%.3g stored photons/s", trace_s > 0 ? double(stored) / trace_s : 0.0));
-    // The build's thread time by level: on many cores, a top-level share that grows with the
-    // thread count means those passes over the whole map wait for memory.
-    P.stats.add_value("photon map build thread time",
-                      fmt("top levels %.3f s, ", build_times.top_seconds) +
-                          fmt("below them %.3f s", build_times.below_seconds) + fmt(" in %.3f s", build_s) +
-                          (traced.threads > 0 ? " on " + threads_text(traced.threads) : std::string()));
-    P.stats.add_value("photon map build rate",
-                      fmt("%.3g photons/s", build_s > 0 ? double(stored) / build_s : 0.0));
+// --volume-estimate beam: each volume photon's kernel radius from its k nearest neighbours, then
+// the spheres' BVH.
+void build_beams(const PhotonMapOptions& o, const Prepared& P, PhotonMaps& maps) {
+    if (o.volume_estimate != VolumeEstimate::Beam || (maps.volume().empty() && maps.volume_caustic().empty()))
+        return;
+    const auto t0 = std::chrono::steady_clock::now();
+    maps.volume_beams.build(photon::photon_spheres(maps.volume(), o.volume.samples, o.volume.radius));
+    maps.volume_caustic_beams.build(
+        photon::photon_spheres(maps.volume_caustic(), o.volume_caustic.samples, o.volume_caustic.radius));
+    P.stats.add_time("beam BVH build", seconds_since(t0));
+}
 
+// --irradiance-cache: the irradiance cache over the global map, the volume cache over the volume
+// maps.
+void build_caches(const PhotonMapOptions& o, const photon::TraceOptions& to, const Prepared& P,
+                  PhotonMaps& maps) {
     if (o.irradiance_cache && to.wanted[photon::kGlobalMap] && !o.photon_viz) {
-        t0 = std::chrono::steady_clock::now();
+        const auto t0 = std::chrono::steady_clock::now();
         PhotonMapRadiance R(P, o, maps);
         maps.cache.build(maps.global(), R.estimate_options(photon::kGlobalMap), o.cache_stride);
         P.stats.add_time("irradiance cache", seconds_since(t0));
         P.stats.add_value("irradiance cache points", std::to_string(maps.cache.size()));
     }
     if (o.irradiance_cache && to.wanted[photon::kVolumeMap] && !maps.volume().empty()) {
-        t0 = std::chrono::steady_clock::now();
+        const auto t0 = std::chrono::steady_clock::now();
         maps.volume_cache.build(maps.volume(), {o.volume.samples, o.volume.radius}, maps.volume_caustic(),
                                 {o.volume_caustic.samples, o.volume_caustic.radius}, o.cache_stride);
         P.stats.add_time("volume cache", seconds_since(t0));
         P.stats.add_value("volume cache points", std::to_string(maps.volume_cache.size()));
     }
+}
+
+}  // namespace
+
+// The options arrive validated against their table (integrators/factory.cpp).
+PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)
+    : options_(options), budget_(std::move(budget)) {}
+
+// Pass 1 (Jensen 1996): trace the photons, build the k-d trees, then what pass 2 reads besides.
+PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounces) const {
+    const PhotonMapOptions o = resolve(options_, P);
+    const photon::TraceOptions to = trace_options(o, P, record_bounces);
+    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs, P.active_media()};
+    photon::MapBuildTimes times;
+    auto t0 = std::chrono::steady_clock::now();
+    photon::TracedPhotons traced = photon::trace_photons(ps, to);
+    times.trace_seconds = seconds_since(t0);
+    P.stats.add_time("photon trace", times.trace_seconds);
+    RayCounts rc;
+    rc.photon = traced.rays;
+    P.stats.add_rays(rc);
+
+    PhotonMaps maps;
+    t0 = std::chrono::steady_clock::now();
+    times.stored = traced.stored();
+    times.build = build_trees(traced, maps, record_bounces);
+    times.build_seconds = seconds_since(t0);
+    P.stats.add_time("photon map build", times.build_seconds);
+    build_beams(o, P, maps);
+    photon::report_map_build(P.stats, to, traced, maps, times, P.lights.size() > 0);
+    build_caches(o, to, P, maps);
     return maps;
 }
 

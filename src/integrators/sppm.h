@@ -23,8 +23,4 @@ private:
     RenderBudget budget_;
 };
 
-// Bounds of the pilot pass's per-pixel radius in pixel footprints (see PilotRadius in
-// sppm_pixel_stats.h; the other defaults are in the option table, progressive_options.cpp).
-constexpr double kPilotRadiusMinPixels = 1, kPilotRadiusMaxPixels = 8;
-
 }  // namespace phos::integrators

@@ -384,31 +384,6 @@ void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, si
         trace.visible_point(slot + (volume_slot && vp.volume() ? 1 : 0), vp.p, vp.medium, vp.beta);
 }
 
-void bound_radii_at_edges(const std::vector<Vec3>& p, const std::vector<Vec3>& n, std::vector<double>& r2,
-                          const std::vector<double>& r2_min) {
-    const size_t count = p.size();
-    std::vector<float> r2f(count);
-    for (size_t i = 0; i < count; ++i) r2f[i] = float(std::max(r2[i], 0.0));
-    photon::HitPointGrid grid;  // the points j whose disc holds point i: its neighbours
-    grid.build(p, r2f);
-    std::vector<double> bounded(r2);
-    tbb::parallel_for(size_t(0), count, [&](size_t i) {
-        if (!(r2[i] > 0)) return;
-        double nearest = r2[i];  // squared distance to the nearest edge point found so far
-        grid.query(p[i], [&](uint32_t j) {
-            const Vec3 d = p[j] - p[i];
-            const float d2 = dot(d, d);
-            if (j == i || !(double(d2) < nearest)) return;
-            if (std::fabs(dot(n[i], n[j])) < kEdgeNormalCos ||
-                std::fabs(dot(d, n[i])) > kEdgePlaneSlope * std::sqrt(d2))
-                nearest = d2;
-        });
-        const double floor = std::max(kEdgeMinShrink * kEdgeMinShrink * r2[i], r2_min[i]);
-        bounded[i] = std::min(r2[i], std::max(nearest, floor));
-    });
-    r2.swap(bounded);
-}
-
 void bound_radii_at_edges(const std::vector<VisiblePoint>& vps, std::vector<PixelStats>& stats,
                           const CameraModel::Footprint& footprint) {
     std::vector<size_t> surface;
@@ -424,7 +399,7 @@ void bound_radii_at_edges(const std::vector<VisiblePoint>& vps, std::vector<Pixe
         const double r_min = kPilotRadiusMinPixels * double(footprint.at(vp.path_length));
         r2_min[k] = r_min * r_min;
     }
-    bound_radii_at_edges(p, n, r2, r2_min);
+    integrators::bound_radii_at_edges(p, n, r2, r2_min);
     for (size_t k = 0; k < surface.size(); ++k) stats[surface[k]].r2 = r2[k];
 }
 
@@ -438,6 +413,35 @@ void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps
             r2[i] = float(stats[i].r2);
         }
     grid.build(pos, r2);
+}
+
+void photon_iteration(const Prepared& P, PhotonAccumulator& acc, const std::vector<VisiblePoint>& vps,
+                      ProgressiveState& state, photon::HitPointGrid& grid, uint64_t pass, uint64_t photons,
+                      float alpha, const PilotRadius* pilot) {
+    RayCounts rays;
+    rays.photon = acc.photon_pass(P, vps, state.slots, grid, P.options.seed, pass, photons);
+    P.stats.add_rays(rays);
+    if (pilot) {
+        acc.pilot(state.slots, vps, *pilot);
+        return;
+    }
+    // N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old.
+    state.photons_emitted += photons;
+    acc.update(state.slots, vps, alpha);
+}
+
+void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudget& budget,
+                   const std::function<void()>& resolve_film) {
+    if (trace) trace->end_pass(state.photons_emitted, [&](size_t s) { return state.slots[s]; });
+    budget.after_iteration(resolve_film);
+}
+
+void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                        ProgressiveBudget& budget, const std::function<void()>& resolve_film) {
+    resolve_film();
+    budget.finish();
+    P.stats.add_value(name, std::to_string(state.iterations) + " iterations, " +
+                                std::to_string(state.photons_emitted) + " photons");
 }
 
 void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double slot_weight,

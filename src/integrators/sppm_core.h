@@ -1,8 +1,9 @@
-// The parts PPM and SPPM share: the eye path to a visible point, the photon pass that splats
-// photons into the hit points' integer accumulators, the per-point update (whose equations,
-// Hachisuka & Jensen 2009 eq. 9-12, are in sppm_pixel_stats.h), the final pixel estimate, and the
-// start of a render (fresh or resumed). The iteration loop itself is in ppm.cpp and sppm.cpp, with
-// progressive_budget.h keeping its count, time, previews and checkpoints.
+// The parts PPM and SPPM share: the photon pass that splats photons into the hit points' integer
+// accumulators, the per-point update (whose equations, Hachisuka & Jensen 2009 eq. 9-12, are in
+// sppm_pixel_stats.h), the photon half and the end of an iteration, the final pixel estimate. The
+// eye path to a visible point is in eye_path.h, the pilot's radius rule in pilot_radius.h; the
+// iteration loop itself is in ppm.cpp and sppm.cpp, with progressive_budget.h keeping its count,
+// time, previews and checkpoints.
 //
 // Determinism: Φ_i and M_i are sums in 64-bit fixed point (integer atomics), exact and
 // order-independent, so the result is bit-identical for any thread count.
@@ -19,11 +20,14 @@
 #include "core/rng.h"
 #include "film/film.h"
 #include "film/tiles.h"
+#include "integrators/eye_path.h"
+#include "integrators/pilot_radius.h"
 #include "integrators/progressive_options.h"
 #include "integrators/sppm_pixel_stats.h"
 #include "photon/hitpoint_grid.h"
 #include "render/path_recorder.h"
 #include "render/prepared.h"
+#include "render/progressive_budget.h"
 #include "render/progressive_checkpoint.h"
 #include "render/render_budget.h"
 #include "shading/bsdf.h"
@@ -34,41 +38,8 @@ using namespace render;  // the render support the algorithms are written over (
 
 namespace phos::integrators::sppm {
 
-// Where a camera path met its first non-specular surface (after following specular bounces), or
-// scattered in a participating medium (free-flight sampling): a volume visible point, whose
-// statistics use a 3D kernel (a ball) instead of a disc (Knaus & Zwicker 2011, sec. 4.3: the same
-// progressive radius reduction with the kernel's dimension d = 3).
-struct VisiblePoint {
-    Vec3 p;
-    Vec3 wo;
-    Rgb beta;       // camera-path throughput (over the path's selection probabilities)
-    int depth = 0;  // specular bounces before it (limits photon bounces: total ≤ max_depth)
-    float path_length = 0;
-    std::optional<shading::Bsdf> bsdf;  // a surface visible point
-    int medium = -1;                    // >= 0: a volume visible point in this medium
-    bool present() const { return bsdf || medium >= 0; }
-    bool volume() const { return medium >= 0; }
-};
-
-// Traces a camera ray: adds emission seen along the specular chain, and at the first non-specular
-// hit stores `vp` and adds the average of `direct_samples` light samples. Mixed materials choose
-// between their non-specular part (visible point) and specular part (continue) at random, in
-// proportion to the lobes' albedos. Returns emission + direct light (throughput included).
-// With `light_sequence`, the light samples come from stratified per-pixel sequences instead of
-// `sampler` (see LightSampleSequence).
-struct LightSampleSequence;
-Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
-                   RayCounts& rays, const LightSampleSequence* light_sequence = nullptr);
-
-// Light sample k of iteration i's eye path (n samples per path) as point i × n + k of two padded
-// dimensions of its pixel (core/low_discrepancy.h), keyed by `key`: the light choice (1D) and the
-// point on the light (2D). A pixel's light samples over all iterations are then one stratified
-// sequence: soft shadows converge faster than with independent samples while every iteration
-// stays unbiased.
-struct LightSampleSequence {
-    uint32_t iteration = 0;
-    uint64_t key = 0;
-};
+// The eye pass's visible point (eye_path.h), one per hit-point slot.
+using integrators::VisiblePoint;
 
 // The automatic or explicit initial radius of a visible point, before any photon pass: `radius`
 // (--radius) when > 0, else `radius_pixels` pixel footprints at the point's path length.
@@ -211,27 +182,30 @@ private:
     std::string mine_, all_;
 };
 
-// Edge-aware radii (SPPM, after the pilot): a disc that reaches across a geometric edge averages
-// photons from another surface, or from a strip the edge shadows (a contact, a corner, a light's
-// rim), and the kernel's bias concentrates there (on cornell-diffuse the worst 1 % of pixels held
-// 29 % of the error, nearly all of it bias, along such edges). So each surface point's r² is
-// bounded by the squared distance to the nearest other point (within its disc) that lies on a
-// surface turned more than acos(kEdgeNormalCos) away or off its tangent plane by more than
-// kEdgePlaneSlope times the distance, but never below max(kEdgeMinShrink² r², r2_min[i]). The
-// radius still shrinks as Hachisuka & Jensen's; only its start differs. Points with r2 <= 0 are
-// left alone; n need not be oriented.
-constexpr float kEdgeNormalCos = 0.9f, kEdgePlaneSlope = 0.1f;
-constexpr double kEdgeMinShrink = 0.5;
-void bound_radii_at_edges(const std::vector<Vec3>& p, const std::vector<Vec3>& n, std::vector<double>& r2,
-                          const std::vector<double>& r2_min);
-// The same over the surface visible points' r2 in `stats`, with r2_min one pixel footprint (the
-// pilot's smallest radius, kPilotRadiusMinPixels) at each point's distance.
+// Edge-aware radii (pilot_radius.h) over the surface visible points' r2 in `stats`, with r2_min one
+// pixel footprint (the pilot's smallest radius, kPilotRadiusMinPixels) at each point's distance.
 void bound_radii_at_edges(const std::vector<VisiblePoint>& vps, std::vector<PixelStats>& stats,
                           const CameraModel::Footprint& footprint);
 
 // Builds the grid over the visible points with their current radii.
 void build_grid(photon::HitPointGrid& grid, const std::vector<VisiblePoint>& vps,
                 const std::vector<PixelStats>& stats);
+
+// The photon half of iteration `pass` of PPM or SPPM: the photon pass (its `photons` photons within
+// each visible point's radius in state.slots add M_i and β Φ_i), then the progressive update of
+// every slot (eq. 9-11), whose photons join N_emitted; with `pilot` (SPPM's first iteration), the
+// pilot's radii instead (PhotonAccumulator::pilot), its photons dropped.
+void photon_iteration(const Prepared& P, PhotonAccumulator& acc, const std::vector<VisiblePoint>& vps,
+                      ProgressiveState& state, photon::HitPointGrid& grid, uint64_t pass, uint64_t photons,
+                      float alpha, const PilotRadius* pilot = nullptr);
+// The end of a PPM or SPPM iteration: --trace-pixel's record of the pass (the slots after the
+// update), then the budget's count, checkpoint and preview (`resolve_film` fills the film).
+void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudget& budget,
+                   const std::function<void()>& resolve_film);
+// The end of a PPM or SPPM render: the final image, the budget's finish, and the -v line
+// "`name`: N iterations, M photons".
+void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                        ProgressiveBudget& budget, const std::function<void()>& resolve_film);
 
 // Final radiance of each pixel: slot_weight × the sum over its `slots_per_pixel` slots of
 // direct × direct_scale + τ / (π R² N_emitted) (eq. 12; τ / (4/3 π R³ N_emitted) for the slots

@@ -74,31 +74,4 @@ inline double volume_radiance_scale(double r2, double inv_emitted) {
     return r2 > 0 ? inv_emitted / (4.0 / 3.0 * M_PI * r2 * std::sqrt(r2)) : 0.0;
 }
 
-// Per-pixel initial radius from a pilot photon pass (SPPM, --radius-photons): the first
-// iteration's photons only count how many fall in each visible point's largest allowed disc,
-// R₀² max_scale (M_p; R₀ the automatic radius); the point's radius becomes the disc that would
-// hold ~k photons, R² = R₀² max_scale clamp(k / M_p) within [min_scale, max_scale] R₀² (M_p = 0:
-// R₀ kept). Counting in the largest disc keeps a dim point next to a caustic from choosing a disc
-// that reaches into it. The pilot's photons are then discarded (N = τ = 0, not counted in
-// N_emitted): the radius is independent of the photons the estimate uses, so choosing it adds no
-// bias of its own (reusing them, with a radius picked so they number ~k, inflated sparse caustics
-// by ~20 %). Bright caustics get small discs (less blur), dim diffuse regions large ones (less
-// noise). Not in the papers: phos's own rule (docs/progressive.md).
-struct PilotRadius {
-    double k = 0;                         // target photons per disc (0 = no pilot)
-    double min_scale = 1, max_scale = 1;  // bounds on R²/R₀²
-};
-
-// The radius a point keeps after the pilot: r2 is the pilot's gathering disc (R₀² max_scale) and
-// m the photons it held.
-inline double pilot_r2(const PilotRadius& a, double r2, uint64_t m) {
-    if (m == 0) return r2 / a.max_scale;
-    return r2 * std::clamp(a.k / double(m), a.min_scale / a.max_scale, 1.0);
-}
-// The same for a volume point: a ball holds k photons at R² = R_p² (k / M_p)^(2/3).
-inline double pilot_r2_volume(const PilotRadius& a, double r2, uint64_t m) {
-    if (m == 0) return r2 / a.max_scale;
-    return r2 * std::clamp(std::cbrt((a.k / double(m)) * (a.k / double(m))), a.min_scale / a.max_scale, 1.0);
-}
-
 }  // namespace phos::integrators::sppm

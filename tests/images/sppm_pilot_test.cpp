@@ -5,8 +5,8 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "film/metrics.h"
+#include "integrators/pilot_radius.h"
 #include "integrators/sppm.h"
-#include "integrators/sppm_core.h"
 #include "io/load_scene.h"
 #include "render/prepared.h"
 #include "test_util.h"
@@ -14,8 +14,8 @@
 namespace phos {
 namespace {
 
-using integrators::sppm::pilot_r2;
-using integrators::sppm::PilotRadius;
+using integrators::pilot_r2;
+using integrators::PilotRadius;
 
 TEST(SppmPilot, RadiusHoldsKPhotonsWithinBounds) {
     // Bounds 1/16 ... 4 × R₀²; the pilot gathered in 4 R₀² (R₀² = 1).

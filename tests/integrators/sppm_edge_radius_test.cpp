@@ -1,4 +1,4 @@
-// SPPM's edge-aware radii (sppm_core.h, bound_radii_at_edges) on point sets with known geometry:
+// The pilot's edge-aware radii (pilot_radius.h, bound_radii_at_edges) on point sets with known geometry:
 // points on one plane keep their radii; next to a corner or a step a point's r² becomes its
 // squared distance to the nearest point across the edge, within [max(r²/4, r2_min), r²]; a step
 // off the plane counts where it is high for its distance; and the result is the same for any
@@ -10,9 +10,9 @@
 #include <cmath>
 #include <vector>
 
-#include "integrators/sppm_core.h"
+#include "integrators/pilot_radius.h"
 
-namespace phos::integrators::sppm {
+namespace phos::integrators {
 namespace {
 
 constexpr float kStep = 0.01f;  // spacing of the points (a pixel footprint)
@@ -96,4 +96,4 @@ TEST(SppmEdgeRadius, SameResultForAnyThreadCount) {
 }
 
 }  // namespace
-}  // namespace phos::integrators::sppm
+}  // namespace phos::integrators

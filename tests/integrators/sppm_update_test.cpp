@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "film/film.h"
+#include "integrators/pilot_radius.h"
 #include "integrators/sppm_core.h"
 #include "integrators/sppm_pixel_stats.h"
 

@@ -319,9 +319,9 @@ TEST(VcmMis, WeightsSumToOneThroughDeltaVertices) {
 
 // With merging at the camera's first non-delta vertex only, the merging area eta enters the light
 // subpath's state only as the factor 1 / eta^2 of dVM (its dVCM and dVC hold no merging term), so
-// vcm.cpp traces light subpaths with vc = 1 and multiplies dVM by the merging pixel's own vc
-// (per-pixel radii). Its merging weights are the ones of the light state traced with that pixel's
-// eta; dVC and dVCM are the same bits.
+// vcm traces light subpaths with vc = 1 and merging multiplies dVM by the merging pixel's own vc
+// (per-pixel radii; camera_subpath.cpp). Its merging weights are the ones of the light state traced
+// with that pixel's eta; dVC and dVCM are the same bits.
 TEST(VcmMis, FirstVertexMergingFactorsEtaOutOfTheLightSubpath) {
     int checked = 0;
     for (int inner = 1; inner <= 5; ++inner)

@@ -1,0 +1,153 @@
+// The eye path of PPM and SPPM (see eye_path.h). In participating media the path samples free
+// flights (delta tracking) and may instead stop at a scattering event in the medium: a volume
+// visible point (multiple scattering and volume caustics from the photons); single scattering is
+// integrated along the camera ray's stretches in media.
+#include "integrators/eye_path.h"
+
+#include <algorithm>
+
+#include "core/low_discrepancy.h"
+#include "integrators/direct_light.h"
+#include "integrators/emission.h"
+#include "render/path_recorder.h"
+#include "shading/surface_walk.h"
+
+namespace phos::integrators {
+
+using shading::Bsdf;
+
+namespace {
+
+// The average's sum of n light samples at a surface visible point (from the pixel's sequences
+// with `light_sequence`, else from `sampler`).
+Rgb direct_light_sum(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, int n,
+                     const LightSampleSequence* light_sequence, Sampler& sampler, RayCounts& rays,
+                     int medium) {
+    Rgb direct(0.0f);
+    for (int k = 0; k < n; ++k) {
+        float u_choose;
+        Vec2 u;
+        if (light_sequence) {  // sample iteration × n + k of the pixel's sequences
+            const uint32_t s = light_sequence->iteration * uint32_t(n) + uint32_t(k);
+            u_choose = padded_point1(s, hash_combine(light_sequence->key, 0));
+            u = padded_point2(s, hash_combine(light_sequence->key, 1));
+        } else {
+            u_choose = sampler.next();
+            u = sampler.next2();
+        }
+        direct += sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, rays, false, medium);
+    }
+    return direct;
+}
+
+// The volume visible point where the free flight stopped. beta holds the free flight's sigma_s
+// weight; the photon estimate's density already counts sigma_s (photons are stored at scattering
+// events), so it is divided out once.
+void stop_in_medium(const Prepared& P, const shading::SurfaceWalk& walk, Rgb beta, int depth,
+                    VisiblePoint& vp) {
+    const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
+    const Rgb sigma_s = P.media[walk.medium()].at(x).sigma_s;
+    Rgb w;
+    for (int c = 0; c < 3; ++c) w[c] = sigma_s[c] > 0 ? beta[c] / sigma_s[c] : 0.0f;
+    vp.p = x;
+    vp.wo = wo;
+    vp.beta = w;
+    vp.depth = depth;
+    vp.path_length = walk.distance();
+    vp.medium = walk.medium();
+}
+
+// The surface visible point (throughput w, over the choice of the non-specular part).
+void stop_on_surface(const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, Rgb w, int depth,
+                     const shading::SurfaceWalk& walk, VisiblePoint& vp) {
+    vp.p = hit.p;
+    vp.wo = wo;
+    vp.beta = w;
+    vp.depth = depth;
+    vp.path_length = walk.distance();
+    vp.bsdf.emplace(bsdf);
+}
+
+// Follows the delta part of the BSDF (chosen with probability 1 - p_ns): beta, the ray and the
+// walk go on. False when nothing was sampled.
+bool follow_delta_lobes(const Bsdf& bsdf, const Bsdf::LobeSplit& split, const accel::SurfaceHit& hit, Vec3 wo,
+                        Sampler& sampler, Rgb& beta, Ray& ray, shading::SurfaceWalk& walk) {
+    const float u_lobe = sampler.next();
+    const auto s = bsdf.sample_lobes(split.delta, wo, u_lobe, sampler.next2());
+    if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
+    if (auto* r = recorder()) r->scattered(*s);
+    beta *= s->weight * (1 / (1 - split.p_non_delta));
+    ray = accel::spawn_ray(hit, s->wi);
+    walk.leave(hit, s->wi);
+    return true;
+}
+
+}  // namespace
+
+Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
+                   RayCounts& rays, const LightSampleSequence* light_sequence) {
+    vp.bsdf.reset();
+    vp.medium = -1;
+    Rgb L(0.0f), beta(1.0f);
+    // Adds a contribution to the path's radiance (and to the trace as `term`).
+    const auto add = [&](Rgb c, TraceTerm term) {
+        L += c;
+        if (auto* r = recorder()) r->add(term, c);
+    };
+    const shading::MediaSet* media = P.active_media();
+    // Its distance() is the visible point's path length.
+    shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
+    for (int depth = 0;;) {
+        accel::SurfaceHit hit;
+        Rgb emitted(0.0f);
+        // Single scattering is integrated over each whole stretch in a medium (equiangular
+        // sampling finds the glow around point lights); the free flight then decides whether the
+        // path stops in the medium (a volume visible point, for multiple scattering) or goes on.
+        const shading::SurfaceWalk::Event event =
+            media ? walk.next(ray, hit, sampler, beta, emitted,
+                              [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
+                                  add(beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, rays),
+                                      TraceTerm::Light);
+                              })
+                  : walk.next(ray, hit);
+        add(emitted, TraceTerm::Emission);
+        if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
+        if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
+            break;
+        if (event == shading::SurfaceWalk::Event::Medium) {
+            if (depth == P.options.max_depth) break;
+            stop_in_medium(P, walk, beta, depth, vp);
+            break;
+        }
+        if (event == shading::SurfaceWalk::Event::Escaped) {
+            // Every vertex so far was specular, so escaped light is seen directly.
+            add(beta * (P.scene.background + P.escaped(normalize(ray.dir))), TraceTerm::Emission);
+            break;
+        }
+        const Vec3 wo = -normalize(ray.dir);
+        add(seen_emission(P, hit, wo, beta), TraceTerm::Emission);
+        if (depth == P.options.max_depth) break;
+        const Bsdf bsdf = P.bsdf(hit);
+
+        // Split the lobes into the non-specular part (a visible point) and the delta part (follow).
+        const Bsdf::LobeSplit split = bsdf.split_lobes(wo);
+        const float p_ns = split.p_non_delta;
+        const float u = p_ns > 0 && p_ns < 1 ? sampler.next() : 0.5f;
+        if (p_ns >= 1 || (p_ns > 0 && u < p_ns)) {
+            const Rgb w = beta * (1 / p_ns);
+            const int n = std::max(1, direct_samples);
+            const Rgb direct =
+                direct_light_sum(P, hit, bsdf, wo, n, light_sequence, sampler, rays, walk.medium());
+            add(w * direct * (1.0f / float(n)), TraceTerm::Light);
+            stop_on_surface(hit, bsdf, wo, w, depth, walk, vp);
+            break;
+        }
+        if (!follow_delta_lobes(bsdf, split, hit, wo, sampler, beta, ray, walk)) break;
+        ++rays.bounce;
+        ++depth;
+        if (!beta.is_finite() || beta.max() <= 0) break;
+    }
+    return L;
+}
+
+}  // namespace phos::integrators
