@@ -23,7 +23,8 @@ scene::Scene load_scene(const std::string& path, const LoadOptions& options) {
     if (ext == ".scn")
         return load_scn(path, ScnOptions{.raw_materials = options.raw_materials,
                                          .no_default_lights = options.no_default_lights,
-                                         .legacy_attenuation = options.legacy_attenuation});
+                                         .legacy_attenuation = options.legacy_attenuation,
+                                         .emission_lights = options.emission_lights});
     if (ext == ".pbrt") return load_pbrt(path, PbrtOptions{options.strict});
     if (ext == ".scene") return load_scene_format(path);
     throw ParseError(path, 0, 0, "unknown scene format '" + ext + "' (phos reads .scn, .pbrt and .scene)");

@@ -12,6 +12,7 @@ struct LoadOptions {
     bool legacy_attenuation = false;  // .scn: keep (ca, la, qa) attenuation without warning
     bool strict = false;              // pbrt: unused parameters are errors
     bool no_default_lights = false;   // .scn: no default lights for a scene without lights
+    bool emission_lights = true;      // .scn: glowing surfaces are two-sided area lights
 };
 
 // Throws ParseError / InputError on malformed or missing files.

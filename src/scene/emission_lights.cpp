@@ -5,7 +5,7 @@
 
 namespace phos::scene {
 
-int emissive_shapes_to_lights(Scene& scene) {
+int emissive_shapes_to_lights(Scene& scene, bool two_sided) {
     std::map<int, int> without_glow;  // material -> its copy with emission removed
     int added = 0;
     const size_t n = scene.shapes.size();
@@ -27,6 +27,7 @@ int emissive_shapes_to_lights(Scene& scene) {
         Light light;
         light.kind = Light::Kind::Area;
         light.color = e;
+        light.two_sided = two_sided;
         light.shape = int(i);
         shape.area_light = int(scene.lights.size());
         scene.lights.push_back(light);

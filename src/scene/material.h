@@ -36,7 +36,7 @@ struct Material {
     // Lambertian transmission (pbrt diffusetransmission).
     Rgb diffuse_transmission{0.0f};
 
-    // Non-physical glow seen by camera/specular rays (.scn `e`), not a light source.
+    // Glow seen by camera/specular rays, not a light (.scn `e`, with --no-emission-lights; see scn_loader.h).
     Rgb emission{0.0f};
     // .scn ambient coefficient, used only with --ambient.
     Rgb ambient{0.0f};

@@ -22,6 +22,7 @@ struct IntegratorParameter {
     std::vector<std::string> values;  // as text: numbers, "true"/"false", strings
     std::string file;                 // where it is written
     int line = 0, column = 0;
+    std::vector<std::string> included_from;  // the Include lines that led to `file`, innermost first
 };
 
 // Render settings a scene file may carry (pbrt's Film/Sampler/Integrator); the CLI wins.

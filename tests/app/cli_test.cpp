@@ -4,6 +4,8 @@
 
 #include <filesystem>
 #include <fstream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "test_util.h"
@@ -53,7 +55,6 @@ TEST(Cli, NonsenseOptionsExitWith2) {
                                                    with_out + "--embree-config threads=4",
                                                    "render " + scene + " -o " + dir.file("x.tiff"),
                                                    "render " + scene + " -o " + dir.file("nodir/x.png"),
-                                                   "render " + scene,
                                                    "render",
                                                    "bogus-command"};
     for (const std::string& bad : bad_commands) {
@@ -74,6 +75,96 @@ TEST(Cli, MalformedSceneGivesLocatedErrorAndNoOutput) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.output.find("bad.scn:2:"), std::string::npos) << r.output;
     EXPECT_FALSE(std::filesystem::exists(out));
+}
+
+// An error in a mesh or an included file names its own place and every line that included it
+// (exit 2, nothing written), for each format that includes files.
+TEST(Cli, ErrorInAnIncludedFileNamesTheIncludingLine) {
+    TempDir dir;
+    dir.write("bad.off", "OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n");
+    dir.write("parts/walls.scn", "mesh -1 ../bad.off\n");
+    dir.write("w.mat", "diffuse 0.5 0.5 0.5\n");
+    dir.write("bad.mesh", "ply bad.off\nmaterial w.mat\n");
+    dir.write("bad.ply",
+              "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nproperty float y\n"
+              "property float z\nend_header\n0 0 zero\n");
+    dir.write("parts/mesh.pbrt", "Shape \"plymesh\" \"string filename\" \"../bad.ply\"\n");
+    struct Case {
+        std::string scene, text, mesh, chain;
+    };
+    const std::vector<Case> cases = {
+        {"scene.scn", "# walls\n  include parts/walls.scn\n", "bad.off:4:",
+         "included from " + dir.file("parts/walls.scn") + ":1:9\n  included from " + dir.file("scene.scn") +
+             ":2:11"},
+        {"scene.scene", "\nmesh bad.mesh\n", "bad.off:4:",
+         "included from " + dir.file("bad.mesh") + ":1:5\n" + "  included from " + dir.file("scene.scene") +
+             ":2:6"},
+        {"scene.pbrt", "WorldBegin\nInclude \"parts/mesh.pbrt\"\n", "bad.ply:8:",
+         "included from " + dir.file("parts/mesh.pbrt") + ":1:17\n  included from " + dir.file("scene.pbrt") +
+             ":2:1"},
+    };
+    for (const Case& c : cases) {
+        const std::string scene = dir.write(c.scene, c.text);
+        const std::string out = dir.file("o.png");
+        const auto r = run_phos("render " + scene + " -o " + out);
+        EXPECT_EQ(r.exit_code, 2) << r.output;
+        EXPECT_NE(r.output.find(c.mesh), std::string::npos) << r.output;
+        EXPECT_NE(r.output.find("\n  " + c.chain + "\n"), std::string::npos) << r.output;
+        EXPECT_FALSE(std::filesystem::exists(out));
+        EXPECT_FALSE(std::filesystem::exists(dir.file("scene.png")));
+    }
+}
+
+// Without -o a .scn or .scene scene is written beside itself as NAME.png, and the start-up line
+// says so; a pbrt file names its own (Film "filename") or gets pbrt's default, pbrt.exr, in the
+// current directory.
+TEST(Cli, DefaultOutputIsBesideTheScene) {
+    TempDir dir;
+    const std::string scene = dir.write("sub/room.scn", kTinyScene);
+    auto r = run_phos("render " + scene + " --resolution 8 8 --spp 1 --integrator path");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("sub/room.png")));
+    EXPECT_NE(r.output.find("output " + dir.file("sub/room.png") + " (default: beside the scene"),
+              std::string::npos)
+        << r.output;
+    EXPECT_EQ(read_bytes(scene), kTinyScene);  // the scene itself is untouched
+    // The seed's positional output and -o still choose it, and the line says so.
+    r = run_phos("render " + scene + " " + dir.file("given.png") + " --resolution 8 8 --spp 1");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_NE(r.output.find("output " + dir.file("given.png") + " (command line)"), std::string::npos)
+        << r.output;
+
+    dir.write("w.mat", "diffuse 0.5 0.5 0.5\n");
+    const std::string dissertation =
+        dir.write("d/one.scene",
+                  "camera 0 0 3  0 0 0  0 1 0  2\nsphere 0.5 0 0 0 ../w.mat\nlight point 0 2 2  10 10 10\n");
+    r = run_phos("render " + dissertation + " --resolution 8 8 --spp 1 --integrator path");
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("d/one.png")));
+
+    const std::string pbrt_scene =
+        "Camera \"perspective\"\nWorldBegin\nLightSource \"point\"\n"
+        "Shape \"sphere\"\n";
+    dir.write("p/none.pbrt", pbrt_scene);
+    dir.write("p/named.pbrt", "Film \"rgb\" \"string filename\" \"named.pfm\"\n" + pbrt_scene);
+    // Run from the pbrt files' directory (env's -C), where they write.
+    for (const auto& [name, written] :
+         {std::pair<std::string, std::string>{"none.pbrt", "pbrt.exr"}, {"named.pbrt", "named.pfm"}}) {
+        r = run_phos_env("-C " + dir.file("p"), "render " + name + " --resolution 8 8 --spp 1");
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        EXPECT_TRUE(std::filesystem::exists(dir.file("p/" + written))) << r.output;
+        EXPECT_NE(r.output.find("output " + written + " ("), std::string::npos) << r.output;
+    }
+}
+
+TEST(Cli, HelpNamesEverySceneFormat) {
+    for (const char* command : {"help render", "render --help"}) {
+        const auto r = run_phos(command);
+        EXPECT_EQ(r.exit_code, 0) << r.output;
+        for (const char* format : {".scn", ".pbrt", ".scene"})
+            EXPECT_NE(r.output.find(format), std::string::npos) << command << ": " << format;
+        EXPECT_NE(r.output.find(".scn, .pbrt, .scene"), std::string::npos) << r.output;
+    }
 }
 
 TEST(Cli, FailedRenderLeavesExistingOutputUntouched) {

@@ -216,13 +216,19 @@ TEST(Options, NoLightsWarnsOnceNamingTheCause) {
                                       "material 0 0 0  .5 .5 .5  0 0 0  0 0 0  1 1 1  1 1 0\n"
                                       "sphere 0  0 0 0  1\n");
     for (const char* integrator : {"path", "photonmap", "sppm"}) {
-        const auto r = run_phos("render " + scn + " --width 8 --spp 1 --no-default-lights --integrator " +
-                                std::string(integrator) + " -o " + dir.file("d.pfm"));
+        const auto r =
+            run_phos("render " + scn + " --width 8 --spp 1 --no-default-lights --no-emission-lights" +
+                     " --integrator " + std::string(integrator) + " -o " + dir.file("d.pfm"));
         EXPECT_EQ(r.exit_code, 0) << r.output;
         EXPECT_EQ(count(r.output, "warning"), 1u) << integrator << ": " << r.output;
         EXPECT_NE(r.output.find("no lights"), std::string::npos) << r.output;
-        EXPECT_NE(r.output.find("--emission-lights"), std::string::npos) << r.output;  // it glows
+        EXPECT_NE(r.output.find("--no-emission-lights"), std::string::npos) << r.output;  // it glows
         EXPECT_EQ(r.output.find("max-emitted"), std::string::npos) << r.output;
+        // By default its glow is a light: no warning.
+        const auto lit = run_phos("render " + scn + " --width 8 --spp 1 --no-default-lights --integrator " +
+                                  std::string(integrator) + " -o " + dir.file("d.pfm"));
+        EXPECT_EQ(lit.exit_code, 0) << lit.output;
+        EXPECT_EQ(count(lit.output, "warning"), 0u) << integrator << ": " << lit.output;
     }
 }
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 
 #include "io/image/image_io.h"
 #include "test_util.h"
@@ -136,56 +135,6 @@ TEST(SeedCommandLine, PhotonMapperIsTheDefaultForScnScenes) {
     const double pm = window(dir.file("default.exr")), path = window(dir.file("path.exr"));
     EXPECT_GT(pm, 1.0) << "reference window mean 4.58";
     EXPECT_GT(pm, 10 * path);
-}
-
-// One rule for which side of an emitter emits, in every integrator: a glowing .scn shape turned into
-// a light by --emission-lights emits on the side its normal faces (counter-clockwise winding), as
-// area lights everywhere do. A panel facing into a Cornell box: path and photonmap agree, and so do
-// the direct-only whitted and path with one bounce; the ceiling itself glowing outwards leaves the
-// room black in all of them.
-TEST(SeedCommandLine, EmittersEmitOnTheSameSideInEveryIntegrator) {
-    TempDir dir;
-    std::string room;
-    {
-        std::ifstream f(shared_path("bench/scn/cornell-diffuse.scn"));
-        for (std::string line; std::getline(f, line);)
-            if (line.rfind("rect_light", 0) != 0) room += line + "\n";
-    }
-    const std::string glow = "material 0 0 0   0 0 0   0 0 0   0 0 0   5 5 5   10 1 0\n";
-    const std::string black_light = "point_light 0 0 0   0 0.5 0   0 0 1\n";  // keeps default lights away
-    const std::string in = dir.write("in.scn", room + glow +
-                                                   "tri 3   -0.2 0.99 -0.2   0.2 0.99 0.2   -0.2 0.99 0.2\n"
-                                                   "tri 3   -0.2 0.99 -0.2   0.2 0.99 -0.2   0.2 0.99 0.2\n" +
-                                                   black_light);
-    std::string ceiling_out;  // the room with its ceiling replaced by an outward-facing glowing one
-    for (size_t pos = 0; pos < room.size();) {
-        const size_t end = room.find('\n', pos);
-        const std::string line = room.substr(pos, end - pos);
-        if (line.rfind("tri 0   -0.5 1 ", 0) != 0) ceiling_out += line + "\n";
-        pos = end + 1;
-    }
-    const std::string out = dir.write("out.scn", ceiling_out + glow +
-                                                     "tri 3   -0.5 1 -0.5   -0.5 1 0.5   0.5 1 0.5\n"
-                                                     "tri 3   -0.5 1 -0.5   0.5 1 0.5   0.5 1 -0.5\n" +
-                                                     black_light);
-    const auto render = [&](const std::string& scene, const std::string& args) {
-        const std::string img = dir.file("x.pfm");
-        std::filesystem::remove(img);
-        const auto r = run_phos("render " + scene + " --emission-lights --resolution 32 32 --quiet " + args +
-                                " -o " + img);
-        EXPECT_EQ(r.exit_code, 0) << args << "\n" << r.output;
-        return mean_of(img);
-    };
-    const double path = render(in, "--integrator path --spp 64");
-    const double photonmap = render(in, "--integrator photonmap --spp 16");
-    const double whitted = render(in, "--integrator whitted --spp 16");
-    const double path_direct = render(in, "--integrator path --spp 64 --max-depth 1");
-    EXPECT_GT(path, 0.1);
-    // 32x32 means: path's noise is ~0.5 %, photonmap's bias (kernel estimates) ~1-2 %.
-    EXPECT_NEAR(photonmap / path, 1.0, 0.05) << photonmap << " vs " << path;
-    EXPECT_NEAR(whitted / path_direct, 1.0, 0.03) << whitted << " vs " << path_direct;
-    for (const std::string integrator : {"path", "photonmap", "whitted", "sppm --iterations 4"})
-        EXPECT_EQ(render(out, "--integrator " + integrator), 0.0) << integrator;
 }
 
 // The seed's Makefile command lines run unchanged (output last, after the flags): the flags with a

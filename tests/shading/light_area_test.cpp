@@ -1,7 +1,9 @@
 // Area lights against closed forms: Monte Carlo irradiance from sample_Li under a rectangle (mesh),
 // a transformed rectangle, a disk, an annulus, an ellipse (non-uniformly scaled disk) and spheres;
-// one-sidedness; and the emitting-side rule (reverse_orientation XOR handedness swap).
+// one- and two-sidedness; and the emitting-side rule (reverse_orientation XOR handedness swap).
 #include <gtest/gtest.h>
+
+#include <utility>
 
 #include "core/transform.h"
 #include "light_test_util.h"
@@ -127,6 +129,29 @@ TEST(AreaLight, OneSidedAndTwoSided) {
         EXPECT_EQ(one.sample_Li({0, 0, 0}, u).L, Rgb(1.0f));
     }
     EXPECT_NEAR(two.power().r, 2 * one.power().r, 1e-6f);
+}
+
+// A two-sided light (a .scn glow) lights its back as its front: Lambert's irradiance at mirrored
+// points on either side, and sample_Li's density agrees with pdf_Li on both sides.
+TEST(AreaLight, TwoSidedLightsBothSidesAlike) {
+    const scene::Shape rect = test::rectangle_y(-0.5f, 0.5f, -0.25f, 0.75f, 1.5f);
+    const AreaLight light(test::area_light_record(Rgb(2.0f), true), rect);
+    int i = 0;
+    for (const auto& [x, n] :
+         {std::pair<Vec3, Vec3>{{0.3f, 0, 0.1f}, {0, 1, 0}}, {{0.3f, 3, 0.1f}, {0, -1, 0}}}) {
+        const double closed = test::lambert_irradiance(rect.mesh.positions, x, n, 2.0);
+        expect_mean(irradiance(light, x, n, 40000, 700 + uint64_t(i++)), closed, "two-sided irradiance");
+        Sampler rng(710 + uint64_t(i));
+        for (int k = 0; k < 100; ++k) {
+            const LightLiSample s = light.sample_Li(x, rng.next2());
+            ASSERT_GT(s.pdf, 0);
+            EXPECT_EQ(s.L, Rgb(2.0f));
+            EXPECT_NEAR(light.pdf_Li(x, s.wi, s.p_light, s.n_light), s.pdf, 1e-4f * s.pdf);
+        }
+    }
+    // Mirrored points see the same irradiance (1.5 below and above the light).
+    EXPECT_NEAR(test::lambert_irradiance(rect.mesh.positions, {0.3f, 0, 0.1f}, {0, 1, 0}, 2.0),
+                test::lambert_irradiance(rect.mesh.positions, {0.3f, 3, 0.1f}, {0, -1, 0}, 2.0), 1e-6);
 }
 
 // Expected emitting normals, by the accel layer's rules (see shape_sampler.h): analytic shapes use

@@ -210,9 +210,9 @@ int run_cli(int argc, char** argv) {
         "[COMMAND]");
 
     RenderCommand rc;
-    CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt) to an image");
+    CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt, .scene) to an image");
     render->add_option("scene", rc.scene_path,
-                       "scene file (.scn or .pbrt); may be omitted with --resume, which replays the "
+                       "scene file (.scn, .pbrt or .scene); may be omitted with --resume, which replays the "
                        "checkpointed render's arguments");
     std::string positional_output;
     render->add_option(

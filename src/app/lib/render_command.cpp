@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <chrono>
 #include <cmath>
@@ -37,7 +38,6 @@
 #include "render/aov.h"
 #include "render/prepared.h"
 #include "render/progressive_checkpoint.h"
-#include "scene/emission_lights.h"
 
 namespace phos::app {
 namespace {
@@ -100,8 +100,32 @@ void check_output(const std::string& out) {
 
 // Where the effective settings came from, for the start-up line.
 struct Sources {
-    std::string integrator, size, spp;
+    std::string integrator, size, spp, output;
 };
+
+// The image to write: -o (or the seed's positional output), else the scene file's own (pbrt's Film
+// "filename", written to the current directory), else a default: pbrt's own, pbrt.exr, for a pbrt
+// file; for .scn and .scene scenes, which cannot name one, the scene's name with .png beside it.
+std::string choose_output(const RenderCommand& cmd, const scene::Scene& scene, std::string& source) {
+    if (!cmd.run.output.empty()) {
+        source = "command line";
+        return cmd.run.output;
+    }
+    if (scene.settings.output) {
+        source = "scene file";
+        const std::filesystem::path p(*scene.settings.output);
+        return p.is_absolute() ? p.string() : p.filename().string();  // written to the current directory
+    }
+    std::string ext = std::filesystem::path(cmd.scene_path).extension().string();
+    std::transform(ext.begin(), ext.end(), ext.begin(),
+                   [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == ".pbrt") {
+        source = "default: pbrt's Film filename";
+        return "pbrt.exr";
+    }
+    source = "default: beside the scene; -o FILE chooses another";
+    return std::filesystem::path(cmd.scene_path).replace_extension(".png").string();
+}
 
 // The integrator, image size and sample count: the command line, else the scene file, else the
 // defaults. A single --width or --height keeps the scene's aspect ratio. The scene file's sample
@@ -326,7 +350,7 @@ std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Sc
             // An integrator phos substitutes already had one warning for the whole directive.
             if (!st.unavailable_integrator.empty()) continue;
             const std::string msg = what + " is not used by phos";
-            if (cmd.run.strict) throw ParseError(p.file, p.line, p.column, msg);
+            if (cmd.run.strict) throw ParseError(p.file, p.line, p.column, msg, p.included_from);
             if (own) log::warn(ParseError::format(p.file, p.line, p.column, msg + " (ignored)"));
             continue;
         }
@@ -336,12 +360,14 @@ std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Sc
         if (int(p.values.size()) != opt->arity)
             throw ParseError(
                 p.file, p.line, p.column,
-                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name());
+                what + ": expected " + std::to_string(opt->arity) + " value(s) for " + opt->flag_name(),
+                p.included_from);
         try {
             opt->set(object, p.values);
             applied.insert(opt->name);
         } catch (const options::ValueError& e) {
-            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what());
+            throw ParseError(p.file, p.line, p.column, what + " (" + opt->flag_name() + "): " + e.what(),
+                             p.included_from);
         }
         if (opt->name == "iterations" && !cmd.was_given("spp") && !cmd.was_given("aa"))
             cmd.render.spp = cmd.progressive.iterations;
@@ -366,13 +392,11 @@ void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, 
 }
 
 scene::Scene load_render_scene(const RenderCommand& cmd) {
-    scene::Scene scene = io::load_scene(cmd.scene_path, {.raw_materials = cmd.scene.raw_materials,
-                                                         .legacy_attenuation = cmd.scene.legacy_attenuation,
-                                                         .strict = cmd.run.strict,
-                                                         .no_default_lights = cmd.scene.no_default_lights});
-    if (cmd.scene.emission_lights && scene::emissive_shapes_to_lights(scene) == 0)
-        log::warn("--emission-lights: the scene has no emissive surfaces");
-    return scene;
+    return io::load_scene(cmd.scene_path, {.raw_materials = cmd.scene.raw_materials,
+                                           .legacy_attenuation = cmd.scene.legacy_attenuation,
+                                           .strict = cmd.run.strict,
+                                           .no_default_lights = cmd.scene.no_default_lights,
+                                           .emission_lights = cmd.scene.emission_lights});
 }
 
 render::PrepareOptions prepare_options(const RenderCommand& cmd) {
@@ -411,13 +435,11 @@ int run_render(const RenderCommand& command) {
     }
 
     // Resolve settings: command line, then the scene file, then defaults.
-    std::string output = cmd.run.output;
-    if (output.empty() && scene.settings.output) {
-        const std::filesystem::path p(*scene.settings.output);
-        output = p.is_absolute() ? p.string() : p.filename().string();  // written to the current directory
-    }
+    std::string output_source;
+    const std::string output = choose_output(cmd, scene, output_source);
     if (dist::root()) check_output(output);  // under MPI rank 0 alone writes
     Sources sources = resolve_settings(cmd, scene);
+    sources.output = output_source;
     apply_quality(cmd, apply_scene_parameters(cmd, scene), sources);
     check_options(cmd);
     check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
@@ -460,12 +482,13 @@ int run_render(const RenderCommand& command) {
     if (prepared->lights.size() == 0) {
         bool glows = false;
         for (const scene::Material& m : scene.materials) glows |= m.emission.max() > 0;
-        log::warn_once("no-lights", cmd.scene_path +
-                                        ": the scene has no lights; the image is black except for emission "
-                                        "and the background" +
-                                        (glows && !cmd.scene.emission_lights
-                                             ? " (--emission-lights makes its glowing surfaces lights)"
-                                             : ""));
+        log::warn_once("no-lights",
+                       cmd.scene_path +
+                           ": the scene has no lights; the image is black except for emission "
+                           "and the background" +
+                           (glows && !cmd.scene.emission_lights
+                                ? " (its glowing surfaces light nothing with --no-emission-lights)"
+                                : ""));
     }
 
     {
@@ -478,7 +501,7 @@ int run_render(const RenderCommand& command) {
         log::info("phos: " + std::filesystem::path(cmd.scene_path).filename().string() + ": " +
                   integrator_name + " (" + sources.integrator + "), " + std::to_string(opt.width) + "x" +
                   std::to_string(opt.height) + " (" + sources.size + "), " + budget + " (" + sources.spp +
-                  "), seed " + std::to_string(opt.seed));
+                  "), seed " + std::to_string(opt.seed) + ", output " + output + " (" + sources.output + ")");
     }
 
     display::PreviewWindow window;

@@ -10,7 +10,7 @@
 
 namespace phos::app {
 
-// The scene of `cmd` loaded as the render loads it (reading switches, --emission-lights).
+// The scene of `cmd` loaded as the render loads it (reading switches, --no-emission-lights).
 scene::Scene load_render_scene(const RenderCommand& cmd);
 // The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
 // the option tables by name, for options the command line did not give; returns the names set. A

@@ -28,7 +28,9 @@ const options::Table& run_options() {
                            "output image: .exr (linear float), .pfm (linear), .png / .bmp (sRGB 8-bit)");
         out.effect = Effect::None;
         out.short_name = "o";
-        out.default_text = "the scene file's Film filename";
+        out.default_text =
+            "the scene file's Film filename (pbrt.exr if a pbrt file names none); .scn, .scene: the scene's "
+            "name with .png, beside it";
         auto& integ = b.choice("integrator", &RunOptions::integrator, integrators::integrator_names(),
                                "rendering algorithm");
         integ.default_text = "the scene file's (pbrt: path unless it names one), else photonmap";
@@ -112,7 +114,9 @@ const options::Table& scene_options() {
         b.flag("legacy-attenuation", &SceneOptions::legacy_attenuation,
                ".scn: honour (ca, la, qa) light attenuation in direct light");
         b.flag("emission-lights", &SceneOptions::emission_lights,
-               ".scn: surfaces with emission e become area lights (they light the scene and emit photons)");
+               ".scn: surfaces with emission e are area lights, on both sides (they light the scene and emit "
+               "photons); --no-emission-lights: their glow is only seen, as in the seed renderer",
+               true, "no-emission-lights");
         b.flag("real", &SceneOptions::real,
                ".scn: the seed's -real (scale lobes so kd + ks + kt <= 1): phos always does this now, see "
                "--raw-materials")

@@ -21,7 +21,7 @@ inline constexpr const char* kTevDefault = "127.0.0.1:14158";
 
 // Options of the run itself (none changes the image's radiance).
 struct RunOptions {
-    std::string output;  // empty: the scene file's Film filename
+    std::string output;  // empty: the scene file's Film filename, else a default (render_command.cpp)
     // The scene file's integrator when it names one (pbrt files always do: pbrt's default is
     // volpath), else the photon mapper, as in both seed renderers.
     std::string integrator = "photonmap";
@@ -46,7 +46,7 @@ struct RunOptions {
 struct SceneOptions {
     bool schlick = false;
     bool legacy_attenuation = false;
-    bool emission_lights = false;    // glowing .scn surfaces become area lights
+    bool emission_lights = true;     // glowing .scn surfaces are two-sided area lights
     bool real = false;               // the seed's -real: now the default (accepted, no effect)
     bool raw_materials = false;      // keep energy-creating .scn materials as written
     bool no_default_lights = false;  // .scn: no default lights for a scene without lights

@@ -232,6 +232,7 @@ void SceneBuilder::integrator(const std::string& type, const ParamList& params, 
         ip.file = p.loc.filename();
         ip.line = p.loc.line;
         ip.column = p.loc.col;
+        if (p.loc.file) ip.included_from = p.loc.file->included_from;
         scene_.settings.integrator_parameters.push_back(std::move(ip));
     }
     params.mark_all_used();

@@ -166,7 +166,12 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
             const std::string path = resolve(params.get_string("filename", ""), fp->loc);
             std::error_code ec;
             if (!std::filesystem::exists(path, ec)) fp->loc.fail(d + ": cannot open '" + path + "'");
-            s.mesh = read_ply(path);
+            try {
+                s.mesh = read_ply(path);
+            } catch (ParseError& e) {  // at the PLY file's own line; also where it is named
+                fp->loc.add_to(e);
+                throw;
+            }
         } else {
             s.mesh = mesh_from_params(type == "bilinearmesh");
         }

@@ -168,7 +168,7 @@ private:
         const std::string name = string_arg(loc, d);
         fs::path p(name);
         if (p.is_relative()) p = fs::path(loc.filename()).parent_path() / p;
-        push(p.string(), &loc);
+        push(p.string(), &loc);  // errors in the file say "included from" this directive
     }
 
     void directive(const Token& t) {

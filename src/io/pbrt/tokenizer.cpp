@@ -11,7 +11,7 @@ namespace phos::io::pbrt {
 
 const std::string& Loc::filename() const {
     static const std::string none;
-    return file ? *file : none;
+    return file ? file->name : none;
 }
 
 std::string Loc::str() const {
@@ -21,10 +21,32 @@ std::string Loc::str() const {
     return s;
 }
 
-void Loc::fail(const std::string& message) const { throw ParseError(filename(), line, col, message); }
+void Loc::fail(const std::string& message) const {
+    throw ParseError(filename(), line, col, message, file ? file->included_from : std::vector<std::string>{});
+}
+
+void Loc::add_to(ParseError& e) const {
+    e.add_included_from(filename(), line, col);
+    if (file)
+        for (const std::string& place : file->included_from) e.add_included_from(place);
+}
+
+namespace {
+std::shared_ptr<const SourceFile> source_file(const std::string& path, const Loc* included_from) {
+    SourceFile f;
+    f.name = path;
+    if (included_from) {
+        f.included_from.push_back(included_from->str());
+        if (included_from->file)
+            f.included_from.insert(f.included_from.end(), included_from->file->included_from.begin(),
+                                   included_from->file->included_from.end());
+    }
+    return std::make_shared<const SourceFile>(std::move(f));
+}
+}  // namespace
 
 Tokenizer::Tokenizer(const std::string& path, const Loc* included_from)
-    : file_(std::make_shared<const std::string>(path)) {
+    : file_(source_file(path, included_from)) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         if (included_from) included_from->fail("cannot open included file '" + path + "'");

@@ -136,7 +136,8 @@ int Reader::texture(const FileArg& f) {
     scene::Texture tex;
     try {
         tex = text::read_image_texture(f.path.string());
-    } catch (const ParseError&) {
+    } catch (ParseError& e) {
+        add_includers(e, f.token);
         throw;
     } catch (const std::exception& e) {  // InputError, or a decoder library's own exception
         fail(f.token, "texture: cannot read '" + f.token.text + "': " + e.what());

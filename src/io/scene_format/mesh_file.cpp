@@ -74,7 +74,8 @@ void Reader::read_mesh(const FileArg& f) {
     LoadedMesh loaded;
     try {
         loaded = io::read_mesh(ply->path.string());  // a ParseError names the PLY file's own line
-    } catch (const ParseError&) {
+    } catch (ParseError& e) {
+        add_includers(e, ply->token);
         throw;
     } catch (const std::exception& e) {  // InputError, or a reader library's own exception
         fail(ply->token, "ply: cannot read '" + ply->token.text + "': " + e.what());

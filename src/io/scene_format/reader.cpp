@@ -40,7 +40,14 @@ void Reader::open(const FileArg& arg) {
     f.name = arg.name;
     f.dir = arg.path.parent_path();
     f.canonical = arg.canonical;
-    const text::LexedFile lexed = text::lex(arg.name, text::read_file_bytes(arg.path.string()));
+    if (!files_.empty()) f.named_at = ParseError::location(file().name, arg.token.line, arg.token.col);
+    text::LexedFile lexed;
+    try {
+        lexed = text::lex(arg.name, text::read_file_bytes(arg.path.string()));
+    } catch (ParseError& e) {  // a byte the lexer refuses, in the file being opened
+        if (!files_.empty()) add_includers(e, arg.token);
+        throw;
+    }
     for (const Token& t : lexed.tokens) {
         if (f.lines.empty() || f.lines.back().keyword.line != t.line) {
             f.lines.push_back({t, {}, t.col + code_points(t.text)});
@@ -57,7 +64,19 @@ void Reader::open(const FileArg& arg) {
 void Reader::fail(const Token& at, const std::string& message) const { fail_at(at.line, at.col, message); }
 
 void Reader::fail_at(int line, int col, const std::string& message) const {
-    throw ParseError(file().name, line, col, message);
+    throw ParseError(file().name, line, col, message, include_chain());
+}
+
+std::vector<std::string> Reader::include_chain() const {
+    std::vector<std::string> chain;
+    for (auto it = files_.rbegin(); it != files_.rend(); ++it)
+        if (!it->named_at.empty()) chain.push_back(it->named_at);
+    return chain;
+}
+
+void Reader::add_includers(ParseError& e, const Token& at) const {
+    e.add_included_from(file().name, at.line, at.col);
+    for (const std::string& place : include_chain()) e.add_included_from(place);
 }
 
 std::string Reader::where(const Token& at) const { return file().name + ":" + std::to_string(at.line); }

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "io/text/text_lexer.h"
 #include "scene/scene.h"
 
@@ -50,6 +51,7 @@ private:
         std::filesystem::path canonical;
         std::vector<Line> lines;
         int end_line = 1, end_col = 1;
+        std::string named_at;  // "file:line:col" of the argument that named it ("" for the .scene)
     };
 
     // A file named by an argument, resolved against the directory of the file that names it.
@@ -67,6 +69,10 @@ private:
     const File& file() const { return files_.back(); }
     [[noreturn]] void fail(const Token& at, const std::string& message) const;
     [[noreturn]] void fail_at(int line, int col, const std::string& message) const;
+    // Where the files being read were named, innermost first (each error's "included from" lines).
+    std::vector<std::string> include_chain() const;
+    // Adds to an error from a file this one names at `at` (a PLY, a texture) where it was named.
+    void add_includers(ParseError& e, const Token& at) const;
     std::string where(const Token& at) const;
     // Exactly `n` finite numbers, named by `names` in messages ("ex ey ez  lx ly lz  ux uy uz  d").
     std::vector<double> numbers(const Line& l, size_t n, const char* names) const;

@@ -135,7 +135,8 @@ int Parser::load_texture(const fs::path& path, const Token& at) {
     scene::Texture tex;
     try {
         tex = text::read_image_texture(path.string());
-    } catch (const ParseError&) {
+    } catch (ParseError& e) {
+        e.add_included_from(files_.back().name, at.line, at.col);
         throw;
     } catch (const std::exception& e) {  // InputError, or a decoder library's own exception
         fail(at, std::string("material: cannot read texture '") + at.text + "': " + e.what());
@@ -265,7 +266,8 @@ void Parser::cmd_mesh(const Token& cmd) {
     LoadedMesh loaded;
     try {
         loaded = read_mesh(p.string());  // a ParseError names the mesh file's own line
-    } catch (const ParseError&) {
+    } catch (ParseError& e) {
+        e.add_included_from(files_.back().name, tok.line, tok.col);  // and this command's
         throw;
     } catch (const std::exception& e) {  // InputError, or a reader library's own exception
         fail(tok, std::string("mesh: cannot read '") + tok.text + "': " + e.what());

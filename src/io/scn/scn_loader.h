@@ -20,6 +20,10 @@ struct ScnOptions {
     // Keep non-physical light attenuation constants silently (they are stored in Light::attenuation
     // either way; without this flag each light with constants other than 0 0 1 gets a warning).
     bool legacy_attenuation = false;
+    // Glowing surfaces (material emission `e`) are two-sided area lights: they light the scene and
+    // emit photons from both sides, as their glow is seen from both sides. False: the glow is only
+    // seen (by camera rays and through mirrors and glass), as in the seed renderer.
+    bool emission_lights = true;
 };
 
 // Reads `path` (and its includes, meshes and textures). Throws ParseError (file:line:col of the

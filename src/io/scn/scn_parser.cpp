@@ -194,21 +194,29 @@ void Parser::parse_file(const fs::path& path, const std::string& name, const Tok
         throw ParseError(name, 0, 0, e.what());
     }
 
-    File f;
-    f.name = name;
-    f.dir = path.parent_path();
-    f.canonical = canonical;
-    f.lexed = lex(name, bytes);
-    f.group_base = groups_.size();
-    f.id = next_file_id_++;
-    files_.push_back(std::move(f));
+    // An error anywhere inside an included file also names where the include names the file (and,
+    // as the error passes each enclosing include, where that one does).
+    const std::string includer = included_by ? files_.back().name : std::string();
+    try {
+        File f;
+        f.name = name;
+        f.dir = path.parent_path();
+        f.canonical = canonical;
+        f.lexed = lex(name, bytes);
+        f.group_base = groups_.size();
+        f.id = next_file_id_++;
+        files_.push_back(std::move(f));
 
-    while (const Token* t = next_token()) command(*t);
+        while (const Token* t = next_token()) command(*t);
 
-    File& done = files_.back();
-    if (groups_.size() > done.group_base)
-        fail(groups_.back().begin, "begin without a matching end (in this file)");
-    files_.pop_back();
+        File& done = files_.back();
+        if (groups_.size() > done.group_base)
+            fail(groups_.back().begin, "begin without a matching end (in this file)");
+        files_.pop_back();
+    } catch (ParseError& e) {
+        if (included_by) e.add_included_from(includer, included_by->line, included_by->col);
+        throw;
+    }
 }
 
 void Parser::command(const Token& keyword) {

@@ -1,6 +1,9 @@
 // Malformed pbrt input: each case must throw a ParseError at the exact file:line:col of the fault.
 #include <gtest/gtest.h>
 
+#include <string>
+#include <vector>
+
 #include "pbrt_test_util.h"
 
 namespace phos::io::test {
@@ -203,6 +206,47 @@ TEST(PbrtErrorsFiles, MalformedPlyIsReportedInThePlyFile) {
     const std::string p =
         dir.write("m.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"bad.ply\"\n");
     expect_pbrt_error(p, 8, 5, "malformed number", ply);
+}
+
+// Errors inside included files (and PLY meshes they name) also name every Include / Import
+// directive, and the plymesh's filename parameter, that led there, innermost first.
+TEST(PbrtErrorsFiles, ErrorsInIncludedFilesNameTheIncludingLines) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string inc = dir.write("sub/inc.pbrt", "# comment\nShape \"sphere\" \"float radius\" \"x\"\n");
+    const std::string main = dir.write("main.pbrt", "WorldBegin\n  Include \"sub/inc.pbrt\"\n");
+    try {
+        load_pbrt(main);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, inc);
+        EXPECT_EQ(e.included_from, std::vector<std::string>{main + ":2:3"});
+        EXPECT_EQ(std::string(e.what()), inc + ":2:16: " + e.message + "\n  included from " + main + ":2:3");
+    }
+    dir.write("sub/bad.ply",
+              "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
+              "property float y\nproperty float z\nend_header\n0 0 zero\n");
+    dir.write("sub/mesh.pbrt", "\nShape \"plymesh\" \"string filename\" \"bad.ply\"\n");
+    const std::string top = dir.write("top.pbrt", "WorldBegin\nImport \"sub/mesh.pbrt\"\n");
+    try {
+        load_pbrt(top);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, dir.file("sub/bad.ply"));
+        EXPECT_EQ(e.line, 8);
+        const std::vector<std::string> chain{dir.file("sub/mesh.pbrt") + ":2:17", top + ":2:1"};
+        EXPECT_EQ(e.included_from, chain);
+    }
+    // An error at the Include itself (a cycle) is in the including file: one line less.
+    const std::string a = dir.write("a.pbrt", "WorldBegin\nInclude \"b.pbrt\"\n");
+    const std::string b = dir.write("b.pbrt", "\n\n  Import \"a.pbrt\"\n");
+    try {
+        load_pbrt(a);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, b);
+        EXPECT_EQ(e.included_from, std::vector<std::string>{a + ":2:1"});
+    }
 }
 
 }  // namespace

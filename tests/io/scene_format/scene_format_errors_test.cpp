@@ -300,5 +300,56 @@ TEST_P(SceneFormatErrors, LocatedInTheFileAtFault) {
 INSTANTIATE_TEST_SUITE_P(Cases, SceneFormatErrors, ::testing::ValuesIn(kCases),
                          [](const ::testing::TestParamInfo<Case>& i) { return i.param.name; });
 
+// An error in a .mesh, .mat or PLY file also names the lines that named it (a .scene's mesh or
+// sphere, a .mesh's ply or material), innermost first, at the file name they give.
+TEST(SceneFormatErrorsIncluded, NameTheIncludingLines) {
+    log::set_quiet(true);
+    testing::TempDir dir;
+    dir.write("q.ply", kQuadPly);
+    dir.write("sub/w.mat", "diffuse 0.5 0.5 0.5\n");
+    dir.write("sub/u.mat", "\ndifuse 1 1 1\n");
+    dir.write("sub/bad.ply",
+              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+              "property float z\nend_header\n0 0 zero\n");
+    dir.write("sub/ply.mesh", "ply bad.ply\nmaterial w.mat\n");
+    dir.write("sub/mat.mesh", "ply ../q.ply\nmaterial u.mat\n");
+    dir.write("sub/key.mesh", "ply ../q.ply\nmaterial w.mat\ntranslat 0 1 0\n");
+    struct Case {
+        std::string main, file;
+        int line;
+        std::vector<std::string> chain;  // relative names and positions, innermost first
+    };
+    const std::vector<Case> cases = {
+        {"# a mesh\nmesh sub/ply.mesh\n", "sub/bad.ply", 8, {"sub/ply.mesh:1:5", "main.scene:2:6"}},
+        {"mesh sub/mat.mesh\n", "sub/u.mat", 2, {"sub/mat.mesh:2:10", "main.scene:1:6"}},
+        {"mesh   sub/key.mesh\n", "sub/key.mesh", 3, {"main.scene:1:8"}},
+        {"sphere 1 0 0 0 sub/u.mat\n", "sub/u.mat", 2, {"main.scene:1:16"}},
+    };
+    for (const Case& c : cases) {
+        const std::string main = dir.write("main.scene", c.main);
+        try {
+            load_scene_format(main);
+            ADD_FAILURE() << "expected a ParseError: " << c.main;
+        } catch (const ParseError& e) {
+            EXPECT_EQ(e.file, dir.file(c.file)) << e.what();
+            EXPECT_EQ(e.line, c.line) << e.what();
+            std::vector<std::string> chain;
+            for (const std::string& at : c.chain) chain.push_back(dir.file(at));
+            EXPECT_EQ(e.included_from, chain) << e.what();
+            std::string text = ParseError::format(e.file, e.line, e.column, e.message);
+            for (const std::string& at : chain) text += "\n  included from " + at;
+            EXPECT_EQ(std::string(e.what()), text);
+        }
+    }
+    // An error in the .scene itself names no other file.
+    const std::string main = dir.write("main.scene", "spere 1 0 0 0 sub/w.mat\n");
+    try {
+        load_scene_format(main);
+        ADD_FAILURE() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_TRUE(e.included_from.empty()) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace phos::io

@@ -381,6 +381,41 @@ TEST_F(ScnCommand, NoLightsGetsTheSeedsDefaultLights) {
     EXPECT_EQ(s.lights.size(), 1u);
 }
 
+// A glow `e` is a light: each glowing shape becomes a two-sided area light of radiance e (its glow
+// moves into the light, so it is not counted twice). Only light commands keep the seed's default
+// lights away; with emission_lights off the glow is only seen, as in the seed.
+TEST_F(ScnCommand, GlowingSurfacesAreTwoSidedAreaLights) {
+    const std::string glow = "material 0 0 0  0.2 0.2 0.2  0 0 0  0 0 0  4 3 2  10 1 0\n";
+    const std::string black_light = "point_light 0 0 0  0 2 0  0 0 1\n";
+    auto s = load(kMat + glow + "sphere 0 0 0 0 1\ntri 1  0 1 0  1 1 0  0 1 1\ncircle 1  0 3 0  0 -1 0  1\n" +
+                  black_light);
+    ASSERT_EQ(s.lights.size(), 3u);  // the black point light and the two glowing shapes
+    EXPECT_EQ(s.shapes[0].area_light, -1);
+    for (size_t i : {size_t(1), size_t(2)}) {
+        ASSERT_GE(s.shapes[i].area_light, 0) << i;
+        const Light& l = s.lights[size_t(s.shapes[i].area_light)];
+        EXPECT_EQ(l.kind, Light::Kind::Area);
+        EXPECT_TRUE(l.two_sided);
+        EXPECT_EQ(l.shape, int(i));
+        EXPECT_EQ(l.color, Rgb(4, 3, 2));
+        EXPECT_TRUE(s.materials[size_t(s.shapes[i].material)].emission.is_black());
+        EXPECT_EQ(s.materials[size_t(s.shapes[i].material)].diffuse, Rgb(0.2f));
+    }
+
+    // Without a light command the seed's default lights come too.
+    s = load(kMat + glow + "sphere 1 0 0 0 1\n");
+    ASSERT_EQ(s.lights.size(), 3u);
+    EXPECT_EQ(s.lights[0].kind, Light::Kind::Directional);
+    EXPECT_EQ(s.lights[2].kind, Light::Kind::Area);
+
+    ScnOptions seen_only;
+    seen_only.emission_lights = false;
+    s = load(kMat + glow + "sphere 1 0 0 0 1\n" + black_light, seen_only);
+    ASSERT_EQ(s.lights.size(), 1u);
+    EXPECT_EQ(s.shapes[0].area_light, -1);
+    EXPECT_EQ(s.materials[size_t(s.shapes[0].material)].emission, Rgb(4, 3, 2));
+}
+
 // Writes a width x 1 RGB PNG with the given 8-bit pixels.
 void write_png(const std::string& path, const std::vector<unsigned char>& rgb) {
     FILE* f = std::fopen(path.c_str(), "wb");

@@ -266,5 +266,75 @@ TEST(ScnErrorExtra, WhatStringIsFileLineColMessage) {
     }
 }
 
+// An error inside a mesh or an included scene names its own file, line and column, then every
+// `mesh` / `include` that led there, innermost first, at the file name that command gives.
+TEST(ScnErrorExtra, ErrorsInIncludedFilesNameTheIncludingLines) {
+    log::set_quiet(true);
+    TempDir dir;
+    dir.write("sub/bad.off", "OFF\n3 1 0\n0 0 0\n1 0 x\n0 1 0\n3 0 1 2\n");
+    dir.write("sub/inc.scn", "# the mesh, in the group's material\n  mesh -1 bad.off\n");
+    const std::string main = dir.write("main.scn", kMat + "\ninclude sub/inc.scn\n");
+    try {
+        load_scn(main);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, dir.file("sub/bad.off"));
+        EXPECT_EQ(e.line, 4) << e.what();
+        const std::vector<std::string> chain{dir.file("sub/inc.scn") + ":2:11", main + ":3:9"};
+        EXPECT_EQ(e.included_from, chain);
+        EXPECT_EQ(std::string(e.what()), dir.file("sub/bad.off") + ":4:" + std::to_string(e.column) + ": " +
+                                             e.message + "\n  included from " + chain[0] +
+                                             "\n  included from " + chain[1]);
+    }
+    // A mesh named by the top-level file: one "included from".
+    const std::string direct = dir.write("direct.scn", kMat + "mesh 0 sub/bad.off\n");
+    try {
+        load_scn(direct);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.included_from, std::vector<std::string>{direct + ":2:8"});
+    }
+    // A problem in the included scene itself, and a byte its lexer refuses.
+    dir.write("sub/typo.scn", "\nspher -1 0 0 0 1\n");
+    dir.write("sub/binary.scn", "sphere -1 0 0 0 1\n\x01\n");
+    for (const char* name : {"typo", "binary"}) {
+        const std::string top = dir.write("top.scn", "include sub/" + std::string(name) + ".scn\n");
+        try {
+            load_scn(top);
+            FAIL() << "expected a ParseError";
+        } catch (const ParseError& e) {
+            EXPECT_EQ(e.file, dir.file("sub/" + std::string(name) + ".scn")) << e.what();
+            EXPECT_EQ(e.included_from, std::vector<std::string>{top + ":1:9"}) << e.what();
+        }
+    }
+}
+
+// An error in the top-level file, or at the include command itself (a cycle, a missing file), is
+// where the include is written: nothing "included" it.
+TEST(ScnErrorExtra, ErrorsAtTheIncludeCommandAreNotIncludedFromThemselves) {
+    log::set_quiet(true);
+    TempDir dir;
+    dir.write("a.scn", "include b.scn\n");
+    dir.write("b.scn", "\ninclude a.scn\n");
+    const std::string main = dir.write("main.scn", "include a.scn\n");
+    try {
+        load_scn(main);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, dir.file("b.scn"));
+        EXPECT_EQ(e.line, 2);
+        const std::vector<std::string> chain{dir.file("a.scn") + ":1:9", main + ":1:9"};
+        EXPECT_EQ(e.included_from, chain);
+    }
+    const std::string missing = dir.write("missing.scn", "include nothere.scn\n");
+    try {
+        load_scn(missing);
+        FAIL() << "expected a ParseError";
+    } catch (const ParseError& e) {
+        EXPECT_EQ(e.file, missing);
+        EXPECT_TRUE(e.included_from.empty()) << e.what();
+    }
+}
+
 }  // namespace
 }  // namespace phos::io::test
