@@ -16,7 +16,7 @@
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
-void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const int eye = std::max(1, opt_.eye_samples);
@@ -87,9 +87,10 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         budget.after_iteration(resolve_film);
     }
     resolve_film();
-    budget.finish();
+    const RenderDone done = budget.finish();
     P.stats.add_value("ppm", std::to_string(state.iterations) + " iterations, " +
                                  std::to_string(state.photons_emitted) + " photons");
+    return done;
 }
 
 }  // namespace phos::integrators

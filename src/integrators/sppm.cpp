@@ -15,7 +15,7 @@
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
-void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
@@ -138,9 +138,10 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         budget.after_iteration(resolve_film);
     }
     resolve_film();
-    budget.finish();
+    const RenderDone done = budget.finish();
     P.stats.add_value("sppm", std::to_string(state.iterations) + " iterations, " +
                                   std::to_string(state.photons_emitted) + " photons");
+    return done;
 }
 
 }  // namespace phos::integrators

@@ -35,8 +35,8 @@ using vcm::Vertex;
 
 constexpr double kFixedScale = 1073741824.0;  // 2^30: the sums' fixed point
 
-// The component a contribution belongs to with --layers (pixel_loop.h's RadianceParts, in
-// integrator_layers order): what reached the camera after a delta bounce at its first vertex x1
+// The component a contribution belongs to with --layers (path_radiance.h's Component, in
+// its order): what reached the camera after a delta bounce at its first vertex x1
 // (specular), else light reaching x1 straight from the light (direct, x1's own emission too),
 // through delta bounces only (caustic), or through a diffuse or glossy vertex (indirect).
 enum Part { kDirect, kCaustic, kIndirect, kSpecular, kParts };
@@ -621,7 +621,7 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
 
 }  // namespace
 
-void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     const RenderOptions& ro = P.options;
     const std::string name = bdpt_ ? "bdpt" : "vcm";
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
@@ -629,22 +629,22 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
     FixedFilm sums(pixels, ro.layers);  // this rank's image sums (all of them without MPI)
     std::vector<int64_t> total;         // under MPI: every rank's sums added up
     if (!state.payload.empty()) {
-        ByteReader r(state.payload, "checkpoint '" + budget_.resume_path + "': " + name + " sums");
+        ByteReader r(state.payload, "checkpoint '" + budget_.settings.resume_path + "': " + name + " sums");
         const std::vector<int64_t> v = r.get_vector<int64_t>();
         if (v.size() != pixels * 3 * sums.planes() || !r.at_end()) r.fail("size does not match the image");
         if (dist::root()) sums.set(v);
         if (dist::distributed()) total = v;
     }
 
-    const std::string mode = bdpt_ ? "bpt" : opt_.vcm_mode;
+    const VcmMode mode = bdpt_ ? VcmMode::Bpt : opt_.vcm_mode;
     Iteration it;
-    it.lt = mode == "lt";
-    it.connect = mode == "bpt" || mode == "vcm";
-    it.merge = mode == "ppm" || mode == "vcm";
-    it.ppm = mode == "ppm";
+    it.lt = mode == VcmMode::Lt;
+    it.connect = mode == VcmMode::Bpt || mode == VcmMode::Vcm;
+    it.merge = mode == VcmMode::Ppm || mode == VcmMode::Vcm;
+    it.ppm = mode == VcmMode::Ppm;
     it.merge_direct = it.ppm;
     it.direct_samples = bidirectional_direct_samples(opt_);
-    it.merge_everywhere = opt_.vcm_merge == "every";
+    it.merge_everywhere = opt_.vcm_merge == VcmMerge::Every;
     it.camera_samples = it.merge && !it.merge_everywhere ? opt_.vcm_camera_samples : 1;
     it.go_on = it.merge && !it.merge_everywhere ? opt_.vcm_continue : 1.0f;
     it.direct_mis = float(it.direct_samples) * opt_.direct_mis_scale * float(it.camera_samples);
@@ -715,12 +715,12 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
             }
     };
     RenderBudget budget = budget_;
-    budget.on_checkpoint = [&](const ProgressiveState& s) {
-        if (!budget_.on_checkpoint) return;
+    budget.observers.on_checkpoint = [&](const ProgressiveState& s) {
+        if (!budget_.observers.on_checkpoint) return;
         ProgressiveState saved = s;
         ByteWriter w(saved.payload);
         w.put_vector(total.empty() ? sums.values() : total);
-        budget_.on_checkpoint(saved);
+        budget_.observers.on_checkpoint(saved);
     };
 
     ProgressiveBudget loop(ro, budget, state, film, progress);
@@ -863,7 +863,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         loop.after_iteration(resolve_film);
     }
     resolve_film();
-    loop.finish();
+    const RenderDone done = loop.finish();
     P.stats.add_dropped_samples(sums.rejected());
     std::string merging;
     if (it.merge) {
@@ -874,6 +874,7 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         merging += ", largest radius " + std::to_string(it.radius);
     }
     P.stats.add_value(name, std::to_string(state.iterations) + " iterations" + merging);
+    return done;
 }
 
 }  // namespace phos::integrators

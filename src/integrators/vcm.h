@@ -20,7 +20,7 @@ public:
     // --vcm-mode names.
     VcmIntegrator(bool bdpt, const ProgressiveOptions& options, const RenderBudget& budget)
         : bdpt_(bdpt), opt_(options), budget_(budget) {}
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     bool bdpt_;

@@ -11,7 +11,7 @@
 #include "render/prepared.h"
 #include "support/shapes.h"
 
-namespace phos::integrators {
+namespace phos::render {
 namespace {
 
 // A quad of half-size h at depth z, facing +z (towards a camera on the +z side) or -z.
@@ -185,4 +185,4 @@ TEST(Aov, SameBytesAtAnyThreadCount) {
 }
 
 }  // namespace
-}  // namespace phos::integrators
+}  // namespace phos::render

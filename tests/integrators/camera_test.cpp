@@ -9,7 +9,7 @@
 #include "core/stats.h"
 #include "render/prepared.h"
 
-namespace phos::integrators {
+namespace phos::render {
 namespace {
 
 scene::Camera test_camera() {
@@ -119,9 +119,9 @@ TEST(Camera, FramesScenesWithoutACamera) {
 }
 
 }  // namespace
-}  // namespace phos::integrators
+}  // namespace phos::render
 
-namespace phos::integrators {
+namespace phos::render {
 namespace {
 
 TEST(Camera, DepthOfFieldOverrideKeepsTheFramingOfCameralessScenes) {
@@ -151,4 +151,4 @@ TEST(Camera, DepthOfFieldOverrideKeepsTheFramingOfCameralessScenes) {
 }
 
 }  // namespace
-}  // namespace phos::integrators
+}  // namespace phos::render

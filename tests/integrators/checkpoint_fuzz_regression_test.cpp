@@ -9,7 +9,7 @@
 #include "core/error.h"
 #include "render/progressive_checkpoint.h"
 
-namespace phos::integrators {
+namespace phos::render {
 namespace {
 
 template <class T>
@@ -67,4 +67,4 @@ TEST(CheckpointFuzz, EmptyPartsDecode) {
 }
 
 }  // namespace
-}  // namespace phos::integrators
+}  // namespace phos::render

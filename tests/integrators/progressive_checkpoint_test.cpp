@@ -13,7 +13,7 @@
 
 #include "core/error.h"
 
-namespace phos::integrators {
+namespace phos::render {
 namespace {
 
 ProgressiveState sample_state() {
@@ -81,7 +81,7 @@ TEST(Checkpoint, RoundTripIsExact) {
     EXPECT_EQ(t.photons_emitted, s.photons_emitted);
     EXPECT_EQ(t.target_iterations, s.target_iterations);
     ASSERT_EQ(t.slots.size(), s.slots.size());
-    EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(sppm::PixelStats)), 0);
+    EXPECT_EQ(std::memcmp(t.slots.data(), s.slots.data(), s.slots.size() * sizeof(PixelStats)), 0);
     EXPECT_EQ(t.rejected_samples, s.rejected_samples);
     EXPECT_EQ(t.tile_samples, s.tile_samples);
     EXPECT_EQ(t.film, s.film);
@@ -188,4 +188,4 @@ TEST(Checkpoint, OptionsHashIsTheListsHash) {
 }
 
 }  // namespace
-}  // namespace phos::integrators
+}  // namespace phos::render
