@@ -15,7 +15,7 @@ namespace {
 using enum Component;
 using K = IntegratorKind;
 
-// The component layers `c...`, in film order.
+// The component layers `c...`.
 template <class... C>
 std::vector<Component> layers(C... c) {
     return {c...};

@@ -58,7 +58,7 @@ struct IntegratorInfo {
     IntegratorKind kind;
     std::string name;  // --integrator NAME; checkpoints record it
     Counts counts;
-    std::vector<Component> layers;  // what --layers records, in film order (none: --layers is refused)
+    std::vector<Component> layers;  // what --layers records (none: --layers is refused)
     Reads reads;
     RenderMemory memory;
     bool traces;          // --trace-pixel records its camera samples
