@@ -27,18 +27,6 @@ Range between(double lo, double hi) { return Range{lo, hi, false, false}; }
 Range at_least(double lo) { return Range{lo, std::numeric_limits<double>::infinity(), false, true}; }
 Range positive() { return Range{0, std::numeric_limits<double>::infinity(), true, true}; }
 
-bool Option::applies(const std::string& integrator) const {
-    if (applies_to.empty()) return true;
-    size_t at = 0;
-    while (at < applies_to.size()) {
-        size_t end = applies_to.find(' ', at);
-        if (end == std::string::npos) end = applies_to.size();
-        if (applies_to.compare(at, end - at, integrator) == 0) return true;
-        at = end + 1;
-    }
-    return false;
-}
-
 const Option* Table::find(const std::string& name) const {
     for (const Option& o : options) {
         if (o.name == name || o.negation == name) return &o;
@@ -141,10 +129,10 @@ void validate(const Table& table, const void* object) {
 }
 
 std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object, Effect effect,
-                                                        const std::string& integrator) {
+                                                        std::optional<unsigned> integrator) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const Option& o : table.options)
-        if (o.effect == effect && (integrator.empty() || o.applies(integrator)))
+        if (o.effect == effect && (!integrator || o.applies(*integrator)))
             out.emplace_back(o.flag_name(), o.get(object));
     return out;
 }

@@ -6,9 +6,11 @@
 // uses the options receives the plain struct and never mentions a flag.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <type_traits>
@@ -39,6 +41,46 @@ Range between(double lo, double hi);  // [lo, hi]
 Range at_least(double lo);            // [lo, inf)
 Range positive();                     // (0, inf)
 
+// The integrators an option applies to, as bits over their numbers. Core cannot know the
+// integrators: their registry (integrators/registry.h) numbers them, builds these sets and names
+// them in text. The empty set means every integrator.
+struct IntegratorSet {
+    uint32_t bits = 0;
+    bool empty() const { return bits == 0; }
+    bool contains(unsigned integrator) const { return integrator < 32 && (bits >> integrator & 1u) != 0; }
+};
+
+// One word of a word-valued option and the value it stands for (an enumerator).
+template <class E>
+struct Choice {
+    E value;
+    std::string name;
+};
+template <class E>
+using Choices = std::vector<Choice<E>>;
+
+// "a|b|c": the words of `choices`, for help, docs and messages.
+template <class E>
+std::string choice_list(const Choices<E>& choices) {
+    std::string list;
+    for (const Choice<E>& c : choices) list += (list.empty() ? "" : "|") + c.name;
+    return list;
+}
+// The word for `value` (its number when `choices` has none).
+template <class E>
+std::string choice_name(const Choices<E>& choices, E value) {
+    for (const Choice<E>& c : choices)
+        if (c.value == value) return c.name;
+    return std::to_string(static_cast<long long>(value));
+}
+// The value `word` stands for; ValueError "'c' is not one of a|b" when it is none of them.
+template <class E>
+E parse_choice(const Choices<E>& choices, const std::string& word) {
+    for (const Choice<E>& c : choices)
+        if (c.name == word) return c.value;
+    throw ValueError("'" + word + "' is not one of " + choice_list(choices));
+}
+
 struct Option {
     std::string name;                  // long name without dashes: "photons-per-iter"
     std::vector<std::string> aliases;  // further long names accepted for the same option
@@ -54,8 +96,8 @@ struct Option {
     std::string default_text;  // shown instead of the field's value when that needs words
     std::string range_text;    // accepted values, for help and docs ("(0, 1]", "a|b|c")
     Effect effect = Effect::Image;
-    std::string applies_to;  // integrators it matters for ("photonmap", "ppm sppm"; "" = all)
-    bool hidden = false;     // accepted but left out of --help and the docs (old spellings)
+    IntegratorSet applies_to;  // integrators it matters for (empty: all)
+    bool hidden = false;       // accepted but left out of --help and the docs (old spellings)
 
     // Type-erased access to the field inside the table's struct (`void*` is that struct).
     std::function<void(void*, const std::vector<std::string>&)> set;  // parse + check; ValueError
@@ -63,8 +105,8 @@ struct Option {
     std::function<void(const void*)> check;                           // stored value valid? ValueError
 
     std::string flag_name() const { return "--" + name; }
-    // True if the option matters for integrator `integrator`.
-    bool applies(const std::string& integrator) const;
+    // True if the option matters for the integrator numbered `integrator` (IntegratorSet).
+    bool applies(unsigned integrator) const { return applies_to.empty() || applies_to.contains(integrator); }
 };
 
 // The options of one subsystem (film, camera, photon maps, progressive...), all filling fields of
@@ -92,6 +134,19 @@ std::string format_number(double v, bool as_float = false);
 // generic lambdas `[](auto& s) -> auto& { return s.global.photons; }`.
 template <class S>
 class TableBuilder {
+    // The field `access` names in `s` (const or not): a member pointer, or a generic lambda
+    // `[](auto& s) -> auto& { return s.a.b; }` for nested fields.
+    template <class Obj, class Access>
+    static decltype(auto) field_of(const Access& access, Obj& s) {
+        if constexpr (std::is_member_object_pointer_v<Access>)
+            return (s.*access);
+        else
+            return access(s);
+    }
+    // The type of that field.
+    template <class Access>
+    using Field = std::remove_cvref_t<decltype(field_of(std::declval<const Access&>(), std::declval<S&>()))>;
+
 public:
     TableBuilder(std::string title, std::string about) {
         table_.title = std::move(title);
@@ -150,20 +205,22 @@ public:
         return add(std::move(o));
     }
 
-    // A word from `choices`.
+    // A word from `choices`, stored as the value it stands for (an enum field).
     template <class Access>
-    Option& choice(std::string name, Access access, std::vector<std::string> choices, std::string help) {
+    Option& choice(std::string name, Access access, Choices<Field<Access>> choices, std::string help) {
         Option o = base(std::move(name), "NAME", std::move(help));
-        std::string list;
-        for (const auto& c : choices) list += (list.empty() ? "" : "|") + c;
-        o.range_text = list;
-        o.set = [access, choices, list](void* s, const std::vector<std::string>& v) {
-            check_choice(v.at(0), choices, list);
-            field_of(access, object(s)) = v[0];
+        o.range_text = choice_list(choices);
+        o.set = [access, choices](void* s, const std::vector<std::string>& v) {
+            field_of(access, object(s)) = parse_choice(choices, v.at(0));
         };
-        o.get = [access](const void* s) { return field_of(access, object(s)); };
-        o.check = [access, choices, list](const void* s) {
-            check_choice(field_of(access, object(s)), choices, list);
+        o.get = [access, choices](const void* s) {
+            return choice_name(choices, field_of(access, object(s)));
+        };
+        o.check = [access, choices](const void* s) {
+            const auto value = field_of(access, object(s));
+            for (const Choice<Field<Access>>& c : choices)
+                if (c.value == value) return;
+            throw ValueError(choice_name(choices, value) + " is not one of " + choice_list(choices));
         };
         return add(std::move(o));
     }
@@ -204,23 +261,8 @@ public:
     }
 
 private:
-    // The field `access` names in `s` (const or not): a member pointer, or a generic lambda
-    // `[](auto& s) -> auto& { return s.a.b; }` for nested fields.
-    template <class Obj, class Access>
-    static decltype(auto) field_of(const Access& access, Obj& s) {
-        if constexpr (std::is_member_object_pointer_v<Access>)
-            return (s.*access);
-        else
-            return access(s);
-    }
     static S& object(void* s) { return *static_cast<S*>(s); }
     static const S& object(const void* s) { return *static_cast<const S*>(s); }
-    static void check_choice(const std::string& v, const std::vector<std::string>& choices,
-                             const std::string& list) {
-        for (const auto& c : choices)
-            if (c == v) return;
-        throw ValueError("'" + v + "' is not one of " + list);
-    }
     static Option base(std::string name, std::string value_name, std::string help) {
         Option o;
         o.name = std::move(name);
@@ -243,8 +285,8 @@ std::string option_error(const Option& o, const std::string& why);
 void validate(const Table& table, const void* object);
 
 // (flag, value) for each option of `table` whose effect is `effect`, as stored in `object`; with
-// `integrator`, only the options that apply to it.
+// `integrator` (its number, IntegratorSet), only the options that apply to it.
 std::vector<std::pair<std::string, std::string>> values(const Table& table, const void* object, Effect effect,
-                                                        const std::string& integrator = "");
+                                                        std::optional<unsigned> integrator = std::nullopt);
 
 }  // namespace phos::options

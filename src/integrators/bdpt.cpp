@@ -12,12 +12,12 @@
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
-void BdptIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone BdptIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace vcm;
     const RenderOptions& ro = P.options;
     ProgressiveState state = start_state(ro, budget_, "bdpt", 0, "iterations", uint64_t(std::max(1, ro.spp)));
     FixedFilm sums(ro.width, ro.height, ro.layers);  // this rank's image sums (all of them without MPI)
-    sums.resume(state, "checkpoint '" + budget_.resume_path + "': bdpt sums");
+    sums.resume(state, "checkpoint '" + budget_.settings.resume_path + "': bdpt sums");
     const Iteration it = iteration_for(kBdptStrategies, opt_);
     const LightSubpathRules light_rules{std::max(1, ro.max_depth), it.factors};
     const auto tiles = film::make_tiles(ro.width, ro.height);
@@ -36,9 +36,10 @@ void BdptIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         loop.after_iteration(resolve_film);
     }
     resolve_film();
-    loop.finish();
+    const RenderDone done = loop.finish();
     P.stats.add_dropped_samples(sums.rejected());
     P.stats.add_value("bdpt", std::to_string(state.iterations) + " iterations");
+    return done;
 }
 
 }  // namespace phos::integrators

@@ -18,7 +18,7 @@ class BdptIntegrator final : public Integrator {
 public:
     BdptIntegrator(const ProgressiveOptions& options, const RenderBudget& budget)
         : opt_(options), budget_(budget) {}
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;

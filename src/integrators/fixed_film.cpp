@@ -81,12 +81,12 @@ void FixedFilm::resolve(film::Film& film, uint64_t iterations) const {
 
 RenderBudget FixedFilm::saving_sums(const RenderBudget& budget) const {
     RenderBudget saving = budget;
-    saving.on_checkpoint = [this, &budget](const ProgressiveState& s) {
-        if (!budget.on_checkpoint) return;
+    saving.observers.on_checkpoint = [this, &budget](const ProgressiveState& s) {
+        if (!budget.observers.on_checkpoint) return;
         ProgressiveState saved = s;
         ByteWriter w(saved.payload);
         w.put_vector(total_.empty() ? values() : total_);
-        budget.on_checkpoint(saved);
+        budget.observers.on_checkpoint(saved);
     };
     return saving;
 }

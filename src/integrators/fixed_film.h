@@ -18,7 +18,7 @@ namespace phos::integrators::vcm {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
 // The component a contribution belongs to with --layers (pixel_loop.h's RadianceParts, in
-// integrator_layers order): what reached the camera after a delta bounce at its first vertex x1
+// the registry's order): what reached the camera after a delta bounce at its first vertex x1
 // (specular), else light reaching x1 straight from the light (direct, x1's own emission too),
 // through delta bounces only (caustic), or through a diffuse or glossy vertex (indirect).
 enum Part { kDirect, kCaustic, kIndirect, kSpecular, kParts };

@@ -13,7 +13,6 @@
 #include "core/memory.h"
 #include "dist/ranks.h"
 #include "integrators/bidirectional_path.h"
-#include "integrators/factory.h"
 #include "integrators/sppm_core.h"
 #include "photon/beam_bvh.h"
 #include "photon/photon.h"
@@ -217,14 +216,15 @@ void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, int
 }
 
 // PPM and SPPM (sppm_core.h): per hit-point slot the visible point, its statistics, the gather
-// record, the fixed-point sums and the grid.
-void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in, const Phase& common,
-                       std::vector<Phase>& phases) {
+// record, the fixed-point sums and the grid. `hit_points`: PPM's --ppm-eye-samples per pixel, else
+// SPPM's one visible point per pixel.
+void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in, bool hit_points,
+                       const Phase& common, std::vector<Phase>& phases) {
     const RenderOptions& ro = in.render;
     const double pixels = double(ro.width) * double(ro.height);
     const bool media = media_active(scene);
-    const double slots =
-        in.integrator == "ppm" ? pixels * std::max(1, in.progressive.eye_samples) : pixels * (media ? 2 : 1);
+    const int eye = hit_points ? std::max(1, in.progressive.eye_samples) : 1;
+    const double slots = hit_points ? pixels * eye : pixels * (media ? 2 : 1);
     // PhotonAccumulator: per-thread copies when they take at most 1 GiB for every thread of the
     // arena, else shared atomics; the copies are made by the threads that run photon passes.
     const int arena = tbb::this_task_arena::max_concurrency();
@@ -236,8 +236,7 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     p.add("pixel statistics", slots * sizeof(sppm::PixelStats));
     p.add("photon sums", slots * kAccumulatorSlot * (1 + (per_thread ? workers : 0)));
     // One visible point per pixel and eye sample (with media, in one of the pixel's two slots).
-    p.add("hit-point grid",
-          pixels * std::max(1, in.integrator == "ppm" ? in.progressive.eye_samples : 1) * kGridPerPoint);
+    p.add("hit-point grid", pixels * eye * kGridPerPoint);
     p.add("pending photon hits", sppm::PhotonAccumulator::pending_bytes(in.progressive.photons_per_iter));
     if (in.checkpoint) p.add("checkpoint", slots * sizeof(sppm::PixelStats));
     // Under MPI: the eye-pass exchange's buffers (every slot's point and statistics, and this
@@ -256,14 +255,15 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
 // twice (in their batches, then in grid order) and the grid over them.
 constexpr double kLightVerticesPerPath = 4, kMergeableVerticesPerPath = 2.5;
 constexpr double kMergeVertexBytes = 64, kVertexGridPerPoint = 12 + 4 + 8;
-void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, std::vector<Phase>& phases) {
+void bidirectional_phase(const MemoryEstimateInputs& in, bool light_vertices, const Phase& common,
+                         std::vector<Phase>& phases) {
     const RenderOptions& ro = in.render;
     const double pixels = double(ro.width) * double(ro.height);
     Phase p = common;
     p.name = "render";
     const double planes = ro.layers ? 5 : 1;
     p.add("fixed-point sums", pixels * 24 * planes);
-    if (in.integrator == "vcm") {
+    if (light_vertices) {
         // --vcm-light-paths 0 (automatic) takes 2 per pixel, or more where the pilot finds fewer
         // mergeable vertices per subpath (about 3 per pixel then, vcm.cpp): 2 bounds both.
         const int k = in.progressive.vcm_light_paths > 0 ? in.progressive.vcm_light_paths : 2;
@@ -272,7 +272,7 @@ void bidirectional_phase(const MemoryEstimateInputs& in, const Phase& common, st
         // Subpath j < pixels keeps its vertices (and their range, 8 bytes); every subpath its
         // mergeable ones, in its batch and again in the grid's order.
         p.add("light vertices", pixels * (kLightVerticesPerPath * sizeof(vcm::VertexCore) + 8));
-        if (in.progressive.vcm_mode != "bpt" && in.progressive.vcm_mode != "lt")
+        if (in.progressive.vcm_mode == VcmMode::Ppm || in.progressive.vcm_mode == VcmMode::Vcm)
             p.add("merging",
                   vertices * (2 * kMergeVertexBytes + kVertexGridPerPoint) + pixels * sizeof(float));
     }
@@ -311,22 +311,29 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
     Phase common = base;
     common.add("accelerator",
                kBvhPerTriangle * sm.triangles + accel::EmbreeScene::triangle_constants_bytes(sm.triangles));
-    const size_t layers = ro.layers ? integrator_layers(in.integrator).size() : 0;
+    const IntegratorInfo& info = integrator(in.integrator);
+    const size_t layers = ro.layers ? info.layers.size() : 0;
     const size_t extra = layers + ro.aovs.size();
     const double film = kFilmPerPixel * pixels * double(1 + extra + (extra > 0 ? 1 : 0));
     common.add("film", film);
-    const bool progressive = in.integrator == "ppm" || in.integrator == "sppm";
-    if (in.integrator == "photonmap") {
-        photon_map_phases(scene, in.photon_map, render_threads(in), common, phases);
-    } else if (in.integrator == "bdpt" || in.integrator == "vcm") {
-        bidirectional_phase(in, common, phases);
-    } else if (progressive) {
-        progressive_phase(scene, in, common, phases);
-    } else {
-        Phase render = common;
-        render.name = "render";
-        if (in.checkpoint) render.add("checkpoint", 2 * film);  // the film's sums, then encoded
-        phases.push_back(render);
+    switch (info.memory) {
+        case RenderMemory::PhotonMaps:
+            photon_map_phases(scene, in.photon_map, render_threads(in), common, phases);
+            break;
+        case RenderMemory::FixedSums:
+        case RenderMemory::LightVertices:
+            bidirectional_phase(in, info.memory == RenderMemory::LightVertices, common, phases);
+            break;
+        case RenderMemory::HitPoints:
+        case RenderMemory::VisiblePoints:
+            progressive_phase(scene, in, info.memory == RenderMemory::HitPoints, common, phases);
+            break;
+        case RenderMemory::Film: {
+            Phase render = common;
+            render.name = "render";
+            if (in.checkpoint) render.add("checkpoint", 2 * film);  // the film's sums, then encoded
+            phases.push_back(render);
+        }
     }
     Phase write = common;
     write.name = "writing the image";

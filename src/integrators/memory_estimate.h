@@ -11,6 +11,7 @@
 
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
+#include "integrators/registry.h"
 #include "render/options.h"
 #include "scene/scene.h"
 
@@ -32,7 +33,7 @@ struct MemoryEstimate {
 
 // What the estimate reads besides the scene.
 struct MemoryEstimateInputs {
-    std::string integrator = "photonmap";
+    IntegratorKind integrator = IntegratorKind::PhotonMap;
     RenderOptions render;
     PhotonMapOptions photon_map;
     ProgressiveOptions progressive;

@@ -8,7 +8,6 @@
 #include "core/interrupt.h"
 #include "core/stats.h"
 #include "dist/ranks.h"
-#include "integrators/factory.h"
 #include "integrators/photon_map_radiance.h"
 #include "photon/beam_estimate.h"
 #include "photon/map_report.h"
@@ -125,9 +124,10 @@ void build_caches(const PhotonMapOptions& o, const photon::TraceOptions& to, con
 
 }  // namespace
 
-// The options arrive validated against their table (integrators/factory.cpp).
-PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget)
-    : options_(options), budget_(std::move(budget)) {}
+// The options arrive validated against their table (integrators/registry.cpp).
+PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget,
+                                         std::vector<Component> layers)
+    : options_(options), budget_(std::move(budget)), layers_(std::move(layers)) {}
 
 // Pass 1 (Jensen 1996): trace the photons, build the k-d trees, then what pass 2 reads besides.
 PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounces) const {
@@ -155,23 +155,21 @@ PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounce
     return maps;
 }
 
-void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps, film::Film& film,
-                                      Progress& progress, bool store_maps) const {
+RenderDone PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps, film::Film& film,
+                                            Progress& progress, bool store_maps) const {
     const PhotonMapOptions o = resolve(options_, P);
     const PhotonMapRadiance R(P, o, maps);
     std::function<void(std::string&)> payload;
     if (store_maps) payload = [&maps](std::string& out) { out = maps.save(); };
-    if (P.options.layers) {
-        render_layers(
-            P, film, budget_, "photonmap", progress, integrator_layers("photonmap"),
+    if (P.options.layers)
+        return render_layers(
+            P, film, budget_, "photonmap", progress, layers_,
             [&](const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
                 parts = R.camera_ray(ray, sampler, rays);
                 return parts.total();
             },
             payload);
-        return;
-    }
-    render_samples(
+    return render_samples(
         P, film, budget_, "photonmap", progress,
         [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
             film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total());
@@ -182,29 +180,28 @@ void PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps& maps,
 // Resuming reads the maps from the checkpoint (after checking it is this render's): on
 // cornell-glass-mirror with 400 k photons, tracing, building and caching them again took 2.3 s,
 // reading them 0.02 s (docs/photon-mapping.md).
-void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     // Below 9 samples per pixel the caustic kernel widens with fewer samples (photon_map_radiance.cpp),
     // so there every sample depends on the count: such a checkpoint resumes only to the same count.
     const int64_t n = int64_t(std::max(1, P.options.spp)) * std::max(1, P.options.dof_samples);
     if (n < 9)
-        budget_.identity.options.emplace_back("--spp (the caustic kernel depends on it below 9 samples)",
-                                              std::to_string(n));
+        budget_.observers.identity.options.emplace_back(
+            "--spp (the caustic kernel depends on it below 9 samples)", std::to_string(n));
     PhotonMaps maps;
-    const ProgressiveState* saved = budget_.resume.get();
+    const ProgressiveState* saved = budget_.observers.resume.get();
     if (saved && !saved->payload.empty()) {
-        check_resumable(*saved, render_identity(P.options, budget_, "photonmap", 0), budget_.resume_path);
+        const std::string& path = budget_.settings.resume_path;
+        check_resumable(*saved, render_identity(P.options, budget_, "photonmap", 0), path);
         const auto t0 = std::chrono::steady_clock::now();
-        maps = PhotonMaps::load(saved->payload, "checkpoint '" + budget_.resume_path + "': photon maps");
+        maps = PhotonMaps::load(saved->payload, "checkpoint '" + path + "': photon maps");
         P.stats.add_time("photon maps read from the checkpoint", seconds_since(t0));
     } else {
         maps = build_maps(P);
-        if (dist::any(interrupt::requested())) {  // the maps are incomplete (on some rank): no samples
-            budget_.done->interrupted = true;
-            return;
-        }
+        if (dist::any(interrupt::requested()))  // the maps are incomplete (on some rank): no samples
+            return RenderDone{.interrupted = true};
     }
     const auto t0 = std::chrono::steady_clock::now();
-    render_with(P, maps, film, progress, budget_.on_checkpoint != nullptr);
+    const RenderDone done = render_with(P, maps, film, progress, budget_.observers.on_checkpoint != nullptr);
     P.stats.add_time("photon map render pass", seconds_since(t0));
     // --trace-pixel: that pixel's samples again, from the same maps (pixel_trace.h).
     if (requested_trace()) {
@@ -214,6 +211,7 @@ void PhotonMapIntegrator::render(const Prepared& P, film::Film& film, Progress& 
             return R.camera_ray(ray, sampler, rays).total();
         });
     }
+    return done;
 }
 
 }  // namespace phos::integrators

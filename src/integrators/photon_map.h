@@ -7,11 +7,13 @@
 #pragma once
 
 #include <memory>
+#include <vector>
 
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
 #include "photon/photon_maps.h"
 #include "photon/tracer.h"
+#include "render/path_radiance.h"
 #include "render/render_budget.h"
 
 namespace phos::integrators {
@@ -22,8 +24,10 @@ using photon::PhotonMaps;
 
 class PhotonMapIntegrator : public Integrator {
 public:
-    explicit PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget = {});
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    // `layers`: the components recorded with --layers (the registry gives all four).
+    explicit PhotonMapIntegrator(const PhotonMapOptions& options, RenderBudget budget = {},
+                                 std::vector<Component> layers = {});
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
     // Pass 1 alone (photon tracing, k-d trees, irradiance cache), reporting to prepared.stats.
     // Exposed for tests and benchmarks. An interrupt during tracing leaves the maps incomplete:
@@ -32,14 +36,15 @@ public:
     PhotonMaps build_maps(const Prepared& prepared, bool record_bounces = false) const;
     // Pass 2 with given maps, in sample passes within the budget (pixel_loop.h).
     // With `store_maps`, each checkpoint also holds the maps (PhotonMaps::save).
-    void render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film, Progress& progress,
-                     bool store_maps = false) const;
+    RenderDone render_with(const Prepared& prepared, const PhotonMaps& maps, film::Film& film,
+                           Progress& progress, bool store_maps = false) const;
 
     const PhotonMapOptions& options() const { return options_; }
 
 private:
     PhotonMapOptions options_;
     RenderBudget budget_;
+    std::vector<Component> layers_;
 };
 
 }  // namespace phos::integrators

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <string>
 
+#include "integrators/registry.h"
+
 namespace phos::integrators {
 namespace {
 
@@ -12,22 +14,25 @@ using options::between;
 using options::ValueError;
 using B = options::TableBuilder<PhotonMapOptions>;
 
+// Every option of the table is for the photon mapper alone.
+constexpr options::IntegratorSet kPhotonMap = integrator_set({IntegratorKind::PhotonMap});
+
 // --NAME N, --NAME-samples K, --NAME-radius R, --NAME-filter none|cone|cone:K|gauss, --NAME-cone-k K.
 void add_map(B& b, const std::string& name, PhotonMapSettings PhotonMapOptions::*map, const std::string& what,
              const std::string& radius_default) {
     auto& n = b.number(
         name, [map](auto& o) -> auto& { return (o.*map).photons; }, "N", between(0, 2147483648.0),
         "stored photons wanted in the " + what + " map");
-    n.applies_to = "photonmap";
+    n.applies_to = kPhotonMap;
     n.effect = options::Effect::Image;
     b.number(
          name + "-samples", [map](auto& o) -> auto& { return (o.*map).samples; }, "K", between(1, 100000),
          "photons per " + name + " radiance estimate (k nearest)")
-        .applies_to = "photonmap";
+        .applies_to = kPhotonMap;
     auto& r = b.number(
         name + "-radius", [map](auto& o) -> auto& { return (o.*map).radius; }, "R", between(0, 1e30),
         "maximum " + name + " estimate radius in scene units (0 = automatic)");
-    r.applies_to = "photonmap";
+    r.applies_to = kPhotonMap;
     r.default_text = "automatic: " + radius_default + " x the scene's bounding-sphere radius";
     auto& f = b.custom(
         name + "-filter", "KIND", 1, name + " estimate filter (cone:K also sets the cone constant)",
@@ -49,12 +54,12 @@ void add_map(B& b, const std::string& name, PhotonMapSettings PhotonMapOptions::
             s.cone_k = cone_k;
         },
         [map](const PhotonMapOptions& o) { return std::string(photon::filter_name((o.*map).filter)); });
-    f.applies_to = "photonmap";
+    f.applies_to = kPhotonMap;
     f.range_text = "none|cone|cone:K|gauss";
     b.number(
          name + "-cone-k", [map](auto& o) -> auto& { return (o.*map).cone_k; }, "K", between(1, 1e6),
          "cone filter constant k of the " + name + " estimate")
-        .applies_to = "photonmap";
+        .applies_to = kPhotonMap;
 }
 
 // --NAME N, --NAME-samples K, --NAME-radius R for a volume map (always a box kernel).
@@ -63,16 +68,16 @@ void add_volume_map(B& b, const std::string& name, PhotonMapSettings PhotonMapOp
     auto& n = b.number(
         name + "-photons", [map](auto& o) -> auto& { return (o.*map).photons; }, "N",
         between(0, 2147483648.0), "stored photons wanted in the " + what + " map (scenes with media)");
-    n.applies_to = "photonmap";
+    n.applies_to = kPhotonMap;
     n.effect = options::Effect::Image;
     b.number(
          name + "-samples", [map](auto& o) -> auto& { return (o.*map).samples; }, "K", between(1, 100000),
          "photons per " + what + " radiance estimate (k nearest)")
-        .applies_to = "photonmap";
+        .applies_to = kPhotonMap;
     auto& r = b.number(
         name + "-radius", [map](auto& o) -> auto& { return (o.*map).radius; }, "R", between(0, 1e30),
         "maximum " + what + " estimate radius in scene units (0 = automatic)");
-    r.applies_to = "photonmap";
+    r.applies_to = kPhotonMap;
     r.default_text = "automatic: " + radius_default + " x the scene's bounding-sphere radius";
 }
 
@@ -87,26 +92,15 @@ const options::Table& photon_map_options() {
         add_volume_map(b, "volume", &PhotonMapOptions::volume, "volume (multiple scattering)", "0.1");
         add_volume_map(b, "volume-caustic", &PhotonMapOptions::volume_caustic, "volume caustic", "0.05");
         auto pm = [&](options::Option& o) -> options::Option& {
-            o.applies_to = "photonmap";
+            o.applies_to = kPhotonMap;
             return o;
         };
-        auto& ve = pm(b.custom(
-            "volume-estimate", "KIND", 1,
-            "volume estimate along camera rays in media: beam (one beam radiance estimate per stretch, "
-            "each photon's radius from its --volume-samples nearest) or march (ray marching, a k-nearest "
-            "estimate every --volume-step)",
-            [](PhotonMapOptions& o, const std::vector<std::string>& v) {
-                if (v.at(0) == "beam")
-                    o.volume_estimate = VolumeEstimate::Beam;
-                else if (v[0] == "march")
-                    o.volume_estimate = VolumeEstimate::March;
-                else
-                    throw ValueError("'" + v[0] + "' is not one of beam, march");
-            },
-            [](const PhotonMapOptions& o) {
-                return std::string(o.volume_estimate == VolumeEstimate::Beam ? "beam" : "march");
-            }));
-        ve.range_text = "beam|march";
+        pm(b.choice("volume-estimate", &PhotonMapOptions::volume_estimate,
+                    {{VolumeEstimate::Beam, "beam"}, {VolumeEstimate::March, "march"}},
+                    "volume estimate along camera rays in media: beam (one beam radiance estimate per "
+                    "stretch, each photon's radius from its --volume-samples nearest) or march (ray "
+                    "marching, a k-nearest estimate every --volume-step)"))
+            .value_name = "KIND";
         pm(b.number("volume-step", &PhotonMapOptions::volume_step, "D", between(0, 1e30),
                     "ray-marching step along camera rays in media, scene units (0 = automatic); with "
                     "--volume-estimate beam, the step of the transmittance table in grid media"))

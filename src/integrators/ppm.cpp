@@ -55,7 +55,7 @@ void ray_tracing_pass(const Prepared& P, int eye, int direct_samples, const sppm
 
 }  // namespace
 
-void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const int eye = std::max(1, opt_.eye_samples);
@@ -95,7 +95,7 @@ void PpmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         photon_iteration(P, acc, vps, state, grid, state.iterations, opt_.photons_per_iter, opt_.alpha);
         end_iteration(trace, state, budget, resolve_film);
     }
-    finish_progressive(P, "ppm", state, budget, resolve_film);
+    return finish_progressive(P, "ppm", state, budget, resolve_film);
 }
 
 }  // namespace phos::integrators

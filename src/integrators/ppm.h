@@ -15,7 +15,7 @@ class PpmIntegrator : public Integrator {
 public:
     PpmIntegrator(ProgressiveOptions options, RenderBudget budget = {})
         : opt_(std::move(options)), budget_(std::move(budget)) {}
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;

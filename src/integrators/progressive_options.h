@@ -5,11 +5,16 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
 
 #include "core/option_table.h"
 
 namespace phos::integrators {
+
+// The strategies vcm uses (--vcm-mode): connections only (Bpt), merging only (Ppm), both (Vcm),
+// light tracing alone (Lt).
+enum class VcmMode { Bpt, Ppm, Vcm, Lt };
+// Where vcm's camera subpaths merge (--vcm-merge): at their first non-delta vertex, or at every one.
+enum class VcmMerge { First, Every };
 
 struct ProgressiveOptions {
     float alpha = 0.7f;                  // fraction of new photons kept per iteration (radius reduction)
@@ -22,16 +27,16 @@ struct ProgressiveOptions {
     int direct_samples = 0;              // light samples per visible point per eye pass; 0 = the
                                          // integrator's own (direct_samples_for)
     int eye_samples = 1;                 // ppm: hit points per pixel (jittered inside the pixel)
-    std::string vcm_mode = "vcm";        // vcm: the strategies used (bpt | ppm | vcm | lt)
+    VcmMode vcm_mode = VcmMode::Vcm;     // vcm: the strategies used
     int vcm_camera_samples = 2;          // vcm: camera samples per pixel per iteration (first-vertex merging)
     float vcm_continue = 0;              // vcm: probability a camera subpath goes on past a Lambert x_f
     int vcm_light_paths = 0;             // vcm: light subpaths per pixel per iteration for merging
                                          // (0 = automatic, vcm.cpp light_paths_per_pixel)
-    std::string vcm_merge = "first";     // vcm: merge at the camera's first non-delta vertex or every one
-    float vcm_rr_weight = 0.1f;          // bdpt, vcm: Russian roulette on shadow rays of strategies whose
-                                         // MIS weight is below this (0 = off)
-    float direct_mis_scale = 8;          // bdpt, vcm: the MIS weights count the light samples at the
-                                         // first non-delta vertex this many times over
+    VcmMerge vcm_merge = VcmMerge::First;  // vcm: merge at the camera's first non-delta vertex or every one
+    float vcm_rr_weight = 0.1f;            // bdpt, vcm: Russian roulette on shadow rays of strategies whose
+                                           // MIS weight is below this (0 = off)
+    float direct_mis_scale = 8;            // bdpt, vcm: the MIS weights count the light samples at the
+                                           // first non-delta vertex this many times over
 
     // The iteration count (--iterations, the same as --spp; 0 = not given: the app copies it to
     // RenderOptions::spp). Time budgets, previews and checkpoints are in RenderBudget.

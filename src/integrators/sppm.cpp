@@ -91,7 +91,7 @@ void eye_pass(const Prepared& P, const std::vector<film::Tile>& tiles, uint64_t 
 
 }  // namespace
 
-void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     using namespace sppm;
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
@@ -148,7 +148,7 @@ void SppmIntegrator::render(const Prepared& P, film::Film& film, Progress& progr
         if (is_pilot && opt_.edge_aware_radius) bound_radii_at_edges(vps, state.slots, initial.footprint);
         end_iteration(trace, state, budget, resolve_film);
     }
-    finish_progressive(P, "sppm", state, budget, resolve_film);
+    return finish_progressive(P, "sppm", state, budget, resolve_film);
 }
 
 }  // namespace phos::integrators

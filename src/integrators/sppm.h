@@ -16,7 +16,7 @@ class SppmIntegrator : public Integrator {
 public:
     SppmIntegrator(ProgressiveOptions options, RenderBudget budget = {})
         : opt_(std::move(options)), budget_(std::move(budget)) {}
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;

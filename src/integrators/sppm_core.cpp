@@ -436,12 +436,13 @@ void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudg
     budget.after_iteration(resolve_film);
 }
 
-void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
-                        ProgressiveBudget& budget, const std::function<void()>& resolve_film) {
+RenderDone finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                              ProgressiveBudget& budget, const std::function<void()>& resolve_film) {
     resolve_film();
-    budget.finish();
+    const RenderDone done = budget.finish();
     P.stats.add_value(name, std::to_string(state.iterations) + " iterations, " +
                                 std::to_string(state.photons_emitted) + " photons");
+    return done;
 }
 
 void resolve(const std::vector<PixelStats>& stats, int slots_per_pixel, double slot_weight,

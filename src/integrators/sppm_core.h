@@ -204,8 +204,8 @@ void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudg
                    const std::function<void()>& resolve_film);
 // The end of a PPM or SPPM render: the final image, the budget's finish, and the -v line
 // "`name`: N iterations, M photons".
-void finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
-                        ProgressiveBudget& budget, const std::function<void()>& resolve_film);
+RenderDone finish_progressive(const Prepared& P, const std::string& name, const ProgressiveState& state,
+                              ProgressiveBudget& budget, const std::function<void()>& resolve_film);
 
 // Final radiance of each pixel: slot_weight × the sum over its `slots_per_pixel` slots of
 // direct × direct_scale + τ / (π R² N_emitted) (eq. 12; τ / (4/3 π R³ N_emitted) for the slots

@@ -28,11 +28,11 @@ using namespace vcm;
 // The strategies --vcm-mode and --vcm-merge name (the one reader of those options).
 Strategies strategies_for(const ProgressiveOptions& o) {
     Strategies s;
-    s.light_tracing_only = o.vcm_mode == "lt";
-    s.connect = o.vcm_mode == "bpt" || o.vcm_mode == "vcm";
-    s.merge = o.vcm_mode == "ppm" || o.vcm_mode == "vcm";
-    s.ppm = o.vcm_mode == "ppm";
-    s.merge_everywhere = o.vcm_merge == "every";
+    s.light_tracing_only = o.vcm_mode == VcmMode::Lt;
+    s.connect = o.vcm_mode == VcmMode::Bpt || o.vcm_mode == VcmMode::Vcm;
+    s.merge = o.vcm_mode == VcmMode::Ppm || o.vcm_mode == VcmMode::Vcm;
+    s.ppm = o.vcm_mode == VcmMode::Ppm;
+    s.merge_everywhere = o.vcm_merge == VcmMerge::Every;
     return s;
 }
 
@@ -155,12 +155,12 @@ std::string merging_summary(const ProgressiveOptions& o, const MergingPlan& plan
 
 }  // namespace
 
-void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
+RenderDone VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progress) {
     const RenderOptions& ro = P.options;
     const size_t pixels = size_t(ro.width) * size_t(ro.height);
     ProgressiveState state = start_state(ro, budget_, "vcm", 0, "iterations", uint64_t(std::max(1, ro.spp)));
     FixedFilm sums(ro.width, ro.height, ro.layers);  // this rank's image sums (all of them without MPI)
-    sums.resume(state, "checkpoint '" + budget_.resume_path + "': vcm sums");
+    sums.resume(state, "checkpoint '" + budget_.settings.resume_path + "': vcm sums");
 
     // Prepare: the strategies, and from the pilot the light subpaths per pixel and the radii.
     Iteration it = iteration_for(strategies_for(opt_), opt_);
@@ -191,10 +191,11 @@ void VcmIntegrator::render(const Prepared& P, film::Film& film, Progress& progre
         loop.after_iteration(resolve_film);
     }
     resolve_film();
-    loop.finish();
+    const RenderDone done = loop.finish();
     P.stats.add_dropped_samples(sums.rejected());
     P.stats.add_value("vcm",
                       std::to_string(state.iterations) + " iterations" + merging_summary(opt_, plan, it));
+    return done;
 }
 
 }  // namespace phos::integrators

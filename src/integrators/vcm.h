@@ -18,7 +18,7 @@ class VcmIntegrator final : public Integrator {
 public:
     VcmIntegrator(const ProgressiveOptions& options, const RenderBudget& budget)
         : opt_(options), budget_(budget) {}
-    void render(const Prepared& prepared, film::Film& film, Progress& progress) override;
+    RenderDone render(const Prepared& prepared, film::Film& film, Progress& progress) override;
 
 private:
     ProgressiveOptions opt_;

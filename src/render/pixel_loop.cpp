@@ -5,8 +5,8 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <stdexcept>
 
+#include "render/pixel_trace.h"
 #include "render/sample_passes.h"
 
 namespace phos::render {
@@ -39,9 +39,9 @@ void for_each_sample(const Prepared& prepared, int samples, const SampleFn& samp
     });
 }
 
-void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                    const std::string& integrator, Progress& progress, const SampleFn& sample,
-                    const std::function<void(std::string& payload)>& payload) {
+RenderDone render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                          const std::string& integrator, Progress& progress, const SampleFn& sample,
+                          const std::function<void(std::string& payload)>& payload) {
     SamplePasses passes(prepared, film, budget, integrator, progress, payload);
     while (passes.next()) {
         tbb::parallel_for(size_t(0), passes.tiles().size(), [&](size_t t) {
@@ -53,38 +53,49 @@ void render_samples(const Prepared& prepared, film::Film& film, const RenderBudg
         });
         passes.after_pass();
     }
-    passes.finish();
+    return passes.finish();
 }
 
-void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                   const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
-    render_samples(prepared, film, budget, integrator, progress,
-                   [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
-                       film.add_sample(x, y, radiance(ray, sampler, rays));
-                   });
+RenderDone render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                         const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
+    return render_samples(prepared, film, budget, integrator, progress,
+                          [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
+                              film.add_sample(x, y, radiance(ray, sampler, rays));
+                          });
 }
 
-void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                   const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
-                   const PartsFn& parts, const std::function<void(std::string& payload)>& payload) {
+RenderDone render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                         const std::string& integrator, Progress& progress,
+                         const std::vector<Component>& layers, const PartsFn& parts,
+                         const std::function<void(std::string& payload)>& payload) {
     // Layers are created before the parallel loop (creation is not thread-safe).
-    constexpr Rgb RadianceParts::*kParts[] = {&RadianceParts::direct, &RadianceParts::caustic,
-                                              &RadianceParts::indirect, &RadianceParts::specular};
-    constexpr const char* kNames[] = {"direct", "caustic", "indirect", "specular"};
-    std::vector<std::pair<film::Layer*, Rgb RadianceParts::*>> out;
-    for (const std::string& name : layers) {
-        const auto it = std::find(std::begin(kNames), std::end(kNames), name);
-        if (it == std::end(kNames)) throw std::invalid_argument("render_layers: unknown layer " + name);
-        out.emplace_back(&film.layer(name), kParts[it - std::begin(kNames)]);
-    }
-    render_samples(
+    std::vector<std::pair<film::Layer*, Component>> out;
+    for (const Component c : layers) out.emplace_back(&film.layer(component_name(c)), c);
+    return render_samples(
         prepared, film, budget, integrator, progress,
         [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
             RadianceParts p;
             film.add_sample(x, y, parts(ray, sampler, rays, p));
-            for (const auto& [layer, part] : out) layer->add(x, y, p.*part);
+            for (const auto& [layer, part] : out) layer->add(x, y, p[part]);
         },
         payload);
+}
+
+RenderDone render_paths(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                        const std::string& integrator, Progress& progress,
+                        const std::vector<Component>& layers, const PathFn& radiance) {
+    const RadianceFn plain = [&](const Ray& ray, Sampler& sampler, RayCounts& rays) {
+        return radiance(ray, sampler, rays, nullptr);
+    };
+    const RenderDone done =
+        prepared.options.layers
+            ? render_layers(prepared, film, budget, integrator, progress, layers,
+                            [&](const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts) {
+                                return radiance(ray, sampler, rays, &parts);
+                            })
+            : render_pixels(prepared, film, budget, integrator, progress, plain);
+    trace_pixel_samples(prepared, film, plain);  // --trace-pixel
+    return done;
 }
 
 }  // namespace phos::render

@@ -18,6 +18,7 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "film/tiles.h"
+#include "render/path_radiance.h"
 #include "render/prepared.h"
 #include "render/render_budget.h"
 
@@ -28,9 +29,9 @@ using RadianceFn = std::function<Rgb(const Ray& ray, Sampler& sampler, RayCounts
 
 // Renders options.spp x options.dof_samples samples per pixel through `radiance`, within
 // `budget` (time, interrupts, previews, checkpoints, resume); `integrator` names the render in
-// checkpoints and progress.
-void render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                   const std::string& integrator, Progress& progress, const RadianceFn& radiance);
+// checkpoints and progress. Returns what it completed.
+RenderDone render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                         const std::string& integrator, Progress& progress, const RadianceFn& radiance);
 
 // One camera sample of pixel (x, y): the function traces `ray` and records the result itself
 // (main image and any layers). Only the task owning the pixel calls it.
@@ -38,9 +39,9 @@ using SampleFn = std::function<void(int x, int y, const Ray& ray, Sampler& sampl
 // The same loop for integrators that record more than one value per sample into `film` (layers;
 // every layer must exist before the call, and a resumed checkpoint must hold the same layers).
 // `payload` (optional) adds the integrator's own data to each checkpoint (SamplePasses).
-void render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                    const std::string& integrator, Progress& progress, const SampleFn& sample,
-                    const std::function<void(std::string& payload)>& payload = {});
+RenderDone render_samples(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                          const std::string& integrator, Progress& progress, const SampleFn& sample,
+                          const std::function<void(std::string& payload)>& payload = {});
 // One pass of `samples` camera samples per pixel (the first ones, as the render takes them), tile
 // by tile in parallel, then tile_done (if set) with the tile's ray counts; no budget, progress or
 // statistics. For passes beside the render (AOVs).
@@ -50,25 +51,23 @@ void for_each_sample(const Prepared& prepared, int samples, const SampleFn& samp
 void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
                          const SampleFn& sample, RayCounts& rays);
 
-// Radiance along a camera ray split by component, for --layers (film layers "direct", "caustic",
-// "indirect", "specular" summing to the image). `specular` holds everything that reached the
-// camera after at least one mirror/glass (delta) bounce from it; the other three are what the
-// first surface x seen directly sends: direct = its emission, light sampled at it and emission
-// found by its BSDF samples (the light sampling's MIS partner), caustic = light reaching x through
-// one or more delta bounces after it (x S+ L), indirect = the rest.
-struct RadianceParts {
-    Rgb direct{0.0f}, caustic{0.0f}, indirect{0.0f}, specular{0.0f};
-    Rgb total() const { return direct + caustic + indirect + specular; }
-};
-
-// One camera sample with its components: fills `parts` and returns the sample's radiance (which
-// is parts.total() up to float rounding).
+// One camera sample with its components (path_radiance.h): fills `parts` and returns the sample's
+// radiance (which is parts.total() up to float rounding).
 using PartsFn = std::function<Rgb(const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts& parts)>;
-// render_pixels that also records the components named in `layers` (a subset of "direct",
-// "caustic", "indirect", "specular") as film layers.
-void render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
-                   const std::string& integrator, Progress& progress, const std::vector<std::string>& layers,
-                   const PartsFn& parts, const std::function<void(std::string& payload)>& payload = {});
+// render_pixels that also records the components `layers` as film layers.
+RenderDone render_layers(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                         const std::string& integrator, Progress& progress,
+                         const std::vector<Component>& layers, const PartsFn& parts,
+                         const std::function<void(std::string& payload)>& payload = {});
+
+// Radiance along one camera ray; with `parts`, also its split into components.
+using PathFn = std::function<Rgb(const Ray& ray, Sampler& sampler, RayCounts& rays, RadianceParts* parts)>;
+// The whole render of an integrator that is a function of camera rays (whitted, path):
+// render_pixels, or with --layers render_layers recording `layers`, then the --trace-pixel pixel
+// again (pixel_trace.h).
+RenderDone render_paths(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
+                        const std::string& integrator, Progress& progress,
+                        const std::vector<Component>& layers, const PathFn& radiance);
 
 // Position of camera sample `s` inside its pixel, in [0, 1)^2: point s of the (0,2)-sequence,
 // scrambled by the pixel's own random `scramble` bits (core/low_discrepancy.h). Every first 2^k

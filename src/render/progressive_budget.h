@@ -11,7 +11,7 @@
 // It owns the iteration count (state.iterations), the time budget (--time, counted from the
 // command's start), interrupts (the loop ends after the current iteration), checkpoints every
 // --checkpoint-every iterations and at the end, previews every --write-every seconds, the progress
-// display, and RenderBudget::done.
+// display, and what the render completed (RenderDone).
 #pragma once
 
 #include <chrono>
@@ -28,7 +28,7 @@ namespace phos::render {
 
 class ProgressiveBudget {
 public:
-    // Starts the progress display; the target is ro.spp iterations (at least 1) and opt.time
+    // Starts the progress display; the target is ro.spp iterations (at least 1) and opt.settings.time
     // seconds (0 = none).
     ProgressiveBudget(const RenderOptions& ro, const RenderBudget& opt, ProgressiveState& state,
                       film::Film& film, Progress& progress);
@@ -46,19 +46,21 @@ public:
     void after_iteration(const std::function<void()>& resolve_film);
 
     // Ends the render (call after resolving the final image): the progress line, a checkpoint of
-    // the final state unless the last iteration's was saved, RenderBudget::done.
-    void finish();
+    // the final state unless the last iteration's was saved; returns what the render completed.
+    RenderDone finish();
 
     uint64_t target() const { return target_; }
 
 private:
-    const RenderBudget& opt_;
+    const BudgetSettings& settings_;
+    const RenderObservers& watch_;
     ProgressiveState& state_;
     film::Film& film_;
     Progress& progress_;
     uint64_t target_;
     std::chrono::steady_clock::time_point t0_, last_preview_;
     uint64_t last_checkpoint_;
+    RenderDone done_;
     bool time_up_ = false;
     bool progress_started_ = false;
 };

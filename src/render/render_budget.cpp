@@ -33,22 +33,22 @@ using options::Effect;
 
 const options::Table& budget_options() {
     static const options::Table table = [] {
-        options::TableBuilder<RenderBudget> b(
+        options::TableBuilder<BudgetSettings> b(
             "Budgets and checkpoints",
             "time budget, previews, checkpoints and resuming, for every integrator (docs/progressive.md)");
-        b.number("time", &RenderBudget::time, "SECONDS", at_least(0),
+        b.number("time", &BudgetSettings::time, "SECONDS", at_least(0),
                  "stop after the iteration or sample pass that crosses SECONDS of wall time (0 = no limit)")
             .effect = Effect::Budget;
-        b.number("write-every", &RenderBudget::write_every, "SECONDS", at_least(0),
+        b.number("write-every", &BudgetSettings::write_every, "SECONDS", at_least(0),
                  "write the current image every SECONDS (0 = only at the end)")
             .effect = Effect::None;
-        b.text("checkpoint", &RenderBudget::checkpoint_path, "FILE",
+        b.text("checkpoint", &BudgetSettings::checkpoint_path, "FILE",
                "save the render's state to FILE (atomically), also when interrupted")
             .effect = Effect::None;
-        b.number("checkpoint-every", &RenderBudget::checkpoint_every, "N", between(1, 1 << 30),
+        b.number("checkpoint-every", &BudgetSettings::checkpoint_every, "N", between(1, 1 << 30),
                  "iterations (ppm, sppm) or samples per pixel (other integrators) between checkpoints")
             .effect = Effect::None;
-        auto& res = b.text("resume", &RenderBudget::resume_path, "FILE",
+        auto& res = b.text("resume", &BudgetSettings::resume_path, "FILE",
                            "continue the render saved in checkpoint FILE (alone: replays its arguments)");
         res.effect = Effect::None;
         res.default_text = "none";
@@ -59,7 +59,7 @@ const options::Table& budget_options() {
 
 ProgressiveState render_identity(const RenderOptions& ro, const RenderBudget& budget,
                                  const std::string& integrator, uint32_t slots_per_pixel) {
-    ProgressiveState state = budget.identity;
+    ProgressiveState state = budget.observers.identity;
     state.integrator = integrator;
     state.width = uint32_t(ro.width);
     state.height = uint32_t(ro.height);
@@ -73,10 +73,10 @@ ProgressiveState start_state(const RenderOptions& ro, const RenderBudget& budget
                              const std::string& integrator, uint32_t slots_per_pixel, const std::string& unit,
                              uint64_t target) {
     ProgressiveState state = render_identity(ro, budget, integrator, slots_per_pixel);
-    if (budget.resume) {
-        const std::string& path = budget.resume_path;
-        check_resumable(*budget.resume, state, path);
-        state = *budget.resume;
+    if (const auto& resume = budget.observers.resume) {
+        const std::string& path = budget.settings.resume_path;
+        check_resumable(*resume, state, path);
+        state = *resume;
         const std::string done = std::to_string(state.iterations);
         const bool counted = target < kUnboundedIterations && state.iterations <= target;
         log::info("resuming " + state.integrator + " render from " + path + ": " + done +

@@ -1,9 +1,10 @@
 // How much work a render does and how it is kept: the time budget, previews written while it
 // runs, checkpoints and resuming, for every integrator (iterations for ppm / sppm, samples per
-// pixel for the others). Its option table "Budgets and checkpoints" (render_budget.cpp) gives the
-// flags; the hooks let the caller (app/lib/render_command.cpp) write previews and checkpoints
-// without the integrators knowing about files. Interrupts (core/interrupt.h) end a render through
-// the same path as a crossed time budget: the work so far is resolved, checkpointed and written.
+// pixel for the others): the settings its option table "Budgets and checkpoints" (render_budget.cpp)
+// fills, the observers through which the caller (app/lib/render_command.cpp) writes previews and
+// checkpoints without the integrators knowing about files, and what the render completed. Interrupts
+// (core/interrupt.h) end a render through the same path as a crossed time budget: the work so far is
+// resolved, checkpointed and written.
 #pragma once
 
 #include <chrono>
@@ -25,7 +26,8 @@ namespace phos::render {
 // budget alone): progress then shows time, not a count.
 constexpr uint64_t kUnboundedIterations = uint64_t(1) << 30;
 
-struct RenderBudget {
+// What the "Budgets and checkpoints" option table fills (render_budget.cpp).
+struct BudgetSettings {
     // Seconds of wall time (0 = none): stop at the end of the iteration or sample pass that crosses
     // it. Counted from `clock_start` (the app sets it to the command's start, so loading counts).
     double time = 0;
@@ -34,8 +36,10 @@ struct RenderBudget {
     int checkpoint_every = 8;     // iterations (ppm, sppm) or samples per pixel (others) between saves
     std::string checkpoint_path;  // --checkpoint FILE (the app installs on_checkpoint)
     std::string resume_path;      // --resume FILE (the app loads it into `resume`)
+};
 
-    // Hooks (set by the application, not the CLI parser).
+// What the application installs to keep and watch a render (none of it is an option).
+struct RenderObservers {
     std::function<void(const film::Film& film)> on_preview;            // every write_every seconds
     std::function<void(const ProgressiveState& state)> on_checkpoint;  // every checkpoint_every
     std::shared_ptr<const ProgressiveState> resume;                    // state to continue from
@@ -47,20 +51,26 @@ struct RenderBudget {
     // The render's identity stored in checkpoints: the app fills the scene hash, the image-changing
     // options by flag and value and the command line; the integrator sets the rest.
     ProgressiveState identity;
-
-    // Out: what the render completed (for -v, messages and tests): iterations (ppm, sppm) or the
-    // samples per pixel every pixel received (others), and whether it stopped on an interrupt.
-    struct Done {
-        uint64_t units = 0;        // iterations, or samples per pixel in every pixel
-        uint64_t target = 0;       // what was asked (kUnboundedIterations and up: a time budget)
-        uint64_t samples = 0;      // pixel samples taken in all (sample-based integrators)
-        bool interrupted = false;  // stopped early by an interrupt
-        bool started = false;      // at least one iteration or sample pass ran or was resumed
-    };
-    std::shared_ptr<Done> done = std::make_shared<Done>();
 };
 
-// The "Budgets and checkpoints" option table over RenderBudget.
+// What every integrator renders within besides its own options: the settings and the observers.
+struct RenderBudget {
+    BudgetSettings settings;
+    RenderObservers observers;
+};
+
+// What a render completed (Integrator::render returns it; for -v, messages and tests):
+// iterations (ppm, sppm) or the samples per pixel every pixel received (others), and whether it
+// stopped on an interrupt.
+struct RenderDone {
+    uint64_t units = 0;        // iterations, or samples per pixel in every pixel
+    uint64_t target = 0;       // what was asked (kUnboundedIterations and up: a time budget)
+    uint64_t samples = 0;      // pixel samples taken in all (sample-based integrators)
+    bool interrupted = false;  // stopped early by an interrupt
+    bool started = false;      // at least one iteration or sample pass ran or was resumed
+};
+
+// The "Budgets and checkpoints" option table over BudgetSettings.
 const options::Table& budget_options();
 
 // The identity of this render as a checkpoint records it (integrator, size, seed, options...), to

@@ -33,11 +33,12 @@ SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudg
                            std::function<void(std::string& payload)> payload)
     : P_(P),
       film_(film),
-      budget_(budget),
+      settings_(budget.settings),
+      watch_(budget.observers),
       progress_(progress),
       payload_(std::move(payload)),
       tiles_(film::make_tiles(P.options.width, P.options.height)),
-      t0_(budget.clock_start.value_or(clock::now())),
+      t0_(budget.settings.clock_start.value_or(clock::now())),
       last_preview_(clock::now()) {
     const RenderOptions& ro = P.options;
     const uint64_t spp = uint64_t(std::max(1, ro.spp));
@@ -45,8 +46,8 @@ SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudg
                   ? kMaxSamples
                   : std::min(kMaxSamples, spp * uint64_t(std::max(1, ro.dof_samples)));
     state_ = start_state(ro, budget, integrator, 0, "samples per pixel", target_);
-    if (budget.resume) {
-        const std::string what = "checkpoint '" + budget.resume_path + "'";
+    if (budget.observers.resume) {
+        const std::string what = "checkpoint '" + budget.settings.resume_path + "'";
         if (state_.tile_samples.size() != tiles_.size())
             throw InputError(what + ": its tile count does not match the image (" +
                              std::to_string(state_.tile_samples.size()) + ", now " +
@@ -69,19 +70,19 @@ SamplePasses::SamplePasses(const Prepared& P, film::Film& film, const RenderBudg
     gather_.start(film_);
     last_checkpoint_ = state_.iterations = min_done();
     checkpoint_samples_ = taken();
-    budget_.done->target = target_;
-    budget_.done->units = state_.iterations;
-    budget_.done->started = budget.resume != nullptr;
+    done_.target = target_;
+    done_.units = state_.iterations;
+    done_.started = budget.observers.resume != nullptr;
 
     uint64_t left = 0;  // pixel samples still to take
     for (size_t t = 0; t < tiles_.size(); ++t)
         left += uint64_t(tiles_[t].pixel_count()) *
                 (target_ - std::min<uint64_t>(target_, state_.tile_samples[t]));
     progress_started_ = left > 0;
-    timed_ = budget.time > 0;
+    timed_ = budget.settings.time > 0;
     if (!progress_started_) return;
     if (timed_)
-        progress_.start_timed(integrator, budget.time, t0_,
+        progress_.start_timed(integrator, budget.settings.time, t0_,
                               spp < kUnboundedIterations ? target_ - state_.iterations : 0,
                               "samples per pixel");
     else
@@ -96,8 +97,8 @@ uint32_t SamplePasses::min_done() const {
 
 bool SamplePasses::next() {
     // Collective: an interrupt on any rank stops every rank.
-    if (dist::any(interrupt::requested())) budget_.done->interrupted = true;
-    if (time_up_ || budget_.done->interrupted || min_done() >= target_) return false;
+    if (dist::any(interrupt::requested())) done_.interrupted = true;
+    if (time_up_ || done_.interrupted || min_done() >= target_) return false;
     pass_end_ = uint32_t(std::min<uint64_t>(target_, uint64_t(min_done()) + pass_));
     pass_start_ = clock::now();
     return true;
@@ -116,7 +117,7 @@ void SamplePasses::tile_done(size_t t, const RayCounts& rays) {
     const auto [first, last] = range(t);
     state_.tile_samples[t] = last;
     P_.stats.add_rays(rays);
-    if (budget_.on_tile) budget_.on_tile(film_, tiles_[t]);
+    if (watch_.on_tile) watch_.on_tile(film_, tiles_[t]);
     if (!timed_) progress_.advance(uint64_t(tiles_[t].pixel_count()) * (last - first));
 }
 
@@ -132,21 +133,21 @@ void SamplePasses::after_pass() {
     }
     const uint32_t before = uint32_t(state_.iterations);
     state_.iterations = min_done();
-    budget_.done->started = true;
-    budget_.done->units = state_.iterations;
+    done_.started = true;
+    done_.units = state_.iterations;
     if (timed_) progress_.advance(state_.iterations - before);
     // What to do now, decided by rank 0 (its clock, its outputs) and followed by every rank.
     struct Decision {
         uint8_t frame = 0, checkpoint = 0, preview = 0, time_up = 0;
         uint32_t pass = 1;
     } d;
-    d.frame = budget_.on_frame != nullptr;
-    d.checkpoint = budget_.on_checkpoint && budget_.checkpoint_every > 0 &&
-                   state_.iterations >= last_checkpoint_ + uint64_t(budget_.checkpoint_every) && !stopped();
-    d.time_up = budget_.time > 0 && seconds(t0_, now) >= budget_.time;
+    d.frame = watch_.on_frame != nullptr;
+    d.checkpoint = watch_.on_checkpoint && settings_.checkpoint_every > 0 &&
+                   state_.iterations >= last_checkpoint_ + uint64_t(settings_.checkpoint_every) && !stopped();
+    d.time_up = settings_.time > 0 && seconds(t0_, now) >= settings_.time;
     const bool more = !d.time_up && !stopped() && state_.iterations < target_;
-    d.preview = more && budget_.on_preview && budget_.write_every > 0 &&
-                seconds(last_preview_, now) >= budget_.write_every;
+    d.preview = more && watch_.on_preview && settings_.write_every > 0 &&
+                seconds(last_preview_, now) >= settings_.write_every;
     // Passes of about half a second: often enough for --time and previews, long enough that the
     // wait for a pass's last tiles costs nothing.
     const double took = seconds(pass_start_, now);
@@ -159,24 +160,24 @@ void SamplePasses::after_pass() {
     time_up_ = d.time_up;
     pass_ = d.pass;
     if (d.frame || d.checkpoint || d.preview) gather_.gather(film_);
-    if (d.frame && budget_.on_frame) budget_.on_frame(film_);
+    if (d.frame && watch_.on_frame) watch_.on_frame(film_);
     if (d.checkpoint) save_checkpoint();
     if (d.preview) {
-        if (budget_.on_preview) budget_.on_preview(film_);
+        if (watch_.on_preview) watch_.on_preview(film_);
         last_preview_ = clock::now();
     }
 }
 
 void SamplePasses::save_checkpoint() {
     state_.iterations = min_done();
-    if (budget_.on_checkpoint) {  // rank 0 (the other ranks only keep count)
+    if (watch_.on_checkpoint) {  // rank 0 (the other ranks only keep count)
         state_.rejected_samples = film_.main().rejected();
         state_.film.clear();
         state_.film.emplace_back("", film_.main().sums());
         for (const std::string& name : film_.layer_names())
             state_.film.emplace_back(name, film_.layer(name).sums());
         if (payload_) payload_(state_.payload);
-        budget_.on_checkpoint(state_);
+        watch_.on_checkpoint(state_);
         state_.film.clear();
         state_.film.shrink_to_fit();
         std::string().swap(state_.payload);
@@ -192,15 +193,16 @@ uint64_t SamplePasses::taken() const {
     return n;
 }
 
-void SamplePasses::finish() {
+RenderDone SamplePasses::finish() {
     if (progress_started_) progress_.finish();
     state_.iterations = min_done();
     const uint64_t samples = taken();
     gather_.gather(film_);  // rank 0 holds the whole image
-    if (budget_.on_checkpoint && samples != checkpoint_samples_) save_checkpoint();
-    budget_.done->units = state_.iterations;
-    budget_.done->samples = samples;
-    budget_.done->started = samples > 0;
+    if (watch_.on_checkpoint && samples != checkpoint_samples_) save_checkpoint();
+    done_.units = state_.iterations;
+    done_.samples = samples;
+    done_.started = samples > 0;
+    return done_;
 }
 
 }  // namespace phos::render

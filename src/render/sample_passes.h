@@ -42,7 +42,7 @@ namespace phos::render {
 
 class SamplePasses {
 public:
-    // Starts the render (fresh, or from budget.resume after checking it is the same render and
+    // Starts the render (fresh, or from budget.observers.resume after checking it is the same render and
     // film) and its progress display: the target is options.spp x options.dof_samples samples per
     // pixel and budget.time seconds.
     // `payload` (optional) fills the integrator's own data into each checkpoint (the photon maps).
@@ -62,9 +62,9 @@ public:
     void tile_done(size_t t, const RayCounts& rays);
     // Ends a pass: the time budget, previews, checkpoints, the next pass's size.
     void after_pass();
-    // Ends the render: the progress line, the final checkpoint (also when interrupted), and
-    // RenderBudget::done.
-    void finish();
+    // Ends the render: the progress line, the final checkpoint (also when interrupted); returns
+    // what the render completed.
+    RenderDone finish();
 
 private:
     uint32_t min_done() const;
@@ -73,7 +73,8 @@ private:
 
     const Prepared& P_;
     film::Film& film_;
-    const RenderBudget& budget_;
+    const BudgetSettings& settings_;
+    const RenderObservers& watch_;
     Progress& progress_;
     std::function<void(std::string&)> payload_;
     std::vector<film::Tile> tiles_;
@@ -84,6 +85,7 @@ private:
     uint32_t pass_end_ = 0;            // this pass: tiles take samples up to here
     uint64_t last_checkpoint_ = 0;     // samples per pixel at the last checkpoint
     uint64_t checkpoint_samples_ = 0;  // pixel samples the last checkpoint (or the resumed one) held
+    RenderDone done_;
     bool time_up_ = false, timed_ = false, progress_started_ = false;
     std::chrono::steady_clock::time_point t0_, pass_start_, last_preview_;
 };

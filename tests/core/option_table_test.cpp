@@ -10,12 +10,13 @@ namespace {
 struct Inner {
     unsigned count = 5;
 };
+enum class Mode { A, B, Unnamed };
 struct Demo {
     float alpha = 0.7f;
     int n = 3;
     uint64_t big = 0;
     bool on = true;
-    std::string mode = "a";
+    Mode mode = Mode::A;
     Inner inner;
 };
 
@@ -25,7 +26,7 @@ Table demo_table() {
     b.number("n", &Demo::n, "N", between(1, 10), "n").effect = Effect::Budget;
     b.number("big", &Demo::big, "N", at_least(0), "big").pbrt = "bignumber";
     b.flag("no-on", &Demo::on, "turn off", false).effect = Effect::None;
-    b.choice("mode", &Demo::mode, {"a", "b"}, "mode");
+    b.choice("mode", &Demo::mode, {{Mode::A, "a"}, {Mode::B, "b"}}, "mode");
     b.number(
         "count", [](auto& d) -> auto& { return d.inner.count; }, "C", between(1, 100), "nested");
     return b.build();
@@ -53,7 +54,8 @@ TEST(OptionTable, SetsFieldsThroughTheTable) {
     EXPECT_EQ(d.n, 7);
     EXPECT_EQ(d.big, 18446744073709551615ull);
     EXPECT_FALSE(d.on);
-    EXPECT_EQ(d.mode, "b");
+    EXPECT_EQ(d.mode, Mode::B);
+    EXPECT_EQ(t.find("mode")->get(&d), "b");
     EXPECT_EQ(d.inner.count, 42u);
     EXPECT_EQ(t.find("big")->get(&d), "18446744073709551615");
     EXPECT_EQ(t.find_pbrt("bignumber"), t.find("big"));
@@ -82,6 +84,30 @@ TEST(OptionTable, DefaultsComeFromTheStruct) {
     EXPECT_EQ(t.default_text(*t.find("n")), "3");
     EXPECT_EQ(t.default_text(*t.find("no-on")), "off");  // the switch is off: `on` stays true
     EXPECT_EQ(t.default_text(*t.find("count")), "5");
+    EXPECT_EQ(t.default_text(*t.find("mode")), "a");
+}
+
+// A word-valued option stores the value its word stands for, lists the words in help and docs
+// ("a|b"), and refuses a stored value that has no word.
+TEST(OptionTable, ChoicesAreTyped) {
+    const Table t = demo_table();
+    const Option& mode = *t.find("mode");
+    EXPECT_EQ(mode.value_name, "NAME");
+    EXPECT_EQ(mode.range_text, "a|b");
+    Demo d;
+    EXPECT_EQ(set_error(t, d, "mode", {"B"}), "--mode: 'B' is not one of a|b");
+    EXPECT_EQ(d.mode, Mode::A);
+    d.mode = Mode::Unnamed;
+    try {
+        validate(t, &d);
+        FAIL() << "no error";
+    } catch (const ValueError& e) {
+        EXPECT_STREQ(e.what(), "--mode: 2 is not one of a|b");
+    }
+    const Choices<Mode> choices{{Mode::A, "a"}, {Mode::B, "b"}};
+    EXPECT_EQ(parse_choice(choices, "b"), Mode::B);
+    EXPECT_EQ(choice_name(choices, Mode::A), "a");
+    EXPECT_EQ(choice_list(choices), "a|b");
 }
 
 TEST(OptionTable, ValidateNamesTheFirstBadField) {
@@ -107,6 +133,23 @@ TEST(OptionTable, ValuesListsOptionsByEffect) {
     const auto budget = values(t, &d, Effect::Budget);
     ASSERT_EQ(budget.size(), 1u);
     EXPECT_EQ(budget[0].first, "--n");
+}
+
+// An option's integrators are a set of their numbers: values() for one integrator leaves out the
+// options of others.
+TEST(OptionTable, AppliesToASetOfIntegrators) {
+    Table t = demo_table();
+    Option& alpha = t.options[0];
+    EXPECT_TRUE(alpha.applies(0) && alpha.applies(31));  // empty: every integrator
+    alpha.applies_to.bits = 0b101;                       // integrators 0 and 2
+    EXPECT_TRUE(alpha.applies(0));
+    EXPECT_FALSE(alpha.applies(1));
+    EXPECT_TRUE(alpha.applies(2));
+    EXPECT_FALSE(alpha.applies(40));
+    Demo d;
+    EXPECT_EQ(values(t, &d, Effect::Image, 1u).size(), 3u);  // big, mode, count
+    EXPECT_EQ(values(t, &d, Effect::Image, 2u).size(), 4u);
+    EXPECT_EQ(values(t, &d, Effect::Image).size(), 4u);
 }
 
 TEST(OptionTable, NumbersPrintShortestRoundTrip) {

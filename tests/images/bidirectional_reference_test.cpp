@@ -15,7 +15,7 @@
 #include "core/stats.h"
 #include "film/film.h"
 #include "film/metrics.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
 #include "render/prepared.h"
@@ -37,7 +37,8 @@ Image render_with(const std::string& name, const std::string& integrator, int sp
     Progress progress(false);
     integrators::IntegratorConfig config;
     config.progressive = progressive;
-    integrators::make_integrator(integrator, config)->render(prepared, film, progress);
+    integrators::make_integrator(integrators::integrator_kind(integrator), config)
+        ->render(prepared, film, progress);
     EXPECT_EQ(stats.dropped_samples(), 0u) << integrator;
     return film.image();
 }
@@ -45,8 +46,9 @@ Image render_with(const std::string& name, const std::string& integrator, int sp
 Image render(const std::string& name, const std::string& integrator, int spp, const std::string& mode = "vcm",
              int size = 128, uint64_t seed = 3, const std::string& merge = "first") {
     integrators::ProgressiveOptions o;
-    o.vcm_mode = mode;
-    o.vcm_merge = merge;
+    const options::Table& t = integrators::progressive_options();
+    t.find("vcm-mode")->set(&o, {mode});
+    t.find("vcm-merge")->set(&o, {merge});
     return render_with(name, integrator, spp, o, size, seed);
 }
 

@@ -36,7 +36,7 @@ Render render_pm(const std::string& scene_name, int size, int spp, const integra
     render::Prepared prepared(s, opt, {}, stats);
     Render r{Image{}, film::Film(size, size)};
     Progress progress(false);
-    integrators::PhotonMapIntegrator(o).render(prepared, r.film, progress);
+    integrators::PhotonMapIntegrator(o, {}, render::all_components()).render(prepared, r.film, progress);
     r.image = r.film.image();
     return r;
 }

@@ -1,6 +1,6 @@
 // --layers for path, whitted, photonmap, bdpt and vcm: the component layers sum to the image, the image is
 // the same bytes with or without them, and each component holds what its definition says
-// (pixel_loop.h, RadianceParts): checked on closed boxes with and without mirrors and glass.
+// (path_radiance.h): checked on closed boxes with and without mirrors and glass.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "core/log.h"
 #include "core/stats.h"
 #include "film/film.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "render/prepared.h"
 #include "support/shapes.h"
 
@@ -83,7 +83,7 @@ Result render(const std::string& integrator, const scene::Scene& s, bool layers,
     IntegratorConfig config;
     config.photon_map.global.photons = 20000;
     config.photon_map.caustic.photons = 20000;
-    make_integrator(integrator, config)->render(P, film, progress);
+    make_integrator(integrator_kind(integrator), config)->render(P, film, progress);
     Result r{film.image(), {}, stats.report()};
     for (const std::string& name : film.layer_names()) r.layers[name] = film.find_layer(name)->image();
     return r;

@@ -29,7 +29,7 @@
 
 #include "core/stats.h"
 #include "film/film.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "io/image/image_io.h"
 #include "render/prepared.h"
 #include "support/shapes.h"
@@ -74,7 +74,7 @@ Image render(const std::string& name, const scene::Scene& s, const RenderSetup& 
     Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
-    make_integrator(name, config)->render(prepared, film, progress);
+    make_integrator(integrator_kind(name), config)->render(prepared, film, progress);
     EXPECT_EQ(film.main().rejected(), 0u) << name << ": NaN or infinite samples";
     return film.image();
 }

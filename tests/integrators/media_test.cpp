@@ -11,7 +11,7 @@
 
 #include "core/stats.h"
 #include "film/film.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "render/prepared.h"
 
 namespace phos::integrators {
@@ -71,7 +71,7 @@ Image render(const std::string& name, const scene::Scene& s, int spp, const Inte
     Prepared prepared(s, opt, {}, stats);
     film::Film film(opt.width, opt.height);
     Progress progress(false);
-    make_integrator(name, config)->render(prepared, film, progress);
+    make_integrator(integrator_kind(name), config)->render(prepared, film, progress);
     return film.image();
 }
 

@@ -29,7 +29,7 @@ uint64_t item(const MemoryEstimate& e, const std::string& name) {
 TEST(MemoryEstimate, PhotonBudgetDominatesAndTheTreeBuildsInPlace) {
     const scene::Scene scene = mesh_scene(12);
     MemoryEstimateInputs in;
-    in.integrator = "photonmap";
+    in.integrator = IntegratorKind::PhotonMap;
     in.photon_map.global.photons = 1'500'000'000;
     const MemoryEstimate e = estimate_memory(scene, in);
     ASSERT_FALSE(e.items.empty());
@@ -53,7 +53,7 @@ TEST(MemoryEstimate, PhotonBudgetDominatesAndTheTreeBuildsInPlace) {
 TEST(MemoryEstimate, ProgressiveStateScalesWithPixels) {
     const scene::Scene scene = mesh_scene(12);
     MemoryEstimateInputs in;
-    in.integrator = "sppm";
+    in.integrator = IntegratorKind::Sppm;
     in.render.width = in.render.height = 4000;
     const MemoryEstimate e = estimate_memory(scene, in);
     EXPECT_EQ(e.phase, "render");
@@ -62,13 +62,13 @@ TEST(MemoryEstimate, ProgressiveStateScalesWithPixels) {
     EXPECT_GT(item(e, "film"), 0u);
     in.progressive.eye_samples = 4;  // sppm ignores it; ppm keeps 4 hit points per pixel
     EXPECT_EQ(estimate_memory(scene, in).total, e.total);
-    in.integrator = "ppm";
+    in.integrator = IntegratorKind::Ppm;
     EXPECT_GT(estimate_memory(scene, in).total, 3 * e.total);
 }
 
 TEST(MemoryEstimate, TrianglesDominateTheBvhBuild) {
     MemoryEstimateInputs in;
-    in.integrator = "path";
+    in.integrator = IntegratorKind::Path;
     in.render.width = in.render.height = 64;
     const MemoryEstimate e = estimate_memory(mesh_scene(4'000'000), in);
     EXPECT_EQ(e.phase, "BVH build");
@@ -81,7 +81,7 @@ TEST(MemoryEstimate, TrianglesDominateTheBvhBuild) {
 TEST(MemoryEstimate, LayersAndAovsAddFilm) {
     const scene::Scene scene = mesh_scene(12);
     MemoryEstimateInputs in;
-    in.integrator = "path";
+    in.integrator = IntegratorKind::Path;
     in.render.width = in.render.height = 1000;
     const uint64_t plain = item(estimate_memory(scene, in), "film");
     in.render.layers = true;

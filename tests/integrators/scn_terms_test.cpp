@@ -5,7 +5,7 @@
 
 #include "core/stats.h"
 #include "film/film.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "render/prepared.h"
 #include "support/shapes.h"
 
@@ -52,7 +52,7 @@ Rgb mean_pixel(const std::string& integrator, const scene::Scene& s, bool ambien
     config.photon_map.global.photons = 100;
     config.photon_map.caustic.photons = 100;
     config.progressive.photons_per_iter = 100;
-    make_integrator(integrator, config)->render(P, film, progress);
+    make_integrator(integrator_kind(integrator), config)->render(P, film, progress);
     Rgb sum(0.0f);
     const Image img = film.image();
     for (const Rgb& p : img.pixels) sum += p;

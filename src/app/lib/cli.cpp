@@ -23,6 +23,7 @@
 #include "core/log.h"
 #include "core/spelling.h"
 #include "dist/ranks.h"
+#include "integrators/registry.h"
 #include "render/progressive_checkpoint.h"
 
 namespace phos::app {
@@ -104,11 +105,7 @@ std::vector<std::string> checkpoint_arguments(const std::vector<std::string>& re
 // --help text of one option: its help, accepted values and default.
 std::string describe(const options::Table& t, const options::Option& o) {
     std::string s = o.help;
-    if (!o.applies_to.empty()) {
-        std::string who = o.applies_to;
-        std::replace(who.begin(), who.end(), ' ', '/');
-        s = who + ": " + s;
-    }
+    if (!o.applies_to.empty()) s = integrators::integrator_names(o.applies_to, "/") + ": " + s;
     if (!o.flag && !o.range_text.empty()) s += "; " + o.range_text;
     std::string def = t.default_text(o);
     if (def.empty()) def = "none";

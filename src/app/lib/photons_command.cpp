@@ -143,7 +143,7 @@ int run_photons(const PhotonsCommand& command) {
         cmd.scene_path = command.scene_path;
         scene = load_render_scene(cmd);
     }
-    cmd.run.integrator = "photonmap";
+    cmd.run.integrator = integrators::IntegratorKind::PhotonMap;
     std::string spp_source = "default";  // the sample count plays no part here
     apply_quality(cmd, apply_scene_parameters(cmd, scene), spp_source);
     for (const BoundTable& b : cmd.tables()) {

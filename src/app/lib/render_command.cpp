@@ -32,7 +32,7 @@
 #include "display/tev_stream.h"
 #include "dist/ranks.h"
 #include "film/film.h"
-#include "integrators/factory.h"
+#include "integrators/registry.h"
 #include "io/image/image_io.h"
 #include "io/load_scene.h"
 #include "render/aov.h"
@@ -98,6 +98,16 @@ void check_output(const std::string& out) {
     check_writable(out, "output");
 }
 
+using integrators::IntegratorKind;
+
+const std::string& name_of(IntegratorKind kind) { return integrators::integrator(kind).name; }
+
+// The integrator the scene file names, if any (loaders name only integrators phos has).
+std::optional<IntegratorKind> scene_integrator(const scene::RenderSettings& st) {
+    if (!st.integrator) return std::nullopt;
+    return integrators::integrator_kind(*st.integrator);
+}
+
 // Where the effective settings came from, for the start-up line.
 struct Sources {
     std::string integrator, size, spp, output;
@@ -133,15 +143,16 @@ std::string choose_output(const RenderCommand& cmd, const scene::Scene& scene, s
 // from the default instead.
 Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     const scene::RenderSettings& st = scene.settings;
+    const std::optional<IntegratorKind> own = scene_integrator(st);
     Sources src;
     if (cmd.was_given("integrator")) {
         src.integrator = "command line";
-    } else if (st.integrator) {
-        cmd.run.integrator = *st.integrator;
+    } else if (own) {
+        cmd.run.integrator = *own;
         src.integrator = "scene file";
         if (!st.unavailable_integrator.empty())
             log::warn(st.integrator_location + ": Integrator \"" + st.unavailable_integrator +
-                      "\" is not available in phos; using " + cmd.run.integrator +
+                      "\" is not available in phos; using " + name_of(*own) +
                       " (choose another with --integrator)");
     } else {
         src.integrator = "default";
@@ -167,7 +178,8 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
         src.size = file_or_default;
     }
 
-    const bool progressive = integrators::counts_iterations(cmd.run.integrator);
+    const bool progressive =
+        integrators::integrator(cmd.run.integrator).counts == integrators::Counts::Iterations;
     if (cmd.was_given("spp") || cmd.was_given("aa")) {
         src.spp = "command line";
     } else if (progressive && cmd.was_given("iterations")) {
@@ -175,7 +187,7 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
         src.spp = "--iterations";
     } else if (cmd.was_given("time")) {
         src.spp = "--time";  // the time budget alone decides (setup_budget)
-    } else if (st.spp && (!st.integrator || *st.integrator == cmd.run.integrator)) {
+    } else if (st.spp && (!own || *own == cmd.run.integrator)) {
         r.spp = *st.spp;
         src.spp = "scene file";
     } else if (st.spp) {
@@ -208,18 +220,17 @@ void check_options(RenderCommand& cmd) {
     std::string refused;
     for (const BoundTable& b : cmd.tables())
         for (const options::Option& o : b.table->options) {
-            if (!cmd.was_given(o.name) || o.applies(cmd.run.integrator)) continue;
-            std::string who = o.applies_to;
-            std::replace(who.begin(), who.end(), ' ', '/');
+            if (!cmd.was_given(o.name) || integrators::applies(o, cmd.run.integrator)) continue;
+            const std::string who = integrators::integrator_names(o.applies_to, "/");
             if (o.effect != options::Effect::Image)
                 refused +=
                     (refused.empty() ? "" : "; ") + o.flag_name() + " is for the " + who + " integrators";
             else
-                log::warn(o.flag_name() + " has no effect on the " + cmd.run.integrator + " integrator (" +
-                          who + " only)");
+                log::warn(o.flag_name() + " has no effect on the " + name_of(cmd.run.integrator) +
+                          " integrator (" + who + " only)");
         }
     if (!refused.empty())
-        throw InputError(refused + " (this render uses " + cmd.run.integrator +
+        throw InputError(refused + " (this render uses " + name_of(cmd.run.integrator) +
                          "; --spp and --time bound any render)");
 }
 
@@ -229,17 +240,19 @@ std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cm
     std::vector<std::pair<std::string, std::string>> out;
     for (const BoundTable& b : cmd.tables()) {
         if (b.table == &run_options()) continue;  // the integrator is recorded by name
-        const auto v = options::values(*b.table, b.object, options::Effect::Image, cmd.run.integrator);
+        const auto v =
+            options::values(*b.table, b.object, options::Effect::Image, unsigned(cmd.run.integrator));
         out.insert(out.end(), v.begin(), v.end());
     }
     return out;
 }
 
-// Budgets, previews, checkpoints and resuming, for every integrator: fills the hooks and the
-// render identity that checkpoints carry, and turns --iterations / --time / --resume into the
-// sample or iteration count.
-void setup_budget(RenderCommand& cmd, const std::string& output, bool progressive) {
-    render::RenderBudget& p = cmd.budget;
+// Budgets, previews, checkpoints and resuming, for every integrator: turns --iterations / --time /
+// --resume into the sample or iteration count, and returns the observers (checkpoints, previews,
+// the state resumed) and the render identity that checkpoints carry.
+render::RenderObservers setup_budget(RenderCommand& cmd, const std::string& output, bool progressive) {
+    const render::BudgetSettings& p = cmd.budget;
+    render::RenderObservers watch;
     render::RenderOptions& opt = cmd.render;
     const int iterations = cmd.progressive.iterations;
     if (iterations > 0 && (cmd.was_given("spp") || cmd.was_given("aa")) && opt.spp != iterations)
@@ -248,7 +261,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
     if (p.time > 0 && !count_given) opt.spp = 1 << 30;  // the time budget alone decides
 
     // The render's identity: scene bytes and every option that changes the image.
-    render::ProgressiveState& id = p.identity;
+    render::ProgressiveState& id = watch.identity;
     {
         std::ifstream f(cmd.scene_path, std::ios::binary);
         const std::string bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
@@ -264,7 +277,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
             if (!progressive) target /= uint64_t(std::max(1, opt.dof_samples));  // saved in camera samples
             opt.spp = int(std::clamp<uint64_t>(target, 1, 1 << 30));
         }
-        p.resume = saved;
+        watch.resume = saved;
     }
     if (!p.checkpoint_path.empty()) {
         const std::string path = p.checkpoint_path;
@@ -274,7 +287,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
         if (dist::root()) check_writable(path, "checkpoint");
         // A checkpoint that cannot be written (disk full, read-only) leaves the previous one intact
         // and the render goes on: its image may still be written at the end.
-        p.on_checkpoint = [path](const render::ProgressiveState& s) {
+        watch.on_checkpoint = [path](const render::ProgressiveState& s) {
             try {
                 render::save_checkpoint(path, s);
             } catch (const InputError& e) {
@@ -285,7 +298,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
     }
     if (p.write_every > 0) {
         const float exposure = cmd.run.exposure;
-        p.on_preview = [output, exposure](const film::Film& f) {
+        watch.on_preview = [output, exposure](const film::Film& f) {
             try {
                 io::write_image(output, f.image(), {exposure});
             } catch (const InputError& e) {
@@ -294,6 +307,7 @@ void setup_budget(RenderCommand& cmd, const std::string& output, bool progressiv
             }
         };
     }
+    return watch;
 }
 
 // The film layers to write: the integrator's components with --layers, the AOVs asked for.
@@ -310,7 +324,7 @@ std::vector<std::string> written_layers(const film::Film& film, const render::Re
 
 // What a render completed, for -v and the interrupt warning: "12 of 64 iterations", "37.5 of 64
 // samples per pixel (59 %)".
-std::string work_done(const render::RenderBudget::Done& done, bool progressive, size_t pixels) {
+std::string work_done(const render::RenderDone& done, bool progressive, size_t pixels) {
     const bool counted = done.target < render::kUnboundedIterations;
     if (progressive)
         return std::to_string(done.units) + (counted ? " of " + std::to_string(done.target) : "") +
@@ -339,7 +353,8 @@ bool output_exists(const std::string& path) {
 std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Scene& scene) {
     std::set<std::string> applied;
     const scene::RenderSettings& st = scene.settings;
-    const bool own = !st.integrator || *st.integrator == cmd.run.integrator;
+    const std::optional<IntegratorKind> named = scene_integrator(st);
+    const bool own = !named || *named == cmd.run.integrator;
     for (const scene::IntegratorParameter& p : st.integrator_parameters) {
         const std::string what = "Integrator parameter \"" + p.type + " " + p.name + "\"";
         const options::Option* opt = nullptr;
@@ -384,7 +399,7 @@ void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, 
             if (spp_source.rfind("default", 0) != 0 || cmd.was_given("aa") || cmd.was_given("iterations") ||
                 cmd.was_given("time"))
                 continue;
-            spp_source = "--quality " + cmd.run.quality;
+            spp_source = "--quality " + options::choice_name(quality_choices(), cmd.run.quality);
         }
         for (const BoundTable& b : cmd.tables())
             if (const options::Option* o = b.table->find(name)) o->set(b.object, {value});
@@ -444,15 +459,16 @@ int run_render(const RenderCommand& command) {
     check_options(cmd);
     check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
     if (!cmd.run.trace_json.empty() && dist::root()) check_writable(cmd.run.trace_json, "--trace-json");
-    const std::string& integrator_name = cmd.run.integrator;
-    const bool progressive = integrators::counts_iterations(integrator_name);
-    if (cmd.render.layers && integrators::integrator_layers(integrator_name).empty())
+    const integrators::IntegratorInfo& info = integrators::integrator(cmd.run.integrator);
+    const std::string& integrator_name = info.name;
+    const bool progressive = info.counts == integrators::Counts::Iterations;
+    if (cmd.render.layers && info.layers.empty())
         throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
-    setup_budget(cmd, output, progressive);
+    render::RenderObservers watch = setup_budget(cmd, output, progressive);
     cmd.budget.clock_start = clock_start;
     if (!dist::root()) {  // rank 0 alone writes, shows and streams (docs/distributed.md)
-        cmd.budget.on_checkpoint = nullptr;
-        cmd.budget.on_preview = nullptr;
+        watch.on_checkpoint = nullptr;
+        watch.on_preview = nullptr;
         cmd.run.preview = false;
         cmd.run.tev.clear();
     }
@@ -464,12 +480,12 @@ int run_render(const RenderCommand& command) {
     if (cmd.run.preview || tev_address) {
         live = std::make_unique<display::LiveImage>(cmd.render.width, cmd.render.height);
         display::LiveImage* l = live.get();
-        cmd.budget.on_tile = [l](const film::Film& f, const film::Tile& t) { l->update_tile(f, t); };
-        cmd.budget.on_frame = [l](const film::Film& f) { l->update_frame(f); };
+        watch.on_tile = [l](const film::Film& f, const film::Tile& t) { l->update_tile(f, t); };
+        watch.on_frame = [l](const film::Film& f) { l->update_frame(f); };
     }
 
-    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, cmd.budget};
-    auto integrator = integrators::make_integrator(integrator_name, config);
+    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, {cmd.budget, watch}};
+    auto integrator = integrators::make_integrator(cmd.run.integrator, config);
     const render::RenderOptions& opt = cmd.render;
     check_memory(cmd, scene, stats);  // refuses before any work when the memory would not do
 
@@ -543,11 +559,12 @@ int run_render(const RenderCommand& command) {
     // Under MPI: every rank has set up without error, or none renders (a failing rank said why).
     if (dist::distributed() && dist::agree_start(true).any_failed) return 2;
     std::vector<std::string> rank_lines;  // -v under MPI: each rank's render time and rays
+    render::RenderDone done;
     {
         ScopedTimer t(stats, "render");
         const render::TraceRequest request(trace ? &*trace : nullptr);
         const auto t0 = std::chrono::steady_clock::now();
-        integrator->render(*prepared, film, progress);
+        done = integrator->render(*prepared, film, progress);
         if (dist::distributed()) {
             const double seconds = seconds_since(t0);
             const RayCounts rays = stats.rays();
@@ -561,10 +578,8 @@ int run_render(const RenderCommand& command) {
         dist::mark_finished();
     }
     if (!dist::root())
-        return interrupt::requested() || cmd.budget.done->interrupted
-                   ? interrupt::exit_status(interrupt::signal_number())
-                   : 0;
-    const render::RenderBudget::Done& done = *cmd.budget.done;
+        return interrupt::requested() || done.interrupted ? interrupt::exit_status(interrupt::signal_number())
+                                                          : 0;
     const bool interrupted = done.interrupted || interrupt::requested();
     const int status = interrupted ? interrupt::exit_status(interrupt::signal_number()) : 0;
     if (interrupted && !done.started) {

@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "accel/device_config.h"
-#include "integrators/factory.h"
 
 namespace phos::app {
 
@@ -21,6 +20,12 @@ void table_short(B& b, const char* letter) {
 }
 }  // namespace
 
+const options::Choices<Quality>& quality_choices() {
+    static const options::Choices<Quality> choices{
+        {Quality::Draft, "draft"}, {Quality::Normal, "normal"}, {Quality::High, "high"}};
+    return choices;
+}
+
 const options::Table& run_options() {
     static const options::Table table = [] {
         options::TableBuilder<RunOptions> b("Run", "output, integrator, threads and messages");
@@ -31,7 +36,7 @@ const options::Table& run_options() {
         out.default_text =
             "the scene file's Film filename (pbrt.exr if a pbrt file names none); .scn, .scene: the scene's "
             "name with .png, beside it";
-        auto& integ = b.choice("integrator", &RunOptions::integrator, integrators::integrator_names(),
+        auto& integ = b.choice("integrator", &RunOptions::integrator, integrators::integrator_choices(),
                                "rendering algorithm");
         integ.default_text = "the scene file's (pbrt: path unless it names one), else photonmap";
         b.number("threads", &RunOptions::threads, "N", between(0, 4096), "worker threads (0 = all cores)")
@@ -50,7 +55,7 @@ const options::Table& run_options() {
                  "exposure in stops for .png/.bmp output")
             .effect = Effect::None;
         auto& q =
-            b.choice("quality", &RunOptions::quality, {"draft", "normal", "high"},
+            b.choice("quality", &RunOptions::quality, quality_choices(),
                      "budget preset: samples per pixel, photon-map budgets, final-gather rays and photons "
                      "per iteration together (draft: spp 4, 50k/25k photons, 4 gather rays, 50k per "
                      "iteration; normal: the defaults; high: spp 64, 1M/500k photons, 16 gather rays, 1M "
@@ -118,7 +123,7 @@ const options::Table& scene_options() {
                "photons); --no-emission-lights: their glow is only seen, as in the seed renderer",
                true, "no-emission-lights");
         b.flag("real", &SceneOptions::real,
-               ".scn: the seed's -real (scale lobes so kd + ks + kt <= 1): phos always does this now, see "
+               ".scn: the seed's -real (scale lobes so kd + ks + kt <= 1), which phos always does; see "
                "--raw-materials")
             .effect = Effect::None;
         b.flag(
@@ -150,7 +155,7 @@ const options::Table& scene_options() {
     return table;
 }
 
-const std::vector<std::pair<std::string, std::string>>& quality_preset(const std::string& quality) {
+const std::vector<std::pair<std::string, std::string>>& quality_preset(Quality quality) {
     static const std::vector<std::pair<std::string, std::string>> draft{
         {"spp", "4"},          {"global", "50000"},  {"caustic", "25000"},
         {"indirect", "50000"}, {"gather-rays", "4"}, {"photons-per-iter", "50000"}};
@@ -158,7 +163,7 @@ const std::vector<std::pair<std::string, std::string>>& quality_preset(const std
     static const std::vector<std::pair<std::string, std::string>> high{
         {"spp", "64"},           {"global", "1000000"}, {"caustic", "500000"},
         {"indirect", "1000000"}, {"gather-rays", "16"}, {"photons-per-iter", "1000000"}};
-    return quality == "draft" ? draft : quality == "high" ? high : normal;
+    return quality == Quality::Draft ? draft : quality == Quality::High ? high : normal;
 }
 
 std::vector<BoundTable> RenderCommand::tables() {
@@ -200,7 +205,8 @@ std::string options_markdown() {
                                  : o.effect == Effect::Budget ? "budget"
                                                               : "none";
             std::string help = o.help;
-            if (!o.applies_to.empty()) help = "(" + o.applies_to + ") " + help;
+            if (!o.applies_to.empty())
+                help = "(" + integrators::integrator_names(o.applies_to, " ") + ") " + help;
             std::string def = t->default_text(o);
             if (def.empty()) def = "none";
             auto cell = [](std::string text) {  // a '|' would end the table cell

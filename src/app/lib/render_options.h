@@ -11,6 +11,7 @@
 #include "core/option_table.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
+#include "integrators/registry.h"
 #include "render/options.h"
 #include "render/render_budget.h"
 
@@ -19,24 +20,28 @@ namespace phos::app {
 // Where `--tev` streams when given without HOST:PORT (tev's own default).
 inline constexpr const char* kTevDefault = "127.0.0.1:14158";
 
+// --quality: budget presets (quality_preset).
+enum class Quality { Draft, Normal, High };
+const options::Choices<Quality>& quality_choices();
+
 // Options of the run itself (none changes the image's radiance).
 struct RunOptions {
     std::string output;  // empty: the scene file's Film filename, else a default (render_command.cpp)
     // The scene file's integrator when it names one (pbrt files always do: pbrt's default is
     // volpath), else the photon mapper, as in both seed renderers.
-    std::string integrator = "photonmap";
+    integrators::IntegratorKind integrator = integrators::IntegratorKind::PhotonMap;
     int threads = 0;  // 0 = all cores
     bool verbose = false;
     bool quiet = false;
     bool progress = false;  // forced on or off (given on the command line), else automatic
     float exposure = 0;
     bool strict = false;
-    float max_memory = 0;            // GB the render may take (0 = the memory available)
-    std::string quality = "normal";  // budget preset (quality_preset)
-    bool preview = false;            // --preview: a window showing the image as it converges
-    bool preview_hold = false;       // keep the window after the render until closed
-    std::string preview_screenshot;  // the window's pixels written here when it closes
-    std::string tev;                 // --tev HOST:PORT: stream to a tev viewer (empty: no)
+    float max_memory = 0;               // GB the render may take (0 = the memory available)
+    Quality quality = Quality::Normal;  // budget preset (quality_preset)
+    bool preview = false;               // --preview: a window showing the image as it converges
+    bool preview_hold = false;          // keep the window after the render until closed
+    std::string preview_screenshot;     // the window's pixels written here when it closes
+    std::string tev;                    // --tev HOST:PORT: stream to a tev viewer (empty: no)
     // --trace-pixel X Y: print every camera sample of that pixel (-1: none); --trace-json FILE.
     int trace_x = -1, trace_y = -1;
     std::string trace_json;
@@ -69,7 +74,7 @@ struct RenderCommand {
     render::RenderOptions render;
     integrators::PhotonMapOptions photon_map;
     integrators::ProgressiveOptions progressive;
-    render::RenderBudget budget;
+    render::BudgetSettings budget;
     // Names (without dashes) of the options given on the command line.
     std::set<std::string> given;
     // The arguments of this render (for checkpoints: a bare --resume replays them).
@@ -80,9 +85,9 @@ struct RenderCommand {
     bool was_given(const std::string& name) const { return given.count(name) > 0; }
 };
 
-// The options a --quality preset sets ("draft", "normal", "high"), as (option name, value) pairs;
-// options given on the command line or by the scene file keep their values.
-const std::vector<std::pair<std::string, std::string>>& quality_preset(const std::string& quality);
+// The options a --quality preset sets, as (option name, value) pairs; options given on the command
+// line or by the scene file keep their values.
+const std::vector<std::pair<std::string, std::string>>& quality_preset(Quality quality);
 
 // The tables of `phos render` over default structs (for docs and lookups).
 std::vector<const options::Table*> all_tables();

@@ -8,6 +8,7 @@
 #include "app/lib/json_writer.h"
 #include "app/lib/render_options.h"
 #include "core/error.h"
+#include "integrators/registry.h"
 #include "io/image/atomic_write.h"
 
 namespace phos::app {
@@ -206,6 +207,14 @@ void json_visible_point(JsonWriter& w, const TracedVisiblePoint& vp) {
     w.end_array().end_object();
 }
 
+// "a, b and c".
+std::string listed(const std::vector<std::string>& words) {
+    std::string out;
+    for (size_t i = 0; i < words.size(); ++i)
+        out += (i == 0 ? "" : i + 1 == words.size() ? " and " : ", ") + words[i];
+    return out;
+}
+
 }  // namespace
 
 void check_trace_options(const RunOptions& run, int width, int height) {
@@ -214,10 +223,13 @@ void check_trace_options(const RunOptions& run, int width, int height) {
         if (!run.trace_json.empty()) throw InputError("--trace-json: give the pixel with --trace-pixel X Y");
         return;
     }
-    if (run.integrator == "bdpt" || run.integrator == "vcm")
-        throw InputError(
-            "--trace-pixel: the " + run.integrator +
-            " integrator does not record pixel traces (path, whitted, photonmap, ppm and sppm do)");
+    if (!integrators::integrator(run.integrator).traces) {
+        std::vector<std::string> tracing;
+        for (const integrators::IntegratorInfo& i : integrators::integrators())
+            if (i.traces) tracing.push_back(i.name);
+        throw InputError("--trace-pixel: the " + integrators::integrator(run.integrator).name +
+                         " integrator does not record pixel traces (" + listed(tracing) + " do)");
+    }
     if (run.trace_x >= width || run.trace_y >= height)
         throw InputError("--trace-pixel: (" + std::to_string(run.trace_x) + ", " +
                          std::to_string(run.trace_y) + ") is outside the " + std::to_string(width) + "x" +

@@ -218,6 +218,23 @@ void SceneBuilder::sampler(const std::string& type, const ParamList& params, con
     done(params, d);
 }
 
+namespace {
+// pbrt-v4's integrators and the phos integrator that renders each; `same`: the same algorithm (the
+// others are substitutes, with a warning). Any other renders with path, also with a warning.
+struct PbrtIntegrator {
+    const char* pbrt;
+    const char* phos;
+    bool same;
+};
+constexpr PbrtIntegrator kPbrtIntegrators[] = {
+    {"path", "path", true},
+    {"volpath", "path", true},  // phos's path tracer is its volumetric path tracer too
+    {"sppm", "sppm", true},
+    {"bdpt", "bdpt", true},
+    {"mlt", "bdpt", false},  // Metropolis light transport explores bdpt's path space: the same image
+};
+}  // namespace
+
 void SceneBuilder::integrator(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "Integrator", loc);
     // Parameters are kept as written; the renderer maps them onto its option tables by name
@@ -236,17 +253,11 @@ void SceneBuilder::integrator(const std::string& type, const ParamList& params, 
         scene_.settings.integrator_parameters.push_back(std::move(ip));
     }
     params.mark_all_used();
-    if (type == "sppm" || type == "path" || type == "bdpt") {
-        scene_.settings.integrator = type;
-    } else if (type == "mlt") {
-        // Metropolis light transport explores bdpt's path space: bdpt renders the same image.
-        scene_.settings.integrator = "bdpt";
-        scene_.settings.unavailable_integrator = type;
-        scene_.settings.integrator_location = loc.str();
-    } else if (type == "volpath") {
-        scene_.settings.integrator = "path";  // phos's path tracer is its volumetric path tracer too
-    } else {
-        scene_.settings.integrator = "path";
+    PbrtIntegrator match{"", "path", false};
+    for (const PbrtIntegrator& i : kPbrtIntegrators)
+        if (type == i.pbrt) match = i;
+    scene_.settings.integrator = match.phos;
+    if (!match.same) {
         scene_.settings.unavailable_integrator = type;
         scene_.settings.integrator_location = loc.str();
     }

@@ -1,0 +1,62 @@
+// The radiance a camera path gathers, split into the components --layers writes. The integrator
+// reports what its path finds and how it scatters; which component each contribution belongs to is
+// decided here from those events (as Mitsuba's AOV integrator and pbrt's film keep such bookkeeping
+// out of the estimator), and each contribution also goes to the --trace-pixel recorder.
+#pragma once
+
+#include <vector>
+
+#include "core/vec.h"
+
+namespace phos::render {
+
+// The components of the radiance along a camera ray, each a film layer with --layers, summing to
+// the image. `Specular` holds everything that reached the camera after at least one mirror/glass
+// (delta) bounce from it; the other three are what the first surface x seen directly sends:
+// direct = its emission, light sampled at it and emission found by its BSDF samples (the light
+// sampling's MIS partner), caustic = light reaching x through one or more delta bounces after it
+// (x S+ L), indirect = the rest.
+enum class Component { Direct, Caustic, Indirect, Specular };
+// The film layer a component is written to: "direct", "caustic", "indirect", "specular".
+const char* component_name(Component c);
+// All four, in the order of their layers.
+const std::vector<Component>& all_components();
+
+struct RadianceParts {
+    Rgb direct{0.0f}, caustic{0.0f}, indirect{0.0f}, specular{0.0f};
+    Rgb total() const { return direct + caustic + indirect + specular; }
+    Rgb& operator[](Component c);
+};
+
+// One camera path's radiance L, with `parts` (optional) its split into components and, while a
+// pixel is traced, each contribution recorded with its term (path_recorder.h).
+class PathRadiance {
+public:
+    explicit PathRadiance(RadianceParts* parts = nullptr) : parts_(parts) {}
+    // Emission the path found (an emitter it hit, emission in a medium, light escaping the scene),
+    // the path's throughput included.
+    void emission(Rgb c);
+    // Light sampled at the path's current vertex (next-event estimation), throughput included.
+    void light(Rgb c);
+    // The path went on from its current vertex: through a delta lobe (mirror, glass) or not
+    // (a diffuse or glossy lobe, a medium's phase function).
+    void bounce(bool delta);
+    Rgb total() const { return L_; }
+
+private:
+    // Where the path is: x is the first surface the camera sees directly.
+    enum class Stage {
+        Camera,         // the camera ray
+        SpecularChain,  // after a delta bounce from the camera (whatever follows)
+        FromX,          // the ray x's BSDF sampled from a non-delta lobe
+        CausticChain,   // after x's non-delta bounce, delta bounces only
+        Indirect,       // after two or more non-delta bounces
+    };
+    void add(Rgb c, Component part, bool emitted);
+
+    Rgb L_{0.0f};
+    RadianceParts* parts_;
+    Stage stage_ = Stage::Camera;
+};
+
+}  // namespace phos::render
