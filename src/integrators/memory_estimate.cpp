@@ -232,7 +232,7 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     const bool per_thread = slots * kAccumulatorSlot * arena <= double(1u << 30);
     Phase p = common;
     p.name = "render";
-    p.add("visible points", slots * (sizeof(sppm::VisiblePoint) + sizeof(sppm::GatherPoint) + 1));
+    p.add("visible points", slots * (sizeof(VisiblePoint) + sizeof(sppm::GatherPoint) + 1));
     p.add("pixel statistics", slots * sizeof(sppm::PixelStats));
     p.add("photon sums", slots * kAccumulatorSlot * (1 + (per_thread ? workers : 0)));
     // One visible point per pixel and eye sample (with media, in one of the pixel's two slots).
@@ -242,13 +242,13 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     // Under MPI: the eye-pass exchange's buffers (every slot's point and statistics, and this
     // rank's share again) and the summed photon sums, kept for the whole render.
     if (dist::distributed())
-        p.add("rank exchange", slots * (double(sizeof(sppm::VisiblePoint) + sizeof(sppm::PixelStats)) *
+        p.add("rank exchange", slots * (double(sizeof(VisiblePoint) + sizeof(sppm::PixelStats)) *
                                             (1 + 1.0 / dist::ranks()) +
                                         kAccumulatorSlot));
     phases.push_back(p);
 }
 
-// bdpt and vcm (vcm.h): the fixed-point sums (image and layers, 24 bytes per pixel each), and for
+// bdpt and vcm (bdpt.h, vcm.h): the fixed-point sums (image and layers, 24 bytes per pixel each), and for
 // vcm the iteration's light subpaths: the vertices of one per pixel (kLightVerticesPerPath on
 // average, measured 3.3 on the bench scenes at the default depth), the mergeable ones of all
 // (kMergeableVerticesPerPath, measured 2.0: surfaces at least two segments from the light) packed
@@ -265,7 +265,7 @@ void bidirectional_phase(const MemoryEstimateInputs& in, bool light_vertices, co
     p.add("fixed-point sums", pixels * 24 * planes);
     if (light_vertices) {
         // --vcm-light-paths 0 (automatic) takes 2 per pixel, or more where the pilot finds fewer
-        // mergeable vertices per subpath (about 3 per pixel then, vcm.cpp): 2 bounds both.
+        // mergeable vertices per subpath (about 3 per pixel then, vcm_pilot.cpp): 2 bounds both.
         const int k = in.progressive.vcm_light_paths > 0 ? in.progressive.vcm_light_paths : 2;
         const double paths = pixels * double(k);
         const double vertices = paths * kMergeableVerticesPerPath;

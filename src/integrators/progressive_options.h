@@ -31,7 +31,7 @@ struct ProgressiveOptions {
     int vcm_camera_samples = 2;          // vcm: camera samples per pixel per iteration (first-vertex merging)
     float vcm_continue = 0;              // vcm: probability a camera subpath goes on past a Lambert x_f
     int vcm_light_paths = 0;             // vcm: light subpaths per pixel per iteration for merging
-                                         // (0 = automatic, vcm.cpp light_paths_per_pixel)
+                                         // (0 = automatic, vcm_pilot.cpp light_paths_per_pixel)
     VcmMerge vcm_merge = VcmMerge::First;  // vcm: merge at the camera's first non-delta vertex or every one
     float vcm_rr_weight = 0.1f;            // bdpt, vcm: Russian roulette on shadow rays of strategies whose
                                            // MIS weight is below this (0 = off)
@@ -53,7 +53,7 @@ inline int direct_samples_for(const ProgressiveOptions& o, bool ppm) {
     return o.direct_samples > 0 ? o.direct_samples : ppm ? 16 : 2;
 }
 // bdpt and vcm: light samples at the camera subpath's first non-delta vertex per iteration
-// (deeper vertices take one), stratified over the iterations like SPPM's (vcm.cpp).
+// (deeper vertices take one), stratified over the iterations like SPPM's (camera_subpath.cpp).
 inline int bidirectional_direct_samples(const ProgressiveOptions& o) {
     return o.direct_samples > 0 ? o.direct_samples : 2;
 }

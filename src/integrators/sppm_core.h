@@ -38,9 +38,6 @@ using namespace render;  // the render support the algorithms are written over (
 
 namespace phos::integrators::sppm {
 
-// The eye pass's visible point (eye_path.h), one per hit-point slot.
-using integrators::VisiblePoint;
-
 // The automatic or explicit initial radius of a visible point, before any photon pass: `radius`
 // (--radius) when > 0, else `radius_pixels` pixel footprints at the point's path length.
 struct InitialRadius {
