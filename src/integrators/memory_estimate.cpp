@@ -242,9 +242,9 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
     // Under MPI: the eye-pass exchange's buffers (every slot's point and statistics, and this
     // rank's share again) and the summed photon sums, kept for the whole render.
     if (dist::distributed())
-        p.add("rank exchange", slots * (double(sizeof(VisiblePoint) + sizeof(sppm::PixelStats)) *
-                                            (1 + 1.0 / dist::ranks()) +
-                                        kAccumulatorSlot));
+        p.add("rank exchange",
+              slots * (double(sizeof(VisiblePoint) + sizeof(sppm::PixelStats)) * (1 + 1.0 / dist::ranks()) +
+                       kAccumulatorSlot));
     phases.push_back(p);
 }
 
