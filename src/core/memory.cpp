@@ -2,7 +2,6 @@
 #include "core/memory.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -12,6 +11,8 @@
 #include <sys/mman.h>
 #include <sys/resource.h>
 #endif
+
+#include "core/format.h"
 
 namespace phos::memory {
 namespace {
@@ -205,14 +206,8 @@ std::string format_bytes(uint64_t bytes) {
     double v = double(bytes);
     int u = 0;
     while (u < 4 && v >= 999.5) v /= 1000, ++u;
-    char buf[32];
-    if (u == 0 || v >= 99.95)
-        std::snprintf(buf, sizeof buf, "%.0f %s", v, units[u]);
-    else if (v >= 9.995)
-        std::snprintf(buf, sizeof buf, "%.1f %s", v, units[u]);
-    else
-        std::snprintf(buf, sizeof buf, "%.2f %s", v, units[u]);
-    return buf;
+    const int decimals = u == 0 || v >= 99.95 ? 0 : v >= 9.995 ? 1 : 2;
+    return printf_string("%.*f %s", decimals, v, units[u]);
 }
 
 }  // namespace phos::memory

@@ -7,14 +7,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/format.h"
+
 namespace phos {
 namespace {
-
-std::string format(const char* fmt, double a, double b = 0) {
-    char buf[64];
-    std::snprintf(buf, sizeof(buf), fmt, a, b);
-    return buf;
-}
 
 constexpr double kLineEverySeconds = 10;  // Lines, indeterminate phase: one line per 10 s
 
@@ -87,18 +83,19 @@ std::string Progress::describe(uint64_t done, double t, bool final) const {
     const std::string count = std::to_string(done);
     if (budget_ > 0) {
         // "12.3 s / 30 s, 41 iterations" or "..., 41 of 100 iterations".
-        std::string s = format("%.1f s / %g s, ", t, budget_) + count;
+        std::string s = printf_string("%.1f s / %g s, ", t, budget_) + count;
         if (total_ > 0) s += " of " + std::to_string(total_);
         return s + (unit_.empty() ? "" : " " + unit_) + (final ? ", done" : "");
     }
     if (total_ == 0)
-        return count + (unit_.empty() ? "" : " " + unit_) + format(", %.1f s", t) + (final ? ", done" : "");
+        return count + (unit_.empty() ? "" : " " + unit_) + printf_string(", %.1f s", t) +
+               (final ? ", done" : "");
     const double f = fraction(done, t);
-    std::string s = format("%3.0f %%", std::floor(f * 100)) + " (" + count + " of " + std::to_string(total_) +
-                    (unit_.empty() ? "" : " " + unit_) + ")";
-    if (final) return s + format(", took %.1f s", t);
-    s += format(", %.1f s", t);
-    if (f > 0) s += format(", ETA %.0f s", t * (1 - f) / f);
+    std::string s = printf_string("%3.0f %%", std::floor(f * 100)) + " (" + count + " of " +
+                    std::to_string(total_) + (unit_.empty() ? "" : " " + unit_) + ")";
+    if (final) return s + printf_string(", took %.1f s", t);
+    s += printf_string(", %.1f s", t);
+    if (f > 0) s += printf_string(", ETA %.0f s", t * (1 - f) / f);
     return s;
 }
 

@@ -1,7 +1,7 @@
 // Statistics accumulation and the `-v` report text.
 #include "core/stats.h"
 
-#include <cstdio>
+#include "core/format.h"
 
 namespace phos {
 
@@ -32,25 +32,20 @@ void Stats::add_value(const std::string& name, const std::string& value) {
 std::string Stats::report() const {
     std::lock_guard lock(mutex_);
     std::string s;
-    char line[256];
     const RayCounts r = rays();
     const uint64_t total = r.camera + r.shadow + r.bounce + r.photon;
     double render_time = 0;
     s += "statistics:\n";
-    std::snprintf(line, sizeof line,
-                  "  rays: %llu camera, %llu shadow, %llu bounce, %llu photon (%llu total)\n",
-                  (unsigned long long)r.camera, (unsigned long long)r.shadow, (unsigned long long)r.bounce,
-                  (unsigned long long)r.photon, (unsigned long long)total);
-    s += line;
+    s += printf_string("  rays: %llu camera, %llu shadow, %llu bounce, %llu photon (%llu total)\n",
+                       (unsigned long long)r.camera, (unsigned long long)r.shadow,
+                       (unsigned long long)r.bounce, (unsigned long long)r.photon, (unsigned long long)total);
     for (const auto& [name, t] : times_) {
-        std::snprintf(line, sizeof line, "  time %-18s %9.3f s\n", (name + ":").c_str(), t);
-        s += line;
+        s += printf_string("  time %-18s %9.3f s\n", (name + ":").c_str(), t);
         if (name == "render") render_time = t;
     }
     if (render_time > 0) {
-        std::snprintf(line, sizeof line, "  rays per second (render): %.3g M\n",
-                      double(r.camera + r.shadow + r.bounce) / render_time * 1e-6);
-        s += line;
+        s += printf_string("  rays per second (render): %.3g M\n",
+                           double(r.camera + r.shadow + r.bounce) / render_time * 1e-6);
     }
     for (const auto& [name, v] : values_) s += "  " + name + ": " + v + "\n";
     return s;

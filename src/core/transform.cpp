@@ -50,10 +50,6 @@ bool Mat4::inverse(Mat4& out) const {
     return true;
 }
 
-Transform::Transform(const Mat4& m) : m_(m) {
-    if (!m.inverse(inv_)) throw std::invalid_argument("singular transformation matrix");
-}
-
 Transform Transform::translate(Vec3 d) {
     Mat4 m, inv;
     m(0, 3) = d.x, m(1, 3) = d.y, m(2, 3) = d.z;

@@ -16,7 +16,7 @@ struct Mat4 {
     Mat4 operator*(const Mat4& o) const;
     bool operator==(const Mat4&) const = default;
     Mat4 transposed() const;
-    // Inverse by cofactors; returns false (and leaves `out` untouched) when singular.
+    // Inverse by Gauss-Jordan elimination; returns false (and leaves `out` untouched) when singular.
     bool inverse(Mat4& out) const;
     bool is_identity() const { return *this == Mat4{}; }
 };
@@ -24,8 +24,6 @@ struct Mat4 {
 class Transform {
 public:
     Transform() = default;
-    // Throws std::invalid_argument if `m` is singular.
-    explicit Transform(const Mat4& m);
     Transform(const Mat4& m, const Mat4& inv) : m_(m), inv_(inv) {}
 
     static Transform translate(Vec3 d);
@@ -38,7 +36,6 @@ public:
     Transform operator*(const Transform& o) const { return {m_ * o.m_, o.inv_ * inv_}; }
     Transform inverse() const { return {inv_, m_}; }
     const Mat4& matrix() const { return m_; }
-    const Mat4& inverse_matrix() const { return inv_; }
     bool is_identity() const { return m_.is_identity(); }
     bool swaps_handedness() const;
 

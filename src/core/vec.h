@@ -83,12 +83,9 @@ inline Vec3 min(Vec3 a, Vec3 b) { return {std::min(a.x, b.x), std::min(a.y, b.y)
 inline Vec3 max(Vec3 a, Vec3 b) { return {std::max(a.x, b.x), std::max(a.y, b.y), std::max(a.z, b.z)}; }
 inline Vec3 abs(Vec3 v) { return {std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}; }
 inline float max_component(Vec3 v) { return std::max(v.x, std::max(v.y, v.z)); }
-inline int max_axis(Vec3 v) { return v.x > v.y ? (v.x > v.z ? 0 : 2) : (v.y > v.z ? 1 : 2); }
 inline bool is_finite(Vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 // Mirror direction of `wo` about normal `n` (both pointing away from the surface).
 constexpr Vec3 reflect(Vec3 wo, Vec3 n) { return 2.0f * dot(wo, n) * n - wo; }
-// Same hemisphere as `ref` (flips `n` if needed).
-constexpr Vec3 face_forward(Vec3 n, Vec3 ref) { return dot(n, ref) < 0 ? -n : n; }
 
 // Linear RGB radiometric quantity (radiance, flux, albedo...), one value per channel.
 struct Rgb {

@@ -33,15 +33,6 @@ inline Vec3 cosine_hemisphere(Vec2 u) {
 }
 inline float cosine_hemisphere_pdf(float cos_theta) { return cos_theta > 0 ? cos_theta * kInvPi : 0; }
 
-// Uniform on the hemisphere around +z. pdf = 1/(2 pi).
-inline Vec3 uniform_hemisphere(Vec2 u) {
-    const float z = u.x;
-    const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-    const float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
-inline float uniform_hemisphere_pdf() { return 0.5f * kInvPi; }
-
 // Uniform on the unit sphere. pdf = 1/(4 pi).
 inline Vec3 uniform_sphere(Vec2 u) {
     const float z = 1 - 2 * u.x;
@@ -51,13 +42,7 @@ inline Vec3 uniform_sphere(Vec2 u) {
 }
 inline float uniform_sphere_pdf() { return 0.25f * kInvPi; }
 
-// Uniform over the cone of directions within angle acos(cos_max) of +z. pdf = 1/(2 pi (1-cos_max)).
-inline Vec3 uniform_cone(Vec2 u, float cos_max) {
-    const float z = 1 - u.x * (1 - cos_max);
-    const float r = std::sqrt(std::max(0.0f, 1 - z * z));
-    const float phi = 2 * kPi * u.y;
-    return {r * std::cos(phi), r * std::sin(phi), z};
-}
+// The density of directions uniform over the cone within angle acos(cos_max) of +z.
 inline float uniform_cone_pdf(float cos_max) { return 1 / (2 * kPi * (1 - cos_max)); }
 
 // Directions around +z distributed as (n+1)/(2 pi) cos^n(theta) (the Phong lobe). pdf below.
@@ -90,11 +75,6 @@ inline float truncated_power_cosine_pdf(float cos_theta, float n, float cos_max)
 inline Vec2 uniform_triangle(Vec2 u) {
     const float su = std::sqrt(u.x);
     return {1 - su, u.y * su};
-}
-
-// Converts an area density at a point seen at `distance` with |cos| to the solid-angle density.
-inline float area_to_solid_angle(float pdf_area, float distance, float abs_cos) {
-    return abs_cos > 0 ? pdf_area * distance * distance / abs_cos : 0;
 }
 
 // Balance-free power heuristic (beta = 2) for multiple importance sampling.

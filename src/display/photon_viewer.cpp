@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "core/format.h"
 #include "core/log.h"
 #include "display/framebuffer.h"
 #include "io/image/image_io.h"
@@ -168,9 +169,8 @@ std::string viewer_title(const std::string& title, const Viewer& v) {
     std::string maps;
     for (size_t g = 0; g < v.scene->group_names.size(); ++g)
         if (v.shown[g] && g < v.present.size() && v.present[g]) maps += " " + v.scene->group_names[g];
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "; points %d px]", int(v.point_size));
-    return title + "  [colour " + kColourings[v.colouring] + "; maps" + (maps.empty() ? " none" : maps) + buf;
+    return title + "  [colour " + kColourings[v.colouring] + "; maps" + (maps.empty() ? " none" : maps) +
+           printf_string("; points %d px]", int(v.point_size));
 }
 
 Image window_pixels(GLFWwindow* window) {

@@ -9,11 +9,11 @@
 #include <cmath>
 #include <condition_variable>
 #include <csignal>
-#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <vector>
 
+#include "core/format.h"
 #include "core/interrupt.h"
 #include "core/log.h"
 #include "display/framebuffer.h"
@@ -275,10 +275,10 @@ void run_window(PreviewWindow::State& s) {
                                 rgb.data());
             }
         }
-        char title[256];
-        std::snprintf(title, sizeof title, "%s  [%s, exposure %+.1f%s]", s.options.title.c_str(),
-                      names[layer].c_str(), exposure, s.render_done ? ", done" : "");
-        glfwSetWindowTitle(window, title);
+        const std::string title =
+            printf_string("%s  [%s, exposure %+.1f%s]", s.options.title.c_str(), names[layer].c_str(),
+                          exposure, s.render_done ? ", done" : "");
+        glfwSetWindowTitle(window, title.c_str());
         draw(window, texture, w, h);
         glfwSwapBuffers(window);
         shown = now;

@@ -198,25 +198,6 @@ TevAddress parse_tev_address(std::string_view text, std::string_view option) {
     return a;
 }
 
-TevClient::TevClient(TevClient&& other) noexcept
-    : options_(other.options_),
-      fd_(std::exchange(other.fd_, -1)),
-      peer_(std::move(other.peer_)),
-      error_(std::move(other.error_)),
-      bytes_sent_(other.bytes_sent_) {}
-
-TevClient& TevClient::operator=(TevClient&& other) noexcept {
-    if (this != &other) {
-        close();
-        options_ = other.options_;
-        fd_ = std::exchange(other.fd_, -1);
-        peer_ = std::move(other.peer_);
-        error_ = std::move(other.error_);
-        bytes_sent_ = other.bytes_sent_;
-    }
-    return *this;
-}
-
 void TevClient::close() {
     if (fd_ >= 0) ::close(fd_);
     fd_ = -1;
@@ -232,18 +213,6 @@ bool TevClient::usable() {
     if (ok()) return true;
     if (error_.empty()) error_ = "not connected to tev";
     return false;
-}
-
-bool TevClient::connect(const std::string& host_port) {
-    TevAddress address;
-    try {
-        address = parse_tev_address(host_port);
-    } catch (const InputError& e) {
-        close();
-        error_ = e.what();
-        return false;
-    }
-    return connect(address);
 }
 
 bool TevClient::connect(const TevAddress& address) {
@@ -374,33 +343,6 @@ bool TevClient::update_image(const std::string& name, const std::vector<std::str
             return false;
         }
         if (!send_packet(packet)) return false;
-    }
-    return true;
-}
-
-bool TevClient::update_image(const std::string& name, const Image& image) {
-    static const std::vector<std::string> kRgb = {"R", "G", "B"};
-    if (!usable()) return false;
-    if (std::size_t(image.width) * std::size_t(image.height) != image.pixels.size()) {
-        error_ = "tev update_image: image size does not match its pixels";
-        return false;
-    }
-    // Convert a band of whole rows at a time, so no full float copy of the image is held.
-    std::size_t row_floats = std::size_t(image.width) * 3;
-    int band =
-        int(std::clamp<std::size_t>(options_.max_floats_per_packet / std::max<std::size_t>(row_floats, 1), 1,
-                                    std::size_t(std::max(image.height, 1))));
-    std::vector<float> rows;
-    for (int y0 = 0; y0 < image.height; y0 += band) {
-        int h = std::min(band, image.height - y0);
-        rows.resize(row_floats * std::size_t(h));
-        const Rgb* src = image.pixels.data() + std::size_t(y0) * std::size_t(image.width);
-        for (std::size_t i = 0; i < std::size_t(image.width) * std::size_t(h); ++i) {
-            rows[3 * i] = src[i].r;
-            rows[3 * i + 1] = src[i].g;
-            rows[3 * i + 2] = src[i].b;
-        }
-        if (!update_image(name, kRgb, 0, y0, image.width, h, rows.data())) return false;
     }
     return true;
 }

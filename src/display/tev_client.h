@@ -33,8 +33,6 @@
 #include <string_view>
 #include <vector>
 
-#include "core/image.h"
-
 namespace phos::display {
 
 inline constexpr int kTevDefaultPort = 14158;
@@ -72,12 +70,9 @@ public:
     ~TevClient() { close(); }
     TevClient(const TevClient&) = delete;
     TevClient& operator=(const TevClient&) = delete;
-    TevClient(TevClient&& other) noexcept;
-    TevClient& operator=(TevClient&& other) noexcept;
 
-    // Closes any previous connection, then connects to "HOST:PORT" (parsed as by
-    // parse_tev_address) within options().connect_timeout_ms.
-    bool connect(const std::string& host_port);
+    // Closes any previous connection, then connects to `address` within
+    // options().connect_timeout_ms.
     bool connect(const TevAddress& address);
 
     // Opens (or replaces) image `name` in tev, every channel zero.
@@ -91,8 +86,6 @@ public:
     // nothing and succeeds.
     bool update_image(const std::string& name, const std::vector<std::string>& channel_names, int x, int y,
                       int width, int height, const float* data, std::size_t row_stride = 0);
-    // All of `image` as channels R, G, B of tev's image `name`, created at least that large.
-    bool update_image(const std::string& name, const Image& image);
 
     void close();
 

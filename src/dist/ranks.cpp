@@ -136,7 +136,9 @@ void broadcast(void* data, size_t bytes) {
     g_bytes += bytes;
 }
 
-void broadcast(std::string& bytes) {
+namespace {
+// Rank 0's string, resized on the others.
+void broadcast_string(std::string& bytes) {
     if (g_ranks == 1) return;
     uint64_t n = bytes.size();
     broadcast(&n, sizeof n);
@@ -144,7 +146,6 @@ void broadcast(std::string& bytes) {
     broadcast(bytes.data(), n);
 }
 
-namespace {
 template <class T>
 void all_reduce(T* values, size_t n, MPI_Datatype type, MPI_Op op) {
     if (g_ranks == 1 || n == 0) return;
@@ -158,7 +159,6 @@ void all_reduce(T* values, size_t n, MPI_Datatype type, MPI_Op op) {
 }  // namespace
 
 void sum(int64_t* values, size_t n) { all_reduce(values, n, MPI_INT64_T, MPI_SUM); }
-void sum(uint64_t* values, size_t n) { all_reduce(values, n, MPI_UINT64_T, MPI_SUM); }
 void max(uint32_t* values, size_t n) { all_reduce(values, n, MPI_UINT32_T, MPI_MAX); }
 
 bool any(bool value) {
@@ -210,7 +210,7 @@ void all_gather(std::string_view mine, std::string& all) {
     if (total >= uint64_t(std::numeric_limits<int>::max())) {  // int counts: large ones go through rank 0
         all.clear();
         for (const std::string& part : gather(std::string(mine))) all += part;
-        broadcast(all);
+        broadcast_string(all);
         return;
     }
     std::vector<int> counts(static_cast<size_t>(g_ranks)), offsets(static_cast<size_t>(g_ranks));
@@ -234,9 +234,7 @@ bool built_with_mpi() { return false; }
 void init(int*, char***) {}
 void finalize() {}
 void broadcast(void*, size_t) {}
-void broadcast(std::string&) {}
 void sum(int64_t*, size_t) {}
-void sum(uint64_t*, size_t) {}
 void max(uint32_t*, size_t) {}
 bool any(bool value) { return value; }
 std::vector<std::string> gather(const std::string& mine) { return {mine}; }

@@ -51,11 +51,9 @@ std::pair<uint64_t, uint64_t> share(uint64_t count);
 
 // Collectives (no-ops with one rank).
 void broadcast(void* data, size_t bytes);  // from rank 0 to all
-void broadcast(std::string& bytes);        // rank 0's string, resized on the others
 void sum(int64_t* values, size_t n);       // element-wise sum over ranks, in place on every rank
-void sum(uint64_t* values, size_t n);
-void max(uint32_t* values, size_t n);  // element-wise maximum over ranks, in place on every rank
-bool any(bool value);                  // true on every rank if it is true on some rank
+void max(uint32_t* values, size_t n);      // element-wise maximum over ranks, in place on every rank
+bool any(bool value);                      // true on every rank if it is true on some rank
 // Rank 0 receives every rank's bytes (index = rank; its own included); the others get {}.
 std::vector<std::string> gather(const std::string& mine);
 // Every rank receives every rank's bytes, concatenated in rank order.

@@ -56,21 +56,6 @@ Image Layer::image() const {
     return img;
 }
 
-void Layer::merge(const Layer& other, int x0, int y0) {
-    if (x0 < 0 || y0 < 0 || x0 + other.width_ > width_ || y0 + other.height_ > height_)
-        throw std::invalid_argument("film merge: the merged layer does not fit at the given offset");
-    for (int y = 0; y < other.height_; ++y)
-        for (int x = 0; x < other.width_; ++x) {
-            const Pixel& s = other.pixels_[other.index(x, y)];
-            Pixel& d = pixels_[index(x0 + x, y0 + y)];
-            d.r += s.r;
-            d.g += s.g;
-            d.b += s.b;
-            d.w += s.w;
-        }
-    rejected_.fetch_add(other.rejected(), std::memory_order_relaxed);
-}
-
 std::vector<double> Layer::sums() const {
     std::vector<double> out;
     out.reserve(pixels_.size() * 4);
@@ -124,11 +109,6 @@ std::vector<std::string> Film::layer_names() const {
     std::vector<std::string> names;
     for (const auto& [name, layer] : layers_) names.push_back(name);
     return names;
-}
-
-void Film::merge(const Film& other, int x0, int y0) {
-    main_.merge(other.main_, x0, y0);
-    for (const auto& [name, other_layer] : other.layers_) layer(name).merge(other_layer, x0, y0);
 }
 
 void Film::clear() {

@@ -37,11 +37,8 @@ public:
     double weight(int x, int y) const { return pixels_[index(x, y)].w; }
     Image image() const;
 
-    // Adds `other`'s sums and weights into the rectangle starting at (x0, y0), which must lie inside
-    // this layer (std::invalid_argument otherwise). Row-major order, so the result is reproducible.
-    void merge(const Layer& other, int x0 = 0, int y0 = 0);
     void clear();
-    // Samples rejected by add() for being NaN or infinite (including those merged in).
+    // Samples rejected by add() for being NaN or infinite.
     uint64_t rejected() const { return rejected_.load(std::memory_order_relaxed); }
 
     // The raw sums, 4 doubles per pixel (r, g, b, weight) row by row, and their restoration (a
@@ -89,9 +86,6 @@ public:
     const Layer* find_layer(const std::string& name) const;
     std::vector<std::string> layer_names() const;  // sorted
 
-    // Merges `other` (e.g. a tile's film) at offset (x0, y0): the main image and every layer by
-    // name (missing layers are created). Layers are visited in name order, pixels row by row.
-    void merge(const Film& other, int x0 = 0, int y0 = 0);
     void clear();
 
     // NaN/inf samples rejected by the main image, for the -v report.

@@ -71,14 +71,6 @@ public:
     static constexpr int kMaxLevels = 8;
     void set_max_levels(int n) { max_levels_ = std::clamp(n, 1, kMaxLevels); }
 
-    size_t entry_count() const {
-        size_t n = 0;
-        for (const Level& l : levels_) n += l.entries.size();
-        return n;
-    }
-    // Cell edge of the coarsest level (the largest radius's class).
-    float cell_size() const { return levels_.empty() ? 0 : 1 / levels_.front().inv_cell; }
-
 private:
     struct Level {
         Vec3 lo{0.0f};

@@ -139,11 +139,6 @@ private:
     KdBuildStats build_stats_;
 };
 
-// Reference answer for tests: the same query by examining every photon. Returns the neighbours
-// sorted by (dist2, index); index is the position in `photons`. `out` must hold k entries.
-KnnResult knn_brute_force(std::span<const Photon> photons, Vec3 q, uint32_t k, float max_dist2,
-                          Neighbour* out);
-
 // ---- implementation of the templates ----
 
 namespace detail {

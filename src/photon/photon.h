@@ -338,7 +338,6 @@ struct Photon {
     int split_axis() const { return normal_axis & 3; }
 
     void set_power(Rgb p) { power_rgbe = encode_rgbe(p); }
-    void set_wi(Vec3 wi) { wi_code = uint16_t(encode_octahedral<8>(wi)); }
     void set_normal(Vec3 n) {
         const uint32_t code = length_squared(n) > 0 ? encode_octahedral<7>(n) : kNoNormalCode;
         normal_axis = uint16_t((code << 2) | (normal_axis & 3u));

@@ -43,8 +43,6 @@ public:
     // Fraction of the scene's emitted power that leaves through marked cells (0: no light can send
     // a photon towards a specular object, the caustic map stays empty).
     double fraction() const { return fraction_; }
-    // Fraction of light i's emission in its marked cells (1 for lights kept in full).
-    float light_fraction(size_t i) const { return lights_[i].fraction; }
     bool empty() const { return !(fraction_ > 0); }
 
     // Emits one photon through a marked cell: light chosen by power x fraction, a marked cell

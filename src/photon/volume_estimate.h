@@ -46,9 +46,4 @@ float volume_estimate_photons(const PhotonKdTree& map, const VolumeEstimateOptio
 Rgb volume_radiance_estimate(const PhotonKdTree& map, const VolumeEstimateOptions& o, Vec3 x, Vec3 wo,
                              const shading::PhaseFunction& phase, uint32_t* n_used = nullptr);
 
-// The same with every photon within the fixed radius r (progressive estimates, where the radius
-// schedule rather than k sets the bias): sum p Phi_p / (4/3 pi r^3).
-Rgb volume_radiance_fixed_radius(const PhotonKdTree& map, float r, Vec3 x, Vec3 wo,
-                                 const shading::PhaseFunction& phase);
-
 }  // namespace phos::photon

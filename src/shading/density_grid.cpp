@@ -25,6 +25,21 @@ Bounds intersect(const Bounds& a, const Bounds& b) {
     return r;
 }
 
+// Trilinear interpolation at continuous sample coordinates (x, y, z) between the samples
+// value(i, j, k) at the integer points around them.
+template <class Value>
+float trilinear(float x, float y, float z, Value&& value) {
+    const float fx = std::floor(x), fy = std::floor(y), fz = std::floor(z);
+    const int ix = int(fx), iy = int(fy), iz = int(fz);
+    const float dx = x - fx, dy = y - fy, dz = z - fz;
+    auto lerp = [](float t, float a, float b) { return (1 - t) * a + t * b; };
+    const float d00 = lerp(dx, value(ix, iy, iz), value(ix + 1, iy, iz));
+    const float d10 = lerp(dx, value(ix, iy + 1, iz), value(ix + 1, iy + 1, iz));
+    const float d01 = lerp(dx, value(ix, iy, iz + 1), value(ix + 1, iy, iz + 1));
+    const float d11 = lerp(dx, value(ix, iy + 1, iz + 1), value(ix + 1, iy + 1, iz + 1));
+    return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
+}
+
 // pbrt-v4's SampledGrid over the box [p0, p1]: samples at cell centres, trilinear in between,
 // samples outside the index range count as 0; density 0 outside the box.
 class UniformDensityGrid final : public DensityGrid {
@@ -48,15 +63,7 @@ public:
     float density(Vec3 p) const override {
         if (!inside(p)) return 0.0f;
         const Vec3 s = sample_coords(p);
-        const float fx = std::floor(s.x), fy = std::floor(s.y), fz = std::floor(s.z);
-        const int ix = int(fx), iy = int(fy), iz = int(fz);
-        const float dx = s.x - fx, dy = s.y - fy, dz = s.z - fz;
-        auto lerp = [](float t, float a, float b) { return (1 - t) * a + t * b; };
-        const float d00 = lerp(dx, at(ix, iy, iz), at(ix + 1, iy, iz));
-        const float d10 = lerp(dx, at(ix, iy + 1, iz), at(ix + 1, iy + 1, iz));
-        const float d01 = lerp(dx, at(ix, iy, iz + 1), at(ix + 1, iy, iz + 1));
-        const float d11 = lerp(dx, at(ix, iy + 1, iz + 1), at(ix + 1, iy + 1, iz + 1));
-        return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
+        return trilinear(s.x, s.y, s.z, [this](int x, int y, int z) { return at(x, y, z); });
     }
 
     Bounds bounds() const override { return bounds_; }
@@ -144,17 +151,9 @@ public:
         const nanovdb::Vec3f q = grid_->worldToIndexF(nanovdb::Vec3f(p.x, p.y, p.z));
         for (int a = 0; a < 3; ++a)
             if (!(q[a] >= ilo_[a] && q[a] <= ihi_[a])) return 0.0f;
-        const float fx = std::floor(q[0]), fy = std::floor(q[1]), fz = std::floor(q[2]);
-        const int ix = int(fx), iy = int(fy), iz = int(fz);
-        const float dx = q[0] - fx, dy = q[1] - fy, dz = q[2] - fz;
         auto acc = grid_->getAccessor();
-        auto v = [&](int x, int y, int z) { return acc.getValue(nanovdb::Coord(x, y, z)); };
-        auto lerp = [](float t, float a, float b) { return (1 - t) * a + t * b; };
-        const float d00 = lerp(dx, v(ix, iy, iz), v(ix + 1, iy, iz));
-        const float d10 = lerp(dx, v(ix, iy + 1, iz), v(ix + 1, iy + 1, iz));
-        const float d01 = lerp(dx, v(ix, iy, iz + 1), v(ix + 1, iy, iz + 1));
-        const float d11 = lerp(dx, v(ix, iy + 1, iz + 1), v(ix + 1, iy + 1, iz + 1));
-        return lerp(dz, lerp(dy, d00, d10), lerp(dy, d01, d11));
+        return trilinear(q[0], q[1], q[2],
+                         [&](int x, int y, int z) { return acc.getValue(nanovdb::Coord(x, y, z)); });
     }
 
     Bounds bounds() const override { return bounds_; }

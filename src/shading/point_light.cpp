@@ -20,18 +20,23 @@ PointLight::PointLight(const scene::Light& light, const LightOptions& options)
       legacy_(options.legacy_attenuation),
       attenuation_(light.attenuation) {}
 
-LightLiSample PointLight::sample_Li(Vec3 ref, Vec2) const {
+LightLiSample sample_point_Li(Vec3 position, Vec3 ref) {
     LightLiSample s;
-    const Vec3 d = position_ - ref;
+    const Vec3 d = position - ref;
     const float dist = length(d);
     s.delta = true;
-    s.p_light = position_;
+    s.p_light = position;
     if (!(dist > 0)) return s;  // pdf 0: the reference point sits on the light
     s.wi = d / dist;
     s.distance = dist;
     s.n_light = -s.wi;
     s.pdf = 1;
-    s.L = intensity_ * distance_falloff(dist, legacy_, attenuation_);
+    return s;
+}
+
+LightLiSample PointLight::sample_Li(Vec3 ref, Vec2) const {
+    LightLiSample s = sample_point_Li(position_, ref);
+    if (s.pdf > 0) s.L = intensity_ * distance_falloff(s.distance, legacy_, attenuation_);
     return s;
 }
 

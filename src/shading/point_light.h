@@ -30,4 +30,8 @@ private:
 // legacy .scn attenuation (a direct-lighting-only approximation; photons always use 1/d^2).
 float distance_falloff(float d, bool legacy, Vec3 attenuation);
 
+// sample_Li of a light at the point `position` (point and spot lights): the delta sample towards it
+// from `ref` with pdf 1, or pdf 0 when `ref` sits on the light. L is left for the light to set.
+LightLiSample sample_point_Li(Vec3 position, Vec3 ref);
+
 }  // namespace phos::shading

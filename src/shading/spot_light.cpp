@@ -69,17 +69,10 @@ Rgb SpotLight::power() const {
 }
 
 LightLiSample SpotLight::sample_Li(Vec3 ref, Vec2) const {
-    LightLiSample s;
-    const Vec3 d = position_ - ref;
-    const float dist = length(d);
-    s.delta = true;
-    s.p_light = position_;
-    if (!(dist > 0)) return s;
-    s.wi = d / dist;
-    s.distance = dist;
-    s.n_light = -s.wi;
-    s.pdf = 1;
-    s.L = intensity_ * (falloff(dot(-s.wi, frame_.n)) * distance_falloff(dist, legacy_, attenuation_));
+    LightLiSample s = sample_point_Li(position_, ref);
+    if (s.pdf > 0)
+        s.L = intensity_ *
+              (falloff(dot(-s.wi, frame_.n)) * distance_falloff(s.distance, legacy_, attenuation_));
     return s;
 }
 

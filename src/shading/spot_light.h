@@ -22,7 +22,6 @@ public:
 
     // Angular fall-off in [0, 1] for cos(angle to the axis).
     float falloff(float cos_theta) const;
-    float cos_cutoff() const { return cos_cutoff_; }
     // Solid-angle density of sample_Le's directions at cos(angle to the axis) = z.
     float direction_pdf(float z) const;
     Vec3 axis() const { return frame_.n; }

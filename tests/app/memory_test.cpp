@@ -10,7 +10,7 @@
 #include <filesystem>
 #include <regex>
 
-#include "io/mesh/mesh_io.h"
+#include "support/mesh_writers.h"
 #include "test_util.h"
 
 namespace phos::testing {
@@ -89,7 +89,7 @@ TEST(Memory, MeshEstimateMatchesPeak) {
             const uint32_t a = uint32_t(j * n + i), b = a + 1, c = a + uint32_t(n), d = c + 1;
             mesh.indices.insert(mesh.indices.end(), {a, c, b, b, c, d});
         }
-    io::write_ply(dir.file("sheet.ply"), mesh, true);
+    write_ply(dir.file("sheet.ply"), mesh, true);
     const std::string scene = dir.write("mesh.pbrt", R"(
 Film "rgb" "integer xresolution" [ 64 ] "integer yresolution" [ 64 ]
 LookAt 0 1.5 1.5  0 0.3 0  0 1 0

@@ -32,7 +32,6 @@ TEST(Transform, MatrixInverseOfSingularFails) {
     m(1, 1) = 0;
     Mat4 out;
     EXPECT_FALSE(m.inverse(out));
-    EXPECT_THROW(Transform{m}, std::invalid_argument);
 }
 
 TEST(Transform, HandednessFlip) {

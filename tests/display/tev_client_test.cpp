@@ -54,6 +54,9 @@ std::vector<float> frame_data(int frame, int width, int height, int nc) {
     return d;
 }
 
+// Port `port` on 127.0.0.1.
+TevAddress loopback(int port) { return {"127.0.0.1", port}; }
+
 // A port on 127.0.0.1 that nothing listens on (bound, then released).
 int unused_port() {
     int fd = ::socket(AF_INET, SOCK_STREAM, 0);
@@ -131,7 +134,7 @@ TEST(ParseTevAddress, BadPortsAreInputErrorsNamingTheOption) {
 TEST(TevClient, CreatePacketCarriesTheImage) {
     FakeTevServer server;
     TevClient client;
-    ASSERT_TRUE(client.connect(server.address())) << client.error();
+    ASSERT_TRUE(client.connect(loopback(server.port()))) << client.error();
     EXPECT_TRUE(client.ok());
     EXPECT_TRUE(client.create_image("phos — cornell box.pbrt (1234)", 640, 480, {"R", "G", "B"}));
     EXPECT_TRUE(client.create_image("second", 3, 2, {"Y"}, /*grab_focus=*/false));
@@ -170,7 +173,7 @@ TEST_P(TevClientFrames, UpdatesCoverEveryPixelOncePerFrame) {
     TevClientOptions options;
     options.max_floats_per_packet = max_floats;
     TevClient client(options);
-    ASSERT_TRUE(client.connect(server.address())) << client.error();
+    ASSERT_TRUE(client.connect(loopback(server.port()))) << client.error();
     ASSERT_TRUE(client.create_image(name, w, h, names));
     for (int f = 0; f < frames; ++f) {
         auto data = frame_data(f, w, h, nc);
@@ -226,7 +229,7 @@ TEST(TevClient, SendsASubRectangleOfALargerBufferInPlace) {
     TevClientOptions options;
     options.max_floats_per_packet = 50;  // pieces of rows
     TevClient client(options);
-    ASSERT_TRUE(client.connect(server.address()));
+    ASSERT_TRUE(client.connect(loopback(server.port())));
     ASSERT_TRUE(client.create_image("sub", bw, bh, channel_names(nc)));
     const float* corner = buffer.data() + (size_t(y0) * bw + x0) * nc;
     ASSERT_TRUE(client.update_image("sub", channel_names(nc), x0, y0, w, h, corner, size_t(bw) * nc));
@@ -248,36 +251,6 @@ TEST(TevClient, SendsASubRectangleOfALargerBufferInPlace) {
         }
 }
 
-TEST(TevClient, SendsAnImageAsRgb) {
-    Image image(19, 11);
-    for (int y = 0; y < image.height; ++y)
-        for (int x = 0; x < image.width; ++x) image.at(x, y) = Rgb(float(x), float(y), float(x * y) + 0.5f);
-    FakeTevServer server;
-    TevClientOptions options;
-    options.max_floats_per_packet = 100;  // one row per packet
-    TevClient client(options);
-    ASSERT_TRUE(client.connect(server.address()));
-    ASSERT_TRUE(client.create_image("rgb", image.width, image.height, {"R", "G", "B"}));
-    ASSERT_TRUE(client.update_image("rgb", image));
-    client.close();
-    ASSERT_TRUE(server.wait());
-    ASSERT_TRUE(server.errors().empty()) << server.errors().front();
-    EXPECT_EQ(server.updates().size(), size_t(image.height));
-    std::vector<int> seen(size_t(image.width) * image.height, 0);
-    for (const auto& u : server.updates()) {
-        EXPECT_EQ(u.channels, (std::vector<std::string>{"R", "G", "B"}));
-        for (int py = 0; py < u.height; ++py)
-            for (int px = 0; px < u.width; ++px) {
-                const Rgb& p = image.at(u.x + px, u.y + py);
-                EXPECT_EQ(u.value(0, px, py), p.r);
-                EXPECT_EQ(u.value(1, px, py), p.g);
-                EXPECT_EQ(u.value(2, px, py), p.b);
-                ++seen[size_t(u.y + py) * image.width + u.x + px];
-            }
-    }
-    for (int s : seen) EXPECT_EQ(s, 1);
-}
-
 TEST(TevClient, SpecialFloatsArriveBitForBit) {
     const std::vector<float> values = {0.0f,
                                        -0.0f,
@@ -294,7 +267,7 @@ TEST(TevClient, SpecialFloatsArriveBitForBit) {
     const int w = int(values.size());
     FakeTevServer server;
     TevClient client;
-    ASSERT_TRUE(client.connect(server.address()));
+    ASSERT_TRUE(client.connect(loopback(server.port())));
     ASSERT_TRUE(client.create_image("floats", w, 1, {"Y"}));
     ASSERT_TRUE(client.update_image("floats", {"Y"}, 0, 0, w, 1, values.data()));
     client.close();
@@ -310,7 +283,7 @@ TEST(TevClient, SpecialFloatsArriveBitForBit) {
 TEST(TevClient, BadArgumentsFailButKeepTheConnection) {
     FakeTevServer server;
     TevClient client;
-    ASSERT_TRUE(client.connect(server.address()));
+    ASSERT_TRUE(client.connect(loopback(server.port())));
     float px[6] = {1, 2, 3, 4, 5, 6};
     EXPECT_FALSE(client.create_image("a", 0, 4, {"R"}));
     EXPECT_NE(client.error().find("empty image"), std::string::npos);
@@ -348,7 +321,7 @@ TEST(TevClient, ConnectingWhereNoServerListensFailsCleanly) {
     int port = unused_port();
     TevClient client;
     auto t0 = Clock::now();
-    EXPECT_FALSE(client.connect("127.0.0.1:" + std::to_string(port)));
+    EXPECT_FALSE(client.connect(loopback(port)));
     EXPECT_LT(seconds_since(t0), 5.0);
     EXPECT_FALSE(client.ok());
     EXPECT_NE(client.error().find("cannot connect to tev at 127.0.0.1:" + std::to_string(port)),
@@ -360,14 +333,6 @@ TEST(TevClient, ConnectingWhereNoServerListensFailsCleanly) {
     EXPECT_FALSE(client.create_image("a", 1, 1, {"R"}));
     EXPECT_FALSE(client.update_image("a", {"R"}, 0, 0, 1, 1, &v));
     EXPECT_EQ(client.error(), first);  // the reason stays the first one
-}
-
-TEST(TevClient, ConnectRejectsABadAddress) {
-    TevClient client;
-    EXPECT_FALSE(client.connect("localhost:port"));
-    EXPECT_NE(client.error().find("port 'port' is not a number"), std::string::npos) << client.error();
-    EXPECT_FALSE(client.connect("127.0.0.1:70000"));
-    EXPECT_NE(client.error().find("not in [1, 65535]"), std::string::npos) << client.error();
 }
 
 // A listener whose accept queue is full drops new connection requests (Linux), so a connect
@@ -393,7 +358,7 @@ TEST(TevClient, ConnectGivesUpAfterItsTimeout) {
     options.connect_timeout_ms = 300;
     TevClient client(options);
     auto t0 = Clock::now();
-    EXPECT_FALSE(client.connect("127.0.0.1:" + std::to_string(ntohs(addr.sin_port))));
+    EXPECT_FALSE(client.connect(loopback(ntohs(addr.sin_port))));
     double took = seconds_since(t0);
     EXPECT_GE(took, 0.25);
     EXPECT_LT(took, 5.0);
@@ -406,7 +371,7 @@ TEST(TevClient, AServerThatHangsUpMakesLaterUpdatesFail) {
     std::signal(SIGPIPE, SIG_DFL);  // a SIGPIPE would end the test program
     FakeTevServer server(FakeTevServer::Mode::close_after_first);
     TevClient client;
-    ASSERT_TRUE(client.connect(server.address()));
+    ASSERT_TRUE(client.connect(loopback(server.port())));
     ASSERT_TRUE(client.create_image("gone", 64, 64, {"R", "G", "B"}));
     auto data = frame_data(0, 64, 64, 3);
     auto t0 = Clock::now();
@@ -437,7 +402,7 @@ TEST(TevClient, AServerThatStopsReadingMakesSendsTimeOut) {
     TevClientOptions options;
     options.send_timeout_ms = 200;
     TevClient client(options);
-    ASSERT_TRUE(client.connect(server.address()));
+    ASSERT_TRUE(client.connect(loopback(server.port())));
     ASSERT_TRUE(client.create_image("stalled", 1024, 1024, {"R", "G", "B"}));
     std::vector<float> data(size_t(1024) * 1024 * 3, 0.5f);
     auto t0 = Clock::now();
@@ -453,17 +418,15 @@ TEST(TevClient, AServerThatStopsReadingMakesSendsTimeOut) {
 
 TEST(TevClient, ReconnectsAfterABrokenConnection) {
     TevClient client;
-    EXPECT_FALSE(client.connect("127.0.0.1:" + std::to_string(unused_port())));
+    EXPECT_FALSE(client.connect(loopback(unused_port())));
     FakeTevServer server;
-    ASSERT_TRUE(client.connect(server.address())) << client.error();
+    ASSERT_TRUE(client.connect(loopback(server.port()))) << client.error();
     EXPECT_TRUE(client.error().empty());
     EXPECT_TRUE(client.create_image("again", 1, 1, {"R"}));
-    TevClient moved = std::move(client);
-    EXPECT_FALSE(client.ok());
     float v = 2;
-    EXPECT_TRUE(moved.update_image("again", {"R"}, 0, 0, 1, 1, &v));
-    EXPECT_GT(moved.bytes_sent(), 0u);
-    moved.close();
+    EXPECT_TRUE(client.update_image("again", {"R"}, 0, 0, 1, 1, &v));
+    EXPECT_GT(client.bytes_sent(), 0u);
+    client.close();
     ASSERT_TRUE(server.wait());
     EXPECT_EQ(server.types(), (std::vector<int>{4, 6}));
 }

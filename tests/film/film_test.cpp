@@ -1,13 +1,10 @@
-// Tests of film/film: weighted averaging with the box filter, set_pixel, named layers, merging of
-// tiles at an offset, and rejection (with a count) of NaN/inf samples.
+// Tests of film/film: weighted averaging with the box filter, set_pixel, named layers, and rejection
+// (with a count) of NaN/inf samples.
 #include "film/film.h"
 
 #include <gtest/gtest.h>
 
 #include <limits>
-#include <stdexcept>
-
-#include "film/tiles.h"
 
 namespace phos::film {
 namespace {
@@ -84,51 +81,6 @@ TEST(Film, NamedLayersAccumulateSeparately) {
     EXPECT_EQ(caustic.rejected(), 1u);
     EXPECT_EQ(film.rejected_samples(), 0u);  // the main image saw no bad sample
     EXPECT_EQ(film.layer_names(), (std::vector<std::string>{"caustic", "direct"}));
-}
-
-TEST(Film, MergesTileFilmsAtTheirOffset) {
-    Film film(5, 4);
-    film.layer("indirect");
-    film.add_sample(3, 2, Rgb(2, 2, 2));
-    // A 2x2 tile covering x in [2,4), y in [1,3), with its own layer.
-    Film tile(2, 2);
-    tile.add_sample(1, 1, Rgb(4, 4, 4));  // lands on (3, 2)
-    tile.add_sample(0, 0, Rgb(1, 2, 3));  // lands on (2, 1)
-    tile.add_sample(0, 0, Rgb(kNan, 0, 0));
-    tile.layer("specular").add(1, 0, Rgb(7, 7, 7));  // lands on (3, 1)
-    film.merge(tile, 2, 1);
-    const Image img = film.image();
-    EXPECT_EQ(img.at(3, 2), Rgb(3, 3, 3));  // (2 + 4) / 2: sums and weights both merge
-    EXPECT_EQ(img.at(2, 1), Rgb(1, 2, 3));
-    EXPECT_TRUE(img.at(1, 1).is_black());
-    EXPECT_EQ(film.rejected_samples(), 1u);
-    ASSERT_NE(film.find_layer("specular"), nullptr);
-    EXPECT_EQ(film.find_layer("specular")->value(3, 1), Rgb(7, 7, 7));
-    EXPECT_TRUE(film.find_layer("indirect")->value(3, 1).is_black());
-    // A tile that does not fit is a programming error.
-    EXPECT_THROW(film.merge(tile, 4, 0), std::invalid_argument);
-    EXPECT_THROW(film.merge(tile, -1, 0), std::invalid_argument);
-}
-
-// Rendering tile by tile into per-tile films and merging in tile order gives the same image as
-// writing straight into the film: the deterministic-parallel recipe integrators use.
-TEST(Film, TileByTileEqualsDirect) {
-    const int w = 37, h = 21;
-    auto radiance = [](int x, int y, int s) {
-        return Rgb(float(x) * 0.1f + float(s), float(y), float(x * y % 7));
-    };
-    Film direct(w, h), tiled(w, h);
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w; ++x)
-            for (int s = 0; s < 3; ++s) direct.add_sample(x, y, radiance(x, y, s));
-    for (const Tile& t : make_tiles(w, h, 8)) {
-        Film part(t.width(), t.height());
-        for (int y = t.y0; y < t.y1; ++y)
-            for (int x = t.x0; x < t.x1; ++x)
-                for (int s = 0; s < 3; ++s) part.add_sample(x - t.x0, y - t.y0, radiance(x, y, s));
-        tiled.merge(part, t.x0, t.y0);
-    }
-    EXPECT_EQ(direct.image().pixels, tiled.image().pixels);
 }
 
 TEST(Film, CopiesAreIndependent) {

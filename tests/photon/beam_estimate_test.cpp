@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "core/rng.h"
+#include "photon/knn_brute_force.h"
 #include "scene/medium.h"
 
 namespace phos::photon {
@@ -62,7 +63,7 @@ TEST(BeamEstimate, RadiiAreTheKthNearestDistances) {
         EXPECT_EQ(s[i].position, ph.position);
         EXPECT_EQ(s[i].power, ph.power());
         EXPECT_EQ(s[i].wi, ph.wi());
-        const KnnResult r = knn_brute_force(map.photons(), s[i].position, k, kInf, nb.data());
+        const KnnResult r = testing::knn_brute_force(map.photons(), s[i].position, k, kInf, nb.data());
         const float expected = std::min(std::sqrt(r.max_dist2), max_radius);
         capped += expected == max_radius;
         EXPECT_FLOAT_EQ(s[i].radius, expected) << i;

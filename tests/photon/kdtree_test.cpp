@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/rng.h"
+#include "photon/knn_brute_force.h"
 
 namespace phos::photon {
 namespace {
@@ -86,7 +87,7 @@ void expect_same_knn(const std::vector<Photon>& input, const PhotonKdTree& tree,
     KnnResult got_r;
     const std::vector<Neighbour> got = tree_knn(tree, q, k, r2, &got_r);
     std::vector<Neighbour> want(std::max<uint32_t>(k, 1));
-    const KnnResult want_r = knn_brute_force(input, q, k, r2, want.data());
+    const KnnResult want_r = testing::knn_brute_force(input, q, k, r2, want.data());
     want.resize(want_r.count);
     ASSERT_EQ(got_r.count, want_r.count) << "k=" << k << " r2=" << r2;
     EXPECT_EQ(got_r.max_dist2, want_r.max_dist2);
@@ -316,7 +317,7 @@ TEST(KdTree, FilteredKnnMatchesBruteForceOnFilteredSet) {
         const Vec3 q(0.5005f, rng.next(), rng.next());
         const KnnResult r = tree.knn_if(
             q, 40, 0.01f, out.data(), [](const Photon& p) { return dot(p.normal(), Vec3(1, 0, 0)) > 0.9f; });
-        const KnnResult w = knn_brute_force(right, q, 40, 0.01f, want.data());
+        const KnnResult w = testing::knn_brute_force(right, q, 40, 0.01f, want.data());
         ASSERT_EQ(r.count, w.count);
         EXPECT_EQ(r.max_dist2, w.max_dist2);
         std::set<uint32_t> got, exp;

@@ -415,7 +415,7 @@ TEST(BsdfReciprocity, ReflectionLobesAreSymmetric) {
     for (const Material& m : mats) {
         const Bsdf b = make(m);
         for (int i = 0; i < 2000; ++i) {
-            Vec3 a = warp::uniform_hemisphere(rng.next2()), c = warp::uniform_hemisphere(rng.next2());
+            Vec3 a = warp::cosine_hemisphere(rng.next2()), c = warp::cosine_hemisphere(rng.next2());
             if (i % 2) a.z = -a.z, c.z = -c.z;  // the other side as well
             for (TransportMode mode : {TransportMode::Radiance, TransportMode::Importance}) {
                 const Rgb f1 = b.eval(a, c, mode), f2 = b.eval(c, a, mode);
@@ -435,8 +435,8 @@ TEST(BsdfReciprocity, FrostedTransmissionAdjoint) {
         Sampler rng(13);
         int nonzero = 0;
         for (int i = 0; i < 2000; ++i) {
-            const Vec3 a = warp::uniform_hemisphere(rng.next2());
-            Vec3 c = warp::uniform_hemisphere(rng.next2());
+            const Vec3 a = warp::cosine_hemisphere(rng.next2());
+            Vec3 c = warp::cosine_hemisphere(rng.next2());
             c.z = -c.z;
             const float fr = b.eval(a, c, TransportMode::Radiance).r;
             const float fi = b.eval(c, a, TransportMode::Importance).r;

@@ -108,9 +108,10 @@ TEST(AreaLightPdf, ClosedShapesFromInside) {
         shapes.push_back(s);
     }
     scene::Shape sheared = box;
-    Mat4 m;
+    Mat4 m, inv;  // x += 0.4 y, and its inverse
     m(0, 1) = 0.4f;
-    sheared.to_world = Transform(m);
+    inv(0, 1) = -0.4f;
+    sheared.to_world = Transform(m, inv);
     shapes.push_back(sheared);
 
     int k = 0;

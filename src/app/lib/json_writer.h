@@ -5,10 +5,10 @@
 
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <string>
 #include <vector>
 
+#include "core/format.h"
 #include "core/vec.h"
 
 namespace phos::app {
@@ -102,9 +102,7 @@ private:
             out_ += "null";
             return *this;
         }
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-        out_ += buf;
+        out_ += printf_string("%.*g", digits, v);
         return *this;
     }
     void quote(const std::string& s) {
@@ -121,9 +119,7 @@ private:
             } else if (c == '\r') {
                 out_ += "\\r";
             } else if (c < 0x20) {
-                char buf[8];
-                std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
-                out_ += buf;
+                out_ += printf_string("\\u%04x", unsigned(c));
             } else {
                 out_ += ch;  // UTF-8 bytes pass through
             }

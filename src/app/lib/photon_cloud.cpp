@@ -3,20 +3,14 @@
 #include "app/lib/photon_cloud.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <span>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "io/image/tonemap.h"
 
 namespace phos::app {
 namespace {
-
-std::string number(const char* format, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, format, v);
-    return buf;
-}
 
 // The kColourPercentile value of the photons' largest channel (1 for a map of black photons).
 float colour_reference(std::span<const photon::Photon> photons) {
@@ -65,7 +59,7 @@ io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vect
         ids,
         "power_r power_g power_b: the photon's power in W as stored (the light's flux share / the photons "
         "emitted for its map)",
-        "red green blue: power / the map's " + number("%g", 100 * kColourPercentile) +
+        "red green blue: power / the map's " + printf_string("%g", 100 * kColourPercentile) +
             "th-percentile largest channel (scaled down to keep the hue where a channel exceeds 1), sRGB",
         "dx dy dz: unit direction towards where the photon came from",
         "nx ny nz: surface normal at the photon (0 0 0: none, photons in media)"};
@@ -119,8 +113,8 @@ io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vect
         cloud.comments.push_back(
             "map " + std::to_string(m) + " " + photon_map_label(m) + ": " + std::to_string(photons.size()) +
             " photons from " + std::to_string(maps.emitted[m]) + " emitted, total power" +
-            number(" %.6g", total[0]) + number(" %.6g", total[1]) + number(" %.6g W", total[2]) +
-            ", colour 1 at" + number(" %.6g W", reference));
+            printf_string(" %.6g", total[0]) + printf_string(" %.6g", total[1]) +
+            printf_string(" %.6g W", total[2]) + ", colour 1 at" + printf_string(" %.6g W", reference));
     }
     return cloud;
 }

@@ -2,10 +2,10 @@
 #include "app/lib/photon_view.h"
 
 #include <cmath>
-#include <cstdio>
 #include <memory>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace phos::app {
 namespace {
@@ -128,12 +128,8 @@ display::ViewerScene viewer_scene(const io::PointCloud& cloud, const scene::Scen
     v.describe = [shared, names](uint32_t i) {
         std::string s = "photon " + std::to_string(i) + ":";
         for (const io::PointColumn& c : shared->columns) {
-            char buf[64];
-            if (c.is_float)
-                std::snprintf(buf, sizeof buf, " %s %.6g", c.name.c_str(), double(c.floats[i]));
-            else
-                std::snprintf(buf, sizeof buf, " %s %d", c.name.c_str(), int(c.bytes[i]));
-            s += buf;
+            s += c.is_float ? printf_string(" %s %.6g", c.name.c_str(), double(c.floats[i]))
+                            : printf_string(" %s %d", c.name.c_str(), int(c.bytes[i]));
             if (c.name == "map" && c.bytes[i] < names.size()) s += " (" + names[c.bytes[i]] + ")";
         }
         return s;

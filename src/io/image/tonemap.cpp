@@ -8,8 +8,6 @@ namespace phos::io {
 
 float exposure_scale(float stops) { return std::exp2(stops); }
 
-Rgb apply_exposure(Rgb c, float stops) { return c * exposure_scale(stops); }
-
 float linear_to_srgb(float linear) {
     if (!(linear > 0.0f)) return 0.0f;  // also catches NaN
     if (linear >= 1.0f) return 1.0f;

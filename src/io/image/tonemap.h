@@ -6,13 +6,11 @@
 #include <vector>
 
 #include "core/image.h"
-#include "core/vec.h"
 
 namespace phos::io {
 
 // Linear scale for `stops` of exposure: 2^stops.
 float exposure_scale(float stops);
-Rgb apply_exposure(Rgb c, float stops);
 
 // The exact piecewise sRGB OETF (linear -> encoded) and its inverse. Inputs outside [0, 1] are
 // clamped; NaN maps to 0.

@@ -23,8 +23,4 @@ LoadedMesh read_obj(const std::string& path);
 // Dispatches on the extension (.off, .ply, .obj); throws ParseError for anything else.
 LoadedMesh read_mesh(const std::string& path);
 
-// Writers used by round-trip tests and tools.
-void write_ply(const std::string& path, const scene::TriangleMesh& mesh, bool binary);
-void write_obj(const std::string& path, const scene::TriangleMesh& mesh);
-
 }  // namespace phos::io

@@ -145,30 +145,4 @@ LoadedMesh read_obj(const std::string& path) {
     return out;
 }
 
-void write_obj(const std::string& path, const scene::TriangleMesh& mesh) {
-    std::ofstream out(path);
-    if (!out) throw InputError("cannot write OBJ file '" + path + "'");
-    const bool normals = !mesh.normals.empty() && mesh.normals.size() == mesh.positions.size();
-    const bool uvs = !mesh.uvs.empty() && mesh.uvs.size() == mesh.positions.size();
-    out.precision(9);  // round-trips float exactly
-    out << "# written by phos\n";
-    for (const Vec3& p : mesh.positions) out << "v " << p.x << ' ' << p.y << ' ' << p.z << '\n';
-    if (normals)
-        for (const Vec3& n : mesh.normals) out << "vn " << n.x << ' ' << n.y << ' ' << n.z << '\n';
-    if (uvs)
-        for (const Vec2& t : mesh.uvs) out << "vt " << t.x << ' ' << t.y << '\n';
-    for (size_t t = 0; t < mesh.triangle_count(); ++t) {
-        out << 'f';
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t i = mesh.indices[3 * t + size_t(k)] + 1;
-            out << ' ' << i;
-            if (uvs || normals) out << '/';
-            if (uvs) out << i;
-            if (normals) out << '/' << i;
-        }
-        out << '\n';
-    }
-    if (!out) throw InputError("error writing OBJ file '" + path + "'");
-}
-
 }  // namespace phos::io

@@ -4,13 +4,13 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "io/mesh/mesh_io.h"
 
 namespace phos::io {
@@ -48,10 +48,9 @@ std::vector<Line> split_lines(const std::string& path, const std::string& bytes,
         const unsigned char u = static_cast<unsigned char>(c);
         const bool space = c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
         if (!space && (u < 0x20 || u == 0x7F)) {
-            char buf[8];
-            std::snprintf(buf, sizeof buf, "0x%02X", u);
-            throw ParseError(path, cur.number, col,
-                             std::string("binary or control byte ") + buf + " (binary OFF is not supported)");
+            throw ParseError(
+                path, cur.number, col,
+                "binary or control byte " + printf_string("0x%02X", u) + " (binary OFF is not supported)");
         }
         if (c == '#') comment = true;
         if (comment || space) {

@@ -1,9 +1,9 @@
 // `.mat` files: a surface (diffuse, mirror, Fresnel dielectric, texture, emission) and the
 // homogeneous medium inside objects made of it. A `.mat` named by many objects is read once.
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/log.h"
 #include "core/spelling.h"
 #include "io/scene_format/reader.h"
@@ -89,10 +89,8 @@ const MatFile& Reader::read_mat(const FileArg& f) {
     const Rgb sum = m.diffuse + m.specular + m.transmission;
     for (int c = 0; c < 3; ++c)
         if (sum[c] > 1.0f + 1e-5f) {
-            char buf[64];
-            std::snprintf(buf, sizeof buf, "%g", double(sum[c]));
-            fail(last_term->keyword, std::string("diffuse + specular + transmission is ") + buf + " in the " +
-                                         channel_name(c) +
+            fail(last_term->keyword, "diffuse + specular + transmission is " +
+                                         printf_string("%g", double(sum[c])) + " in the " + channel_name(c) +
                                          " channel; it must not exceed 1 (energy conservation)");
         }
     if (texture_index >= 0) {

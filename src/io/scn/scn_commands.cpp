@@ -2,9 +2,9 @@
 // material, shape or light to the scene with phos's physically based reading (docs/formats/scn.md).
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 
 #include "core/error.h"
+#include "core/format.h"
 #include "core/log.h"
 #include "io/mesh/mesh_io.h"
 #include "io/scn/scn_parser.h"
@@ -14,12 +14,6 @@ namespace phos::io::scn {
 namespace fs = std::filesystem;
 
 namespace {
-
-std::string fmt3(double a, double b, double c) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%g %g %g", a, b, c);
-    return buf;
-}
 
 // Length of the cross product of two vectors given as doubles (exact enough to tell a thin but
 // real triangle from collinear points typed into a file).
@@ -105,9 +99,9 @@ void Parser::cmd_material(const Token& cmd) {
     // factor 1 / (kd + ks + kt) (the seed's -real); --raw-materials keeps them as written.
     const Rgb sum = m.diffuse + m.specular + m.transmission;
     if (sum.max() > 1) {
-        const std::string what =
-            where(cmd) + ": material " + std::to_string(files_.back().materials.size()) +
-            " reflects more light than it receives (kd + ks + kt = " + fmt3(sum.r, sum.g, sum.b) + ")";
+        const std::string what = where(cmd) + ": material " + std::to_string(files_.back().materials.size()) +
+                                 " reflects more light than it receives (kd + ks + kt = " +
+                                 printf_string("%g %g %g", sum.r, sum.g, sum.b) + ")";
         if (options_.raw_materials) {
             log::warn(what + "; kept as written (--raw-materials): photon survival is clamped to 1");
         } else {
@@ -119,7 +113,7 @@ void Parser::cmd_material(const Token& cmd) {
                     m.specular[c] *= factor[c];
                     m.transmission[c] *= factor[c];
                 }
-            log::warn(what + "; scaled by " + fmt3(factor.r, factor.g, factor.b) +
+            log::warn(what + "; scaled by " + printf_string("%g %g %g", factor.r, factor.g, factor.b) +
                       " per channel (--raw-materials keeps it as written)");
         }
     }
@@ -328,7 +322,7 @@ void Parser::attenuation(const Args& a, size_t i, const Token& cmd, scene::Light
     light.attenuation = a.vec(i);
     if (light.attenuation != Vec3(0, 0, 1) && !options_.legacy_attenuation)
         log::warn(where(cmd) + ": " + cmd.text +
-                  " attenuation (ca la qa = " + fmt3(a.v[i], a.v[i + 1], a.v[i + 2]) +
+                  " attenuation (ca la qa = " + printf_string("%g %g %g", a.v[i], a.v[i + 1], a.v[i + 2]) +
                   ") is not physical; phos uses the physical fall-off (" + (area ? "solid angle" : "1/d^2") +
                   "); --legacy-attenuation applies it to direct light");
 }

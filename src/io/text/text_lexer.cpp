@@ -7,11 +7,11 @@
 #include <cfloat>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <sstream>
 
 #include "core/error.h"
+#include "core/format.h"
 
 namespace phos::io::text {
 namespace {
@@ -49,12 +49,6 @@ size_t utf8_length(const std::string& s, size_t i) {
     return n;
 }
 
-std::string hex_byte(unsigned char c) {
-    char buf[8];
-    std::snprintf(buf, sizeof buf, "0x%02X", c);
-    return buf;
-}
-
 }  // namespace
 
 LexedFile lex(const std::string& file, const std::string& content) {
@@ -81,12 +75,14 @@ LexedFile lex(const std::string& file, const std::string& content) {
         }
         const bool space = c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v';
         if (!space && (c < 0x20 || c == 0x7F))
-            throw ParseError(file, line, col,
-                             "binary or control byte " + hex_byte(c) + " (is this a text .scn file?)");
+            throw ParseError(
+                file, line, col,
+                "binary or control byte " + printf_string("0x%02X", c) + " (is this a text .scn file?)");
         const size_t n = utf8_length(content, i);
         if (n == 0)
-            throw ParseError(file, line, col,
-                             "invalid UTF-8 byte " + hex_byte(c) + " (save the file as UTF-8 or ASCII)");
+            throw ParseError(
+                file, line, col,
+                "invalid UTF-8 byte " + printf_string("0x%02X", c) + " (save the file as UTF-8 or ASCII)");
         if (in_comment) {
             i += n, ++col;
             continue;

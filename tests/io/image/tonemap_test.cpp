@@ -49,7 +49,6 @@ TEST(Tonemap, Exposure) {
     EXPECT_FLOAT_EQ(exposure_scale(0.0f), 1.0f);
     EXPECT_FLOAT_EQ(exposure_scale(1.0f), 2.0f);
     EXPECT_FLOAT_EQ(exposure_scale(-2.0f), 0.25f);
-    EXPECT_EQ(apply_exposure(Rgb(1, 2, 4), 1.0f), Rgb(2, 4, 8));
 
     Image img(2, 1);
     img.at(0, 0) = Rgb(0.25f, 0.5f, 0.0f);

@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "io/mesh/mesh_io.h"
+#include "support/mesh_writers.h"
 
 namespace phos::io {
 namespace {
@@ -54,7 +55,7 @@ TEST_P(PlyRoundTrip, WriteThenReadGivesTheSameMesh) {
     const auto [binary, normals, uvs] = GetParam();
     const scene::TriangleMesh m = sample_mesh(normals, uvs);
     const std::string path = (temp_dir() / "rt.ply").string();
-    write_ply(path, m, binary);
+    testing::write_ply(path, m, binary);
     expect_same(m, read_ply(path));
 }
 
@@ -176,7 +177,7 @@ TEST_P(ObjRoundTrip, WriteThenReadGivesTheSameMesh) {
     const auto [normals, uvs] = GetParam();
     const scene::TriangleMesh m = sample_mesh(normals, uvs);
     const std::string path = (temp_dir() / "rt.obj").string();
-    write_obj(path, m);
+    testing::write_obj(path, m);
     const LoadedMesh l = read_obj(path);
     expect_same(m, l.mesh);
     EXPECT_TRUE(l.triangle_materials.empty());

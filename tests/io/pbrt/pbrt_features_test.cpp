@@ -11,9 +11,9 @@
 #include <cmath>
 #include <cstring>
 
-#include "io/mesh/mesh_io.h"
 #include "io/pbrt/spectra.h"
 #include "pbrt_test_util.h"
+#include "support/mesh_writers.h"
 
 namespace phos::io::test {
 namespace {
@@ -276,7 +276,7 @@ TEST(PbrtShapes, PlyMeshIsReadRelativeToTheFileAndTransformed) {
     quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
     quad.indices = {0, 1, 2, 0, 2, 3};
     const std::string ply = dir.write("geo/quad.ply", "");
-    write_ply(ply, quad, true);
+    phos::testing::write_ply(ply, quad, true);
     dir.write("geo/part.pbrt", "Translate 0 0 2\nShape \"plymesh\" \"string filename\" \"quad.ply\"\n");
     const std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"geo/part.pbrt\"\n");
     const scene::Scene s = load_pbrt(main);

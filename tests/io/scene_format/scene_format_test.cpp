@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "core/log.h"
-#include "io/mesh/mesh_io.h"
 #include "io/scene_format/scene_format_loader.h"
+#include "support/mesh_writers.h"
 #include "test_util.h"
 
 namespace phos::io {
@@ -222,7 +222,7 @@ TEST(SceneFormat, BinaryPlyWithNormalsAndUv) {
     m.normals = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}};
     m.uvs = {{0, 0}, {1, 0}, {0, 1}};
     m.indices = {0, 1, 2};
-    write_ply(dir.file("b.ply"), m, /*binary=*/true);
+    testing::write_ply(dir.file("b.ply"), m, /*binary=*/true);
     dir.write("t.mat", "diffuse 1 1 1\ntexture tex.pfm\n");
     dir.write("tex.pfm", std::string("PF\n1 1\n-1\n") + std::string(12, '\0'));
     dir.write("b.mesh", "ply b.ply\nmaterial t.mat\n");
