@@ -3,8 +3,9 @@
 
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
+
+#include "core/format.h"
 
 namespace phos::options {
 
@@ -102,18 +103,16 @@ bool parse_bool(const std::string& text) {
 
 std::string format_number(double v, bool as_float) {
     if (v == std::floor(v) && std::fabs(v) < 1e15) {
-        char buf[32];
-        std::snprintf(buf, sizeof buf, "%.0f", v);
-        return buf;
+        return printf_string("%.0f", v);
     }
     // Shortest form that reads back to the same float or double.
-    char buf[40];
+    std::string s;
     for (int p = 6; p <= 17; ++p) {
-        std::snprintf(buf, sizeof buf, "%.*g", p, v);
-        const double back = std::strtod(buf, nullptr);
+        s = printf_string("%.*g", p, v);
+        const double back = std::strtod(s.c_str(), nullptr);
         if (as_float ? float(back) == float(v) : back == v) break;
     }
-    return buf;
+    return s;
 }
 
 std::string option_error(const Option& o, const std::string& why) { return o.flag_name() + ": " + why; }

@@ -8,9 +8,9 @@
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
-#include <cstdio>
 #include <span>
 
+#include "core/format.h"
 #include "dist/ranks.h"
 #include "film/tiles.h"
 #include "integrators/camera_subpath.h"
@@ -136,19 +136,14 @@ private:
     std::vector<Vec3> merge_points_;          // their positions, for the grid
 };
 
-std::string two_decimals(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f", v);
-    return buf;
-}
-
 // The -v line's account of merging: light subpaths per pixel (and the pilot's count behind an
 // automatic choice), camera samples, and the last iteration's largest radius.
 std::string merging_summary(const ProgressiveOptions& o, const MergingPlan& plan, const Iteration& it) {
     if (!it.strategies.merge) return "";
     std::string s = ", " + std::to_string(plan.light_paths_per_pixel) + " light subpaths per pixel";
     if (o.vcm_light_paths == 0)
-        s += " (pilot: " + two_decimals(plan.mergeable_per_path) + " mergeable vertices per subpath)";
+        s +=
+            " (pilot: " + printf_string("%.2f", plan.mergeable_per_path) + " mergeable vertices per subpath)";
     if (it.camera_samples > 1) s += ", " + std::to_string(it.camera_samples) + " camera samples";
     return s + ", largest radius " + std::to_string(it.radius);
 }

@@ -1,21 +1,15 @@
 // The -v statistics of a photon-map build (see map_report.h).
 #include "photon/map_report.h"
 
-#include <cstdio>
 #include <string>
 
+#include "core/format.h"
 #include "core/log.h"
 #include "dist/ranks.h"
 
 namespace phos::photon {
 
 namespace {
-
-std::string fmt(const char* f, double v) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, f, v);
-    return buf;
-}
 
 // "1 thread", "4 threads".
 std::string threads_text(int n) { return std::to_string(n) + (n == 1 ? " thread" : " threads"); }
@@ -48,20 +42,23 @@ void report_rates(Stats& stats, const TracedPhotons& traced, const MapBuildTimes
     if (traced.pipeline_seconds > 0 && traced.threads > 0)
         stats.add_value(
             "photon tracing threads busy",
-            fmt("%.1f %%", 100.0 * traced.batch_seconds / (traced.threads * traced.pipeline_seconds)) +
-                fmt(" (batches %.3f s on ", traced.batch_seconds) + threads_text(traced.threads) +
-                fmt(" in %.3f s;", traced.pipeline_seconds) +
-                fmt(" commits %.3f s, serial)", traced.commit_seconds));
+            printf_string("%.1f %%",
+                          100.0 * traced.batch_seconds / (traced.threads * traced.pipeline_seconds)) +
+                printf_string(" (batches %.3f s on ", traced.batch_seconds) + threads_text(traced.threads) +
+                printf_string(" in %.3f s;", traced.pipeline_seconds) +
+                printf_string(" commits %.3f s, serial)", traced.commit_seconds));
     const double stored = double(times.stored);
-    stats.add_value("photon tracing rate", fmt("%.3g stored photons/s",
-                                               times.trace_seconds > 0 ? stored / times.trace_seconds : 0.0));
+    stats.add_value(
+        "photon tracing rate",
+        printf_string("%.3g stored photons/s", times.trace_seconds > 0 ? stored / times.trace_seconds : 0.0));
     stats.add_value("photon map build thread time",
-                    fmt("top levels %.3f s, ", times.build.top_seconds) +
-                        fmt("below them %.3f s", times.build.below_seconds) +
-                        fmt(" in %.3f s", times.build_seconds) +
+                    printf_string("top levels %.3f s, ", times.build.top_seconds) +
+                        printf_string("below them %.3f s", times.build.below_seconds) +
+                        printf_string(" in %.3f s", times.build_seconds) +
                         (traced.threads > 0 ? " on " + threads_text(traced.threads) : std::string()));
-    stats.add_value("photon map build rate",
-                    fmt("%.3g photons/s", times.build_seconds > 0 ? stored / times.build_seconds : 0.0));
+    stats.add_value(
+        "photon map build rate",
+        printf_string("%.3g photons/s", times.build_seconds > 0 ? stored / times.build_seconds : 0.0));
 }
 
 }  // namespace
@@ -69,28 +66,29 @@ void report_rates(Stats& stats, const TracedPhotons& traced, const MapBuildTimes
 void report_map_build(Stats& stats, const TraceOptions& to, const TracedPhotons& traced,
                       const PhotonMaps& maps, const MapBuildTimes& times, bool has_lights) {
     if (!maps.volume_beams.empty() || !maps.volume_caustic_beams.empty())
-        stats.add_value(
-            "beam BVH memory",
-            fmt("%.3g MB",
-                double(maps.volume_beams.memory_bytes() + maps.volume_caustic_beams.memory_bytes()) / 1e6));
+        stats.add_value("beam BVH memory",
+                        printf_string("%.3g MB", double(maps.volume_beams.memory_bytes() +
+                                                        maps.volume_caustic_beams.memory_bytes()) /
+                                                     1e6));
     stats.add_value("photons emitted", std::to_string(traced.total_emitted));
     report_maps(stats, to, traced, maps, has_lights);
     if (to.wanted[kCausticMap] && to.caustic_projection)
-        stats.add_value(
-            "caustic projection maps",
-            fmt("%.3g %% of the emitted power aimed at specular objects", 100.0 * traced.caustic_fraction) +
-                fmt(", built in %.3f s", traced.projection_seconds) +
-                fmt(", caustic tracing %.3g stored photons/s",
-                    traced.caustic_seconds > 0 ? double(maps.caustic().size()) / traced.caustic_seconds
-                                               : 0.0));
+        stats.add_value("caustic projection maps",
+                        printf_string("%.3g %% of the emitted power aimed at specular objects",
+                                      100.0 * traced.caustic_fraction) +
+                            printf_string(", built in %.3f s", traced.projection_seconds) +
+                            printf_string(", caustic tracing %.3g stored photons/s",
+                                          traced.caustic_seconds > 0
+                                              ? double(maps.caustic().size()) / traced.caustic_seconds
+                                              : 0.0));
     stats.add_value("bytes per photon", std::to_string(sizeof(Photon)));
     if (dist::distributed())  // each rank traced its batches; all received every batch
         stats.add_value("photon batches exchanged (MPI)",
-                        fmt("%.3g MB", double(traced.exchanged_bytes) * 1e-6) +
-                            fmt(" in %.3f s", traced.exchange_seconds));
+                        printf_string("%.3g MB", double(traced.exchanged_bytes) * 1e-6) +
+                            printf_string(" in %.3f s", traced.exchange_seconds));
     stats.add_value("photon map pages faulted in",
-                    fmt("%.3g MB", double(traced.faulted_bytes) * 1e-6) +
-                        fmt(" in %.3f s of the trace", traced.fault_in_seconds));
+                    printf_string("%.3g MB", double(traced.faulted_bytes) * 1e-6) +
+                        printf_string(" in %.3f s of the trace", traced.fault_in_seconds));
     report_rates(stats, traced, times);
 }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "core/format.h"
 #include "core/log.h"
 
 namespace phos::render {
@@ -12,9 +13,7 @@ namespace {
 
 // "2.40e6": a photon count for a message.
 std::string photons_text(uint64_t n) {
-    char buf[32];
-    std::snprintf(buf, sizeof(buf), "%.2e", double(n));
-    std::string s = buf;
+    std::string s = printf_string("%.2e", double(n));
     const size_t e = s.find('e');
     size_t digits = e + 1;
     if (s[digits] == '+')

@@ -22,6 +22,7 @@
 #include "app/lib/memory_check.h"
 #include "app/lib/trace_output.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "core/interrupt.h"
 #include "core/log.h"
 #include "core/progress.h"
@@ -330,13 +331,10 @@ std::string work_done(const render::RenderDone& done, bool progressive, size_t p
         return std::to_string(done.units) + (counted ? " of " + std::to_string(done.target) : "") +
                " iterations";
     const double mean = pixels > 0 ? double(done.samples) / double(pixels) : 0.0;
-    char buf[96];
     if (counted && mean < double(done.target))
-        std::snprintf(buf, sizeof buf, "%.4g of %llu samples per pixel, %.0f %%", mean,
-                      (unsigned long long)done.target, 100.0 * mean / double(done.target));
-    else
-        std::snprintf(buf, sizeof buf, "%.4g samples per pixel", mean);
-    return buf;
+        return printf_string("%.4g of %llu samples per pixel, %.0f %%", mean, (unsigned long long)done.target,
+                             100.0 * mean / double(done.target));
+    return printf_string("%.4g samples per pixel", mean);
 }
 
 bool output_exists(const std::string& path) {
@@ -568,12 +566,10 @@ int run_render(const RenderCommand& command) {
         if (dist::distributed()) {
             const double seconds = seconds_since(t0);
             const RayCounts rays = stats.rays();
-            char line[160];
-            std::snprintf(line, sizeof line, "%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged",
-                          worker_threads(), seconds,
-                          double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
-                          double(dist::bytes_exchanged()) * 1e-6);
-            rank_lines = dist::gather(line);
+            rank_lines = dist::gather(
+                printf_string("%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged", worker_threads(),
+                              seconds, double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
+                              double(dist::bytes_exchanged()) * 1e-6));
         }
         dist::mark_finished();
     }

@@ -8,6 +8,7 @@
 #include "app/lib/json_writer.h"
 #include "app/lib/render_options.h"
 #include "core/error.h"
+#include "core/format.h"
 #include "integrators/registry.h"
 #include "io/image/atomic_write.h"
 
@@ -28,11 +29,7 @@ constexpr size_t kTextPhotons = 8;
 
 // ---- text ----
 
-std::string num(double v) {
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.4g", v);
-    return buf;
-}
+std::string num(double v) { return printf_string("%.4g", v); }
 std::string vec(Vec3 v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
 std::string rgb(Rgb c) { return num(c.r) + " " + num(c.g) + " " + num(c.b); }
 
