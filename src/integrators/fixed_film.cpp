@@ -12,7 +12,6 @@ namespace phos::integrators::vcm {
 namespace {
 
 constexpr double kFixedScale = 1073741824.0;  // 2^30: the sums' fixed point
-const char* const kPartNames[kParts] = {"direct", "caustic", "indirect", "specular"};
 
 }  // namespace
 
@@ -75,7 +74,8 @@ void FixedFilm::resolve(film::Film& film, uint64_t iterations) const {
             const size_t i = size_t(y) * size_t(width_) + size_t(x);
             film.set_pixel(x, y, mean(0, i));
             if (planes_ > 1)
-                for (int k = 0; k < kParts; ++k) film.layer(kPartNames[k]).set(x, y, mean(1 + size_t(k), i));
+                for (int k = 0; k < kParts; ++k)
+                    film.layer(component_name(Component(k))).set(x, y, mean(1 + size_t(k), i));
         }
 }
 

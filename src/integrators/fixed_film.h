@@ -11,16 +11,17 @@
 
 #include "core/vec.h"
 #include "film/film.h"
+#include "render/path_radiance.h"
 #include "render/progressive_checkpoint.h"
 #include "render/render_budget.h"
 
 namespace phos::integrators::vcm {
 using namespace render;  // the render support the algorithms are written over (src/render/)
 
-// The component a contribution belongs to with --layers (pixel_loop.h's RadianceParts, in
-// the registry's order): what reached the camera after a delta bounce at its first vertex x1
-// (specular), else light reaching x1 straight from the light (direct, x1's own emission too),
-// through delta bounces only (caustic), or through a diffuse or glossy vertex (indirect).
+// The component a contribution belongs to with --layers (render/path_radiance.h's Component, in
+// its order, whose names the layers take): what reached the camera after a delta bounce at its first vertex
+// x1 (specular), else light reaching x1 straight from the light (direct, x1's own emission too), through
+// delta bounces only (caustic), or through a diffuse or glossy vertex (indirect).
 enum Part { kDirect, kCaustic, kIndirect, kSpecular, kParts };
 
 // Rounding to 2^-30 per contribution is far below a float's resolution of the pixel values phos
