@@ -136,7 +136,7 @@ bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler
     const Rgb beta0 = path.beta;
     Ray ray = e.ray;
     const shading::MediaSet* media = P.active_media();
-    shading::SurfaceWalk walk(P.accel, media, P.scene.lights[li].medium);
+    shading::SurfaceWalk walk(P.accel, media, P.lights.emission_medium(li, e));
     Vec3 from = e.ray.origin;
     bool delta_chain = true;
     for (int segments = 1;; ++segments) {

@@ -28,7 +28,7 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, 
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (1.0f / pmf);
-    medium = ps.scene.lights[li].medium;
+    medium = ps.lights.emission_medium(li, s);
     return true;
 }
 

@@ -218,7 +218,7 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb&
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (lc.fraction / pmf);
-    medium = ps.scene.lights[li].medium;
+    medium = ps.lights.emission_medium(li, s);
     return true;
 }
 

@@ -2,6 +2,8 @@
 // and the camera (framing the bounds when the scene has none).
 #include "render/prepared.h"
 
+#include "shading/light_media.h"
+
 namespace phos::render {
 
 scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
@@ -24,7 +26,10 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
       options(options_),
       bsdf_options(prepare.bsdf),
       bsdfs(scene_, bsdf_options),
-      stats(stats_) {}
+      stats(stats_) {
+    if (media.active())
+        lights.set_media(shading::place_lights_in_media(accel, lights, camera.eye(), camera_medium()));
+}
 
 Rgb Prepared::escaped(Vec3 dir) const {
     Rgb L(0.0f);

@@ -2,6 +2,8 @@
 // shape (the emitting surface, which is also visible geometry) by index.
 #pragma once
 
+#include <string>
+
 #include "core/transform.h"
 #include "core/vec.h"
 
@@ -32,8 +34,13 @@ struct Light {
     // Infinite: lat-long radiance map (texture index, -1 = constant) and its orientation.
     int texture = -1;
     Transform to_world;
-    // The medium the light sits in (point, spot and area lights; -1 = vacuum): photons start in it.
+    // The medium the light sits in (-1 = vacuum) when the file says so (`medium_declared`: pbrt's
+    // MediumInterface in effect at the light, the .scene containment rule). An undeclared light sits
+    // where medium tracking from the camera reaches it (shading/light_media.h); photons and light
+    // subpaths start in that medium.
     int medium = -1;
+    bool medium_declared = false;
+    std::string origin;  // "file:line:col" where it was defined, for messages (may be empty)
 };
 
 }  // namespace phos::scene

@@ -57,6 +57,7 @@ LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
         } else {
             u_dir.x = std::min(2 * u_dir.x - 1, std::nextafter(1.0f, 0.0f));
             n = -n;
+            s.back = true;
         }
     }
     const Vec3 local = warp::cosine_hemisphere(u_dir);

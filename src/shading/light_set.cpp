@@ -83,9 +83,11 @@ LightSet::LightSet(const scene::Scene& scene, const Bounds& scene_bounds, const 
         const Rgb p = lights_[i]->power();
         const float w = p.average();
         weights[i] = std::isfinite(w) && w > 0 ? w : 0;
-        if (weights[i] == 0)
-            log::warn("light " + std::to_string(i) + " (" + kind_name(scene.lights[i].kind) +
-                      ") has zero power: it emits no photons and is never chosen");
+        if (weights[i] == 0) {
+            const scene::Light& l = scene.lights[i];
+            log::warn((l.origin.empty() ? "" : l.origin + ": ") + "light " + std::to_string(i) + " (" +
+                      kind_name(l.kind) + ") has zero power: it emits no photons and is never chosen");
+        }
     }
     distribution_ = Distribution1D(weights);
 }

@@ -41,6 +41,13 @@ struct LightLeSample {
     // Flux carried by this one sample: Le * |cos| / (pdf_pos * pdf_dir). Averaging over N samples
     // gives the light's power; a photon's power is weight / N (times 1/P(choose light)).
     Rgb weight;
+    bool back = false;  // a two-sided area light emitting from the back of its surface (n flipped)
+};
+
+// The media a light emits into (-1 = vacuum): `front` on the side of an area light's normal and
+// for every other light, `back` behind a two-sided area light (light_media.h decides them).
+struct LightMedia {
+    int front = -1, back = -1;
 };
 
 struct LightOptions {
@@ -90,11 +97,19 @@ public:
     Rgb total_power() const;
     // Indices of infinite lights (seen by escaping rays).
     const std::vector<size_t>& infinite_lights() const { return infinite_; }
+    // Where the lights sit (place_lights_in_media); every light is in vacuum until set.
+    void set_media(std::vector<LightMedia> media) { media_ = std::move(media); }
+    // The medium photons and light subpaths leaving light i along sample `s` start in.
+    int emission_medium(size_t i, const LightLeSample& s) const {
+        if (i >= media_.size()) return -1;
+        return s.back ? media_[i].back : media_[i].front;
+    }
 
 private:
     std::vector<std::unique_ptr<Light>> lights_;
     Distribution1D distribution_;  // over lights_, by average power (uniform if all are zero)
     std::vector<size_t> infinite_;
+    std::vector<LightMedia> media_;  // empty: all in vacuum
 };
 
 }  // namespace phos::shading

@@ -79,6 +79,7 @@ private:
         int material = -1;  // index into scene_.materials; -1: pbrt's default (diffuse 0.5)
         std::optional<AreaLight> area_light;
         int inside = -1, outside = -1;  // media
+        bool media_declared = false;    // a MediumInterface statement set them
     };
     struct StackEntry {
         GraphicsState state;

@@ -139,6 +139,8 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     if (!light.color.is_finite()) loc.fail(d + ": emission is not finite");
     done(params, d);
     light.medium = gs_.outside;  // pbrt-v4: a light sits in the current outside medium
+    light.medium_declared = gs_.media_declared;
+    light.origin = loc.str();
     scene_.lights.push_back(light);
 }
 
@@ -265,6 +267,7 @@ void SceneBuilder::medium_interface(const std::string& inside, const std::string
     };
     gs_.inside = lookup(inside);
     gs_.outside = lookup(outside);
+    gs_.media_declared = true;
 }
 
 }  // namespace phos::io::pbrt

@@ -88,9 +88,12 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
         if (length(sum_n) > 0) direction = normalize(sum_n);
     }
     const int index = scene_.add_area_light(std::move(shape), L, al.two_sided);
-    scene_.lights[size_t(index)].position = position;
-    scene_.lights[size_t(index)].direction = direction;
-    scene_.lights[size_t(index)].medium = gs_.outside;  // photons leave into the outside medium
+    scene::Light& light = scene_.lights[size_t(index)];
+    light.position = position;
+    light.direction = direction;
+    light.medium = gs_.outside;  // photons leave into the outside medium
+    light.medium_declared = gs_.media_declared;
+    light.origin = loc.str();  // the Shape that emits
 }
 
 void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {

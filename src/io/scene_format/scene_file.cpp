@@ -104,6 +104,7 @@ void Reader::cmd_light(const Line& l) {
     const Line rest{type, {l.args.begin() + 1, l.args.end()}, l.end_col};
     scene::Light light;
     light.medium = -1;  // set by finish(): lights sit in the scene's medium
+    light.origin = where(l.keyword);
     if (type.text == "point") {
         const std::vector<double> v = numbers(rest, 6, "px py pz  r g b");
         require_non_negative(rest, v, 3, 3);
@@ -148,6 +149,7 @@ void Reader::cmd_light(const Line& l) {
         const int index = scene_.add_area_light(std::move(s), L);
         scene_.lights[size_t(index)].position = c;
         scene_.lights[size_t(index)].direction = nn;
+        scene_.lights[size_t(index)].origin = where(l.keyword);
     } else {
         fail(type, "light: unknown type '" + type.text + "' (point or area)");
     }
@@ -174,7 +176,7 @@ void Reader::add_object(scene::Shape shape, const MatFile& mat, const Token& at)
     shape.origin = where(at);
     const int index = int(scene_.shapes.size());
     if (!mat.emission.is_black())
-        scene_.add_area_light(std::move(shape), mat.emission);
+        scene_.lights[size_t(scene_.add_area_light(std::move(shape), mat.emission))].origin = where(at);
     else
         scene_.shapes.push_back(std::move(shape));
     if (mat.boundary) boundaries_.emplace_back(index, mat.medium);
@@ -198,6 +200,7 @@ void Reader::finish() {
             medium_at(reference_point(scene_.shapes[size_t(shape)]), shape);
     scene_.camera_medium = scene_.camera ? medium_at(scene_.camera->eye, -1) : scene_medium_;
     for (scene::Light& light : scene_.lights) {
+        light.medium_declared = true;  // the containment rule places every light
         if (light.kind == scene::Light::Kind::Point) light.medium = medium_at(light.position, -1);
         if (light.kind == scene::Light::Kind::Area) {
             const scene::Shape& s = scene_.shapes[size_t(light.shape)];

@@ -530,6 +530,28 @@ TEST(PbrtMedia, HomogeneousGridInterfaceAndCameraMedium) {
     EXPECT_EQ(l.scene.shapes[0].media.outside, 2);
 }
 
+// A light sits in a medium by declaration only under a MediumInterface statement (in effect in its
+// attribute scope); elsewhere the renderer places it (shading/light_media.h). Each light records
+// where it was defined.
+TEST(PbrtMedia, LightsRecordWhetherTheirMediumIsDeclared) {
+    const Loaded l = load_text(
+        kView +
+        "WorldBegin\nMakeNamedMedium \"smoke\" \"string type\" \"homogeneous\"\n"
+        "LightSource \"point\" \"rgb I\" [1 1 1]\n"
+        "AttributeBegin\nMediumInterface \"smoke\" \"smoke\"\nLightSource \"point\" \"rgb I\" [1 1 1]\n"
+        "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\nShape \"sphere\"\nAttributeEnd\n"
+        "AreaLightSource \"diffuse\" \"rgb L\" [1 1 1]\nShape \"sphere\"\n");
+    ASSERT_EQ(l.scene.lights.size(), 4u);
+    const std::vector<bool> declared = {false, true, true, false};
+    const std::vector<int> medium = {-1, 0, 0, -1};
+    for (size_t i = 0; i < 4; ++i) {
+        EXPECT_EQ(l.scene.lights[i].medium_declared, declared[i]) << i;
+        EXPECT_EQ(l.scene.lights[i].medium, medium[i]) << i;
+    }
+    EXPECT_NE(l.scene.lights[0].origin.find(":6:1"), std::string::npos) << l.scene.lights[0].origin;
+    EXPECT_NE(l.scene.lights[2].origin.find(":11:1"), std::string::npos) << l.scene.lights[2].origin;
+}
+
 // Emission: "Le" with a scalar "Lescale" (any medium) or one factor per cell (uniformgrid).
 TEST(PbrtMedia, EmissionAndLescale) {
     const Loaded l = load_text(
