@@ -360,7 +360,9 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
             bs.flags = kSpecular | kReflection;
             break;
         case kDielectric: {
-            const float eta = s > 0 ? ior_ : 1 / ior_;
+            // A thin sheet has the same medium on both faces: its reflectance is the same from
+            // either side.
+            const float eta = s > 0 || thin_ ? ior_ : 1 / ior_;
             if (sharp_glass_) {
                 const auto ds = dielectric::sample_smooth(wo_l, eta, thin_, schlick_, u_re, mode);
                 if (!ds) return std::nullopt;
