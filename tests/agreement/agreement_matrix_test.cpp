@@ -159,7 +159,7 @@ std::string row_name(const ::testing::TestParamInfo<Row>& info) {
     return s;
 }
 
-INSTANTIATE_TEST_SUITE_P(Scenes, AgreementMatrix, ::testing::ValuesIn(rows()), row_name);
+INSTANTIATE_TEST_SUITE_P(agreement, AgreementMatrix, ::testing::ValuesIn(rows()), row_name);
 
 }  // namespace
 }  // namespace phos::app

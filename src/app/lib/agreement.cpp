@@ -153,7 +153,10 @@ std::string agreement_text(const AgreementReport& report, size_t max_blocks) {
     for (const AgreementRow& row : report.rows) {
         const film::Agreement& a = row.agreement;
         const film::BlockComparison& w = a.worst;
-        const char* verdict = a.agrees() ? "agrees" : !a.mean_agrees() ? "mean differs" : "blocks differ";
+        const char* verdict = a.agrees()          ? "agrees"
+                              : a.mean_agrees()   ? "blocks differ"
+                              : a.failing.empty() ? "mean differs"
+                                                  : "mean and blocks differ";
         out += printf_string(
             "| %s%s | %s | %.4f | ±%.4f | (%d, %d) %s | %.4f | %.2f | %zu of %zu | %.3g | %s |\n",
             name_of(row.kind).c_str(), row.claims ? "" : " (does not claim the scene)",
