@@ -28,9 +28,10 @@ TEST(AgreeCommand, AgreeingIntegratorsExit0WithTheTable) {
     const std::string scene = dir.write("diffuse.scn", kDiffuseScene);
     const auto r = run_phos("agree " + scene + " --integrators path,bdpt" + kSmall);
     EXPECT_EQ(r.exit_code, 0) << r.output;
-    EXPECT_NE(r.output.find("| integrator | budget per seed | mean / reference mean | allowed | worst block | its "
-                            "ratio | tolerances off | blocks beyond tolerance |"),
-              std::string::npos)
+    EXPECT_NE(
+        r.output.find("| integrator | budget per seed | mean / reference mean | allowed | worst block | its "
+                      "ratio | tolerances off | blocks beyond tolerance |"),
+        std::string::npos)
         << r.output;
     EXPECT_NE(r.output.find("reference path at "), std::string::npos) << r.output;
     EXPECT_NE(r.output.find("| path | "), std::string::npos) << r.output;
@@ -56,16 +57,15 @@ TEST(AgreeCommand, BadInputExits2) {
     struct Case {
         std::string args, message;
     };
-    for (const Case& c : {Case{"agree " + broken + kSmall, broken + ":2:1: material"},
-                          Case{"agree " + dir.file("missing.scn") + kSmall, "missing.scn"},
-                          Case{"agree " + scene + " --integrators path,magic" + kSmall,
-                               "--integrators: unknown integrator 'magic'"},
-                          Case{"agree " + scene + " --reference magic" + kSmall,
-                               "--reference: unknown integrator 'magic'"},
-                          Case{"agree " + scene + " --block 0" + kSmall, "--block"},
-                          Case{"agree " + scene + " --time 0", "--time"},
-                          Case{"agree " + scene + " --alpha 0" + kSmall, "--alpha"},
-                          Case{"agree", "scene"}}) {
+    for (const Case& c :
+         {Case{"agree " + broken + kSmall, broken + ":2:1: material"},
+          Case{"agree " + dir.file("missing.scn") + kSmall, "missing.scn"},
+          Case{"agree " + scene + " --integrators path,magic" + kSmall,
+               "--integrators: unknown integrator 'magic'"},
+          Case{"agree " + scene + " --reference magic" + kSmall, "--reference: unknown integrator 'magic'"},
+          Case{"agree " + scene + " --block 0" + kSmall, "--block"},
+          Case{"agree " + scene + " --time 0", "--time"},
+          Case{"agree " + scene + " --alpha 0" + kSmall, "--alpha"}, Case{"agree", "scene"}}) {
         const auto r = run_phos(c.args);
         EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.output;
         EXPECT_NE(r.output.find(c.message), std::string::npos) << c.args << "\n" << r.output;
