@@ -1,6 +1,7 @@
 // Whether two estimators of one image agree, block by block: the mean of every B x B block of an
 // integrator's renders against a reference's, within a tolerance made of the noise both show
-// between two seeds, the bias each may have by construction, and a floor for black blocks
+// between two seeds, the bias each may have by construction, and a floor for rounding and black
+// blocks
 // (the agreement matrix in tests/agreement and `phos agree`).
 #pragma once
 
@@ -33,7 +34,8 @@ struct BlockSettings {
     // widens it to the Student-t quantile of as many degrees of freedom as its pixels (its noise is
     // estimated from them).
     double sigmas = 5;
-    double floor = 1e-4;  // absolute tolerance: this times the reference's image mean (black blocks)
+    // Rounding: this times the reference's block mean plus its image mean (see block_agreement.cpp).
+    double floor = 1e-3;
 };
 
 // One block and channel compared.

@@ -68,7 +68,7 @@ struct AgreementRequest {
     uint64_t seed = 0;  // each tested integrator renders with seeds seed and seed + 1, the
                         // reference with seed + 2 and seed + 3
     // Block size and floor; sigmas <= 0: from the number of comparisons (tolerance_sigmas).
-    film::BlockSettings blocks{8, 0, 1e-4};
+    film::BlockSettings blocks{8, 0, 1e-3};
     // Called before each render ("sppm seed 1"), for messages.
     std::function<void(const std::string& what)> on_render;
 };
