@@ -117,6 +117,12 @@ std::string format_number(double v, bool as_float) {
 
 std::string option_error(const Option& o, const std::string& why) { return o.flag_name() + ": " + why; }
 
+Table subset(const Table& table, const std::function<bool(const std::string& name)>& keep) {
+    Table t = table;
+    std::erase_if(t.options, [&](const Option& o) { return !keep(o.name); });
+    return t;
+}
+
 void validate(const Table& table, const void* object) {
     for (const Option& o : table.options) {
         try {

@@ -280,6 +280,10 @@ private:
 // The message for a value of option `o` that was refused: "--alpha: 0 is not in (0, 1]".
 std::string option_error(const Option& o, const std::string& why);
 
+// `table` with only the options whose names `keep` accepts: the same entries (names, checks, help),
+// for a command that takes part of another's options.
+Table subset(const Table& table, const std::function<bool(const std::string& name)>& keep);
+
 // Checks every option's stored value in `object` (a struct of the table's type); throws ValueError
 // with option_error's wording for the first invalid one.
 void validate(const Table& table, const void* object);

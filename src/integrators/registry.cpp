@@ -1,6 +1,8 @@
 // The integrator registry (see registry.h): the table, lookups by kind and name, and make.
 #include "integrators/registry.h"
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "integrators/bdpt.h"
 #include "integrators/path.h"
@@ -9,6 +11,7 @@
 #include "integrators/sppm.h"
 #include "integrators/vcm.h"
 #include "integrators/whitted.h"
+#include "photon/projection_map.h"
 
 namespace phos::integrators {
 namespace {
@@ -38,25 +41,28 @@ std::unique_ptr<Integrator> progressive(const IntegratorConfig& c, const Integra
 const std::vector<IntegratorInfo>& integrators() {
     using enum Counts;
     using enum RenderMemory;
-    // kind, name, what the budget counts, --layers, the options read, memory, traces, make.
+    using enum Convergence;
+    // kind, name, what the budget counts, --layers, the options read, memory, traces, convergence,
+    // make.
     static const std::vector<IntegratorInfo> table{
         {K::Whitted, "whitted", SamplesPerPixel, layers(Direct, Specular), Reads::Nothing, Film, true,
-         from_budget<WhittedIntegrator>},
-        {K::Path, "path", SamplesPerPixel, all_components(), Reads::Nothing, Film, true,
+         Inconsistent, from_budget<WhittedIntegrator>},
+        {K::Path, "path", SamplesPerPixel, all_components(), Reads::Nothing, Film, true, Unbiased,
          from_budget<PathIntegrator>},
         {K::PhotonMap, "photonmap", SamplesPerPixel, all_components(), Reads::PhotonMap, PhotonMaps, true,
+         KernelBiased,
          [](const IntegratorConfig& c, const IntegratorInfo& self) -> std::unique_ptr<Integrator> {
              return std::make_unique<PhotonMapIntegrator>(c.photon_map, c.budget, self.layers);
          }},
-        {K::Ppm, "ppm", Iterations, layers(Direct, Indirect), Reads::Progressive, HitPoints, true,
+        {K::Ppm, "ppm", Iterations, layers(Direct, Indirect), Reads::Progressive, HitPoints, true, Consistent,
          progressive<PpmIntegrator>},
         {K::Sppm, "sppm", Iterations, layers(Direct, Indirect), Reads::Progressive, VisiblePoints, true,
-         progressive<SppmIntegrator>},
-        {K::Bdpt, "bdpt", Iterations, all_components(), Reads::Progressive, FixedSums, false,
+         Consistent, progressive<SppmIntegrator>},
+        {K::Bdpt, "bdpt", Iterations, all_components(), Reads::Progressive, FixedSums, false, Unbiased,
          [](const IntegratorConfig& c, const IntegratorInfo&) -> std::unique_ptr<Integrator> {
              return std::make_unique<BdptIntegrator>(c.progressive, c.budget);
          }},
-        {K::Vcm, "vcm", Iterations, all_components(), Reads::Progressive, LightVertices, false,
+        {K::Vcm, "vcm", Iterations, all_components(), Reads::Progressive, LightVertices, false, Consistent,
          [](const IntegratorConfig& c, const IntegratorInfo&) -> std::unique_ptr<Integrator> {
              return std::make_unique<VcmIntegrator>(c.progressive, c.budget);
          }},
@@ -90,6 +96,72 @@ std::string integrator_names(options::IntegratorSet set, const std::string& sepa
     for (const IntegratorInfo& i : integrators())
         if (set.contains(unsigned(i.kind))) out += (out.empty() ? "" : separator) + i.name;
     return out;
+}
+
+namespace {
+
+bool delta_light(const scene::Light& l) {
+    using enum scene::Light::Kind;
+    return l.kind == Point || l.kind == Spot || l.kind == Directional;
+}
+
+// Whether a shape of the scene (or of an object it instances) has a material with a mirror or
+// sharp-glass lobe.
+bool has_delta_surface(const scene::Scene& scene) {
+    auto delta = [&](const scene::Shape& s) {
+        return s.material >= 0 && size_t(s.material) < scene.materials.size() &&
+               photon::has_delta_lobe(scene.materials[size_t(s.material)]);
+    };
+    for (const scene::Shape& s : scene.shapes)
+        if (delta(s)) return true;
+    for (const scene::Object& o : scene.objects)
+        for (const scene::Shape& s : o.shapes)
+            if (delta(s)) return true;
+    return false;
+}
+
+bool glowing_medium(const scene::Scene& scene) {
+    for (const scene::Medium& m : scene.media)
+        if (!m.emission.is_black()) return true;
+    return false;
+}
+
+}  // namespace
+
+bool claims(IntegratorKind kind, const scene::Scene& scene) {
+    switch (kind) {
+        case K::Whitted:
+            return false;
+        case K::Path:
+            return !(std::any_of(scene.lights.begin(), scene.lights.end(), delta_light) &&
+                     has_delta_surface(scene));
+        case K::Ppm:
+        case K::Sppm:
+            return !glowing_medium(scene);
+        default:
+            return true;
+    }
+}
+
+IntegratorKind agreement_reference(const scene::Scene& scene) {
+    return claims(K::Path, scene) ? K::Path : K::Bdpt;
+}
+
+film::BiasAllowance agreement_bias(IntegratorKind kind) {
+    // The kernels' radii at the end of a modest render, in pixels: ppm and sppm start at 4 pixel
+    // footprints (--radius-pixels, or the pilot's density radius of about as many) and their radius
+    // reduction (alpha 0.7: R^2 falls as about i^-0.3) halves that within 64 iterations; vcm's merging
+    // radius starts from the same pilot and shrinks alike; photonmap's caustic estimate is held to at
+    // least 1 pixel (--caustic-min-pixels) and its global map is seen through final gathering (blurred
+    // one bounce away), with the irradiance cache interpolating between points. 2 pixels for all four.
+    // The image mean: 2 % (the kernels' edge losses over a whole image of walls and corners).
+    switch (integrator(kind).convergence) {
+        case Convergence::Consistent:
+        case Convergence::KernelBiased:
+            return {2.0, 0.02};
+        default:
+            return {};
+    }
 }
 
 std::unique_ptr<Integrator> make_integrator(IntegratorKind kind, const IntegratorConfig& config) {

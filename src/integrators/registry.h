@@ -12,11 +12,13 @@
 #include <vector>
 
 #include "core/option_table.h"
+#include "film/block_agreement.h"
 #include "integrators/integrator.h"
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
 #include "render/path_radiance.h"
 #include "render/render_budget.h"
+#include "scene/scene.h"
 
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
@@ -44,6 +46,18 @@ enum class RenderMemory {
 };
 
 // The per-integrator option structs and the budget; each integrator reads its own.
+// How an integrator's image relates to the true one: what the agreement matrix
+// (tests/agreement) and `phos agree` compare it with, and how much bias they allow it.
+enum class Convergence {
+    Unbiased,      // its expectation is the true image at any budget (path, bdpt)
+    Consistent,    // biased by a density-estimation kernel that shrinks as the budget grows (ppm,
+                   // sppm, vcm): the bias vanishes in the limit
+    KernelBiased,  // biased by kernels that do not shrink (photonmap: k-nearest estimates of fixed
+                   // k, the irradiance cache): close to the true image, never equal
+    Inconsistent,  // leaves light transport out by design (whitted: no indirect diffuse light);
+                   // never compared
+};
+
 struct IntegratorConfig {
     PhotonMapOptions photon_map;
     ProgressiveOptions progressive;
@@ -61,7 +75,8 @@ struct IntegratorInfo {
     std::vector<Component> layers;  // what --layers records (none: --layers is refused)
     Reads reads;
     RenderMemory memory;
-    bool traces;          // --trace-pixel records its camera samples
+    bool traces;  // --trace-pixel records its camera samples
+    Convergence convergence;
     MakeIntegrator make;  // from valid options (make_integrator checks them first)
 };
 
@@ -84,6 +99,22 @@ constexpr options::IntegratorSet integrator_set(std::initializer_list<Integrator
 }
 bool applies(const options::Option& o, IntegratorKind kind);
 std::string integrator_names(options::IntegratorSet set, const std::string& separator);
+
+// Agreement (tests/agreement, `phos agree`; docs/usage.md "phos agree"): whether `kind` can render
+// all of `scene`'s light transport. Whitted never does (it is not consistent). Path tracing with
+// next-event estimation cannot sample light from a delta light (point, spot, directional) reaching
+// a diffuse surface or a medium through a mirror or sharp glass (L S+ D: the caustic is found
+// neither by a light sample, blocked by the delta surface, nor by a BSDF sample, which cannot hit a
+// point): path does not claim scenes with both a delta light and a delta lobe. ppm and sppm emit no
+// photons from media, so they do not claim scenes whose media glow.
+bool claims(IntegratorKind kind, const scene::Scene& scene);
+// The integrator the others are compared with: path where it claims the scene, else bdpt
+// (unbiased, with light tracing for the caustics path misses). bdpt, too, misses a delta light's
+// caustic seen through a mirror or glass (L S+ D S+ E: no vertex to connect); on such a scene a
+// consistent integrator (vcm) is the better reference.
+IntegratorKind agreement_reference(const scene::Scene& scene);
+// The bias `kind` may show against the true image at a modest budget (block_agreement.h).
+film::BiasAllowance agreement_bias(IntegratorKind kind);
 
 // Throws InputError for options outside their tables' ranges (the message names the option:
 // "--alpha: 0 is not in (0, 1]").

@@ -1,7 +1,8 @@
 // The integrator registry: every row is what its integrator does (the layers it writes, what its
 // budget counts, whether it traces pixels, the options it checks), names parse into kinds once,
-// and make_integrator takes only option structs inside their tables' ranges, reporting a bad one
-// with the tables' wording (the integrators themselves never check or name flags).
+// make_integrator takes only option structs inside their tables' ranges, reporting a bad one
+// with the tables' wording (the integrators themselves never check or name flags), and the
+// agreement rules say which integrators claim a scene and which is its reference.
 #include "integrators/registry.h"
 
 #include <gtest/gtest.h>
@@ -163,6 +164,55 @@ TEST(Registry, ChecksTheOptionsItsIntegratorReads) {
         EXPECT_EQ(error_of(row.kind, bad_map).empty(), row.reads != Reads::PhotonMap) << row.name;
         EXPECT_EQ(error_of(row.kind, bad_progressive).empty(), row.reads != Reads::Progressive) << row.name;
     }
+}
+
+// The agreement rules (registry.h claims, agreement_reference, agreement_bias): the floor scene
+// with a glass sphere added, lit by its area light, by a point light, or through glowing fog.
+TEST(Registry, AgreementClaimsReferencesAndBiases) {
+    scene::Scene area = floor_scene();
+    scene::Material glass;
+    glass.transmission = Rgb(1.0f);
+    glass.ior = 1.5f;
+    area.materials.push_back(glass);
+    area.shapes.push_back(testing::sphere({0, 0.3f, 0}, 0.3f, int(area.materials.size()) - 1));
+    scene::Scene point = area;
+    scene::Light p;
+    p.kind = scene::Light::Kind::Point;
+    p.position = Vec3(0.5f, 1.2f, 0);
+    p.color = Rgb(5.0f);
+    point.lights.push_back(p);
+    scene::Scene frosted = point;  // a rough dielectric has no delta lobe
+    frosted.materials.back().transmission_shininess = 100;
+    scene::Scene fog = floor_scene();
+    scene::Medium glow;
+    glow.sigma_a = Rgb(0.5f);
+    glow.emission = Rgb(1.0f);
+    fog.media.push_back(glow);
+
+    for (const IntegratorInfo& row : integrators()) {
+        const bool consistent = row.convergence != Convergence::Inconsistent;
+        EXPECT_EQ(claims(row.kind, area), consistent) << row.name;
+        EXPECT_EQ(claims(row.kind, frosted), consistent) << row.name;
+        // Path tracing cannot find the point light's caustic through the glass.
+        EXPECT_EQ(claims(row.kind, point), consistent && row.kind != IntegratorKind::Path) << row.name;
+        // Photons are not emitted from media: ppm and sppm miss what glowing fog lights.
+        const bool photons_only = row.kind == IntegratorKind::Ppm || row.kind == IntegratorKind::Sppm;
+        EXPECT_EQ(claims(row.kind, fog), consistent && !photons_only) << row.name;
+        // The unbiased have no bias allowance; the kernel methods a kernel and an image share.
+        const film::BiasAllowance bias = agreement_bias(row.kind);
+        const bool unbiased = row.convergence == Convergence::Unbiased || !consistent;
+        EXPECT_EQ(bias.kernel == 0 && bias.image == 0, unbiased) << row.name;
+    }
+    EXPECT_EQ(integrator(IntegratorKind::Whitted).convergence, Convergence::Inconsistent);
+    EXPECT_EQ(integrator(IntegratorKind::Path).convergence, Convergence::Unbiased);
+    EXPECT_EQ(integrator(IntegratorKind::Bdpt).convergence, Convergence::Unbiased);
+    EXPECT_EQ(integrator(IntegratorKind::PhotonMap).convergence, Convergence::KernelBiased);
+    for (const IntegratorKind k : {IntegratorKind::Ppm, IntegratorKind::Sppm, IntegratorKind::Vcm})
+        EXPECT_EQ(integrator(k).convergence, Convergence::Consistent);
+    EXPECT_EQ(agreement_reference(area), IntegratorKind::Path);
+    EXPECT_EQ(agreement_reference(frosted), IntegratorKind::Path);
+    EXPECT_EQ(agreement_reference(point), IntegratorKind::Bdpt);
+    EXPECT_EQ(agreement_reference(fog), IntegratorKind::Path);
 }
 
 }  // namespace

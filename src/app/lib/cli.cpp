@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "accel/version.h"
+#include "app/lib/agree_command.h"
 #include "app/lib/diff_command.h"
 #include "app/lib/image_commands.h"
 #include "app/lib/photons_command.h"  // phos photons
@@ -30,7 +31,8 @@ namespace phos::app {
 namespace {
 
 constexpr const char* kVersion = "0.2.0";
-const std::vector<std::string> kCommands{"render", "diff", "info", "montage", "options", "photons", "help"};
+const std::vector<std::string> kCommands{"render",  "diff",    "info",  "montage",
+                                         "options", "photons", "agree", "help"};
 
 std::string version_text() {
     std::string s = std::string("phos ") + kVersion + "\n";
@@ -203,8 +205,9 @@ int run_cli(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("-V,--version", version_text());
     app.footer(
-        "Commands: phos render SCENE [options] | phos diff IMAGE REFERENCE | phos options | phos help "
-        "[COMMAND]");
+        "Commands: phos render SCENE [options] | phos diff IMAGE REFERENCE | phos agree SCENE | phos options "
+        "| "
+        "phos help [COMMAND]");
 
     RenderCommand rc;
     CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt, .scene) to an image");
@@ -248,13 +251,16 @@ int run_cli(int argc, char** argv) {
     CLI::App* photons = add_photons_command(app, photons_cmd, register_table);
     // ---- end phos photons ----
 
+    AgreeCommand agree_cmd;
+    CLI::App* agree = add_agree_command(app, agree_cmd, register_table);
+
     CLI::App* opts = app.add_subcommand("options", "print every render option (markdown: docs/options.md)");
     bool markdown = false;
     opts->add_flag("--markdown", markdown, "markdown table (the default; kept for scripts)");
 
     CLI::App* help = app.add_subcommand("help", "help on phos or on one command: phos help render");
     std::string help_topic;
-    help->add_option("command", help_topic, "render, diff or options");
+    help->add_option("command", help_topic, "render, diff, agree or options");
 
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
@@ -272,7 +278,7 @@ int run_cli(int argc, char** argv) {
             const std::string guess = nearest_name(args[0], kCommands);
             return print_error("unknown command '" + args[0] + "'" +
                                (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
-                               " (commands: render, diff, info, montage, options, help)");
+                               " (commands: render, diff, info, montage, options, photons, agree, help)");
         }
     }
 
@@ -339,6 +345,7 @@ int run_cli(int argc, char** argv) {
             return 0;
         }
         if (photons->parsed()) return run_photons(photons_cmd);  // phos photons
+        if (agree->parsed()) return run_agree(agree_cmd);
         if (opts->parsed()) {
             std::fputs(options_markdown().c_str(), stdout);
             return 0;

@@ -28,13 +28,11 @@
 namespace phos::app {
 namespace {
 
-// `table` with only the options named in `keep` (same entries, so the same names, checks, help).
+// `table` with only the options named in `keep`.
 options::Table only(const options::Table& table, const std::vector<std::string>& keep) {
-    options::Table t = table;
-    std::erase_if(t.options, [&](const options::Option& o) {
-        return std::find(keep.begin(), keep.end(), o.name) == keep.end();
+    return options::subset(table, [&](const std::string& name) {
+        return std::find(keep.begin(), keep.end(), name) != keep.end();
     });
-    return t;
 }
 
 const options::Table& photons_run_options() {

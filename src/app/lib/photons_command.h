@@ -4,14 +4,9 @@
 // (output optional then) it also shows them in the 3-D photon viewer.
 #pragma once
 
-#include <set>
 #include <string>
 
 #include "app/lib/render_options.h"
-
-namespace CLI {
-class App;
-}
 
 namespace phos::app {
 
@@ -28,10 +23,6 @@ struct PhotonsCommand {
     // scene tables, --seed, and --threads, -v, -q, --strict, --quality of the run table.
     RenderCommand settings;
 };
-
-// How cli.cpp registers an option table on a (sub)command: the same callbacks, validation and
-// --help text as for `phos render`.
-using RegisterTable = void (*)(CLI::App&, const BoundTable&, std::set<std::string>&);
 
 // Adds the `photons` subcommand to `app`, filling `cmd` when parsed.
 CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable register_table);

@@ -15,6 +15,10 @@
 #include "render/options.h"
 #include "render/render_budget.h"
 
+namespace CLI {
+class App;
+}
+
 namespace phos::app {
 
 // Where `--tev` streams when given without HOST:PORT (tev's own default).
@@ -66,6 +70,10 @@ struct BoundTable {
     const options::Table* table;
     void* object;
 };
+
+// How cli.cpp registers an option table on a (sub)command: the same callbacks, validation and
+// --help text as for `phos render`.
+using RegisterTable = void (*)(CLI::App&, const BoundTable&, std::set<std::string>&);
 
 struct RenderCommand {
     std::string scene_path;
