@@ -21,6 +21,7 @@
 #include "dist/ranks.h"
 #include "integrators/direct_light.h"
 #include "integrators/sppm.h"
+#include "photon/open_ball.h"
 #include "photon/photon_path.h"
 #include "render/progressive_budget.h"
 #include "shading/phase.h"
@@ -360,16 +361,19 @@ void PhotonAccumulator::pilot(std::vector<PixelStats>& stats, const std::vector<
 }
 
 void PhotonAccumulator::update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps,
-                               float alpha) {
+                               float alpha, const std::vector<float>& open_fraction) {
     drain([&](size_t i, uint64_t m, const int64_t* sum) {
         if (m == 0 || !vps[i].present()) return;
         const Rgb& beta = vps[i].beta;
         double phi[3];  // β Φ_i: the flux the camera path carries to the pixel
         for (int k = 0; k < 3; ++k) phi[k] = double(beta[k]) * (double(sum[k]) / scale_);
-        if (vps[i].volume())
+        if (vps[i].volume()) {
+            if (!open_fraction.empty())
+                for (double& v : phi) v /= double(open_fraction[i]);
             progressive_update_volume(stats[i], m, phi, double(alpha));
-        else
+        } else {
             progressive_update(stats[i], m, phi, double(alpha));
+        }
     });
 }
 
@@ -425,9 +429,18 @@ void photon_iteration(const Prepared& P, PhotonAccumulator& acc, const std::vect
         acc.pilot(state.slots, vps, *pilot);
         return;
     }
-    // N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old.
+    // N ← N + αM, R² ← R² (N + αM)/(N + M), τ ← (τ + βΦ) R²_new/R²_old; a volume point's βΦ
+    // counts over the open part of its ball (boundary bias of the 3D kernel, photon/open_ball.h).
     state.photons_emitted += photons;
-    acc.update(state.slots, vps, alpha);
+    std::vector<float> open;
+    if (P.active_media()) {
+        open.assign(vps.size(), 1.0f);
+        tbb::parallel_for(size_t(0), vps.size(), [&](size_t i) {
+            if (vps[i].volume() && state.slots[i].r2 > 0)
+                open[i] = photon::open_ball_fraction(P.accel, vps[i].p, float(std::sqrt(state.slots[i].r2)));
+        });
+    }
+    acc.update(state.slots, vps, alpha, open);
 }
 
 void end_iteration(PathRecorder* trace, ProgressiveState& state, ProgressiveBudget& budget,

@@ -82,8 +82,11 @@ public:
                          const std::vector<PixelStats>& stats, photon::HitPointGrid& grid, uint64_t seed,
                          uint64_t pass, uint64_t count);
     // Applies progressive_update (eq. 9-11; the 3D form for volume points) to `stats` (one per
-    // visible point) with each point's M_i and β Φ_i, and clears the sums.
-    void update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, float alpha);
+    // visible point) with each point's M_i and β Φ_i, and clears the sums. A volume point's Φ_i is
+    // divided by `open_fraction[i]`, the share of its ball photons can reach (photon/open_ball.h;
+    // empty: 1 everywhere).
+    void update(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, float alpha,
+                const std::vector<float>& open_fraction);
     // The pilot pass instead of update(): sets each visible point's r2 (the pilot's gathering disc)
     // by pilot_r2 from the photon count alone and clears the sums; N and τ stay 0 (see PilotRadius).
     void pilot(std::vector<PixelStats>& stats, const std::vector<VisiblePoint>& vps, const PilotRadius& a);
