@@ -9,8 +9,9 @@
 // its tolerance, and prints the scene's whole table.
 //
 // The default suite runs the small version: seven scenes at 32 x 32, fixed seeds and sample /
-// iteration budgets (deterministic), about 60 s on 2 cores (Release). PHOS_AGREEMENT=full runs the
-// larger one: every scene at 64 x 64, twice the budgets (about 20 min on 2 cores).
+// iteration budgets (deterministic), 60 to 80 s with ctest -j2 on 2 cores (Release). PHOS_AGREEMENT=full
+// runs the larger one: every scene at 64 x 64, twice the budgets (12 minutes with ctest -j2; the
+// slowest row about 250 s).
 //
 // The tolerance's sigmas are chosen for the whole matrix: with N comparisons (blocks x channels x
 // integrators x scenes) each is held to a false-failure chance of 1e-4 / N under Gaussian noise, so
@@ -92,13 +93,34 @@ const std::vector<Row>& rows() {
     // The default suite's rows between them hold every material, light and medium kind but the grid
     // medium, a light declared inside fog and a medium inside glass, which the full version adds.
     static const std::vector<Row> r{
-        {"a-smoke-box.pbrt", {}, true, light_media}, {"a-caustic-point.scn", {}, true, ""},
-        {"glass-mirror-checker.pbrt", {}, true, ""}, {"spot-point-twosided.pbrt", {}, true, ""},
-        {"thin-glass-sky.pbrt", {}, true, ""},       {"sun-sky-fog.pbrt", {}, true, ""},
-        {"phong-frosted-spot.scn", {}, true, ""},    {"a-glass-mirror.pbrt", {}, false, ""},
-        {"cornell-rough-area.pbrt", {}, false, ""},  {"fog-spot-inside.pbrt", {}, false, ""},
-        {"glass-media-area.pbrt", {}, false, ""},    {"grid-smoke-point.pbrt", {}, false, ""},
-        {"smoke-murky-sky.scene", {}, false, ""},    {"smoke-quad-light.pbrt", {}, false, light_media},
+        // homogeneous smoke bounded by one interface quad, the light inside it declaring no medium
+        {"a-smoke-box.pbrt", {}, true, light_media},
+        // a point light's caustic through glass: bdpt is the reference, path takes no part
+        {"a-caustic-point.scn", {}, true, ""},
+        // glass and mirror spheres, an area light's caustic on a checker texture
+        {"glass-mirror-checker.pbrt", {}, true, ""},
+        // point, spot and two-sided area lights, a rough conductor
+        {"spot-point-twosided.pbrt", {}, true, ""},
+        // an image environment light, thin glass, an image texture
+        {"thin-glass-sky.pbrt", {}, true, ""},
+        // a directional light and a constant sky outside homogeneous fog
+        {"sun-sky-fog.pbrt", {}, true, ""},
+        // .scn: modified Phong, frosted glass, a spot light, a spherical texture
+        {"phong-frosted-spot.scn", {}, true, ""},
+        // an area light's caustics through glass and in a mirror
+        {"a-glass-mirror.pbrt", {}, false, ""},
+        // rough conductors and a rough dielectric
+        {"cornell-rough-area.pbrt", {}, false, ""},
+        // spot and point lights declared inside fog
+        {"fog-spot-inside.pbrt", {}, false, ""},
+        // media inside glass
+        {"glass-media-area.pbrt", {}, false, ""},
+        // a chromatic grid medium, a point light inside it and a spot light outside
+        {"grid-smoke-point.pbrt", {}, false, ""},
+        // .scene: smoke with the light inside, murky glass inside the smoke, a sky
+        {"smoke-murky-sky.scene", {}, false, ""},
+        // the smoke box with the light declaring no medium again
+        {"smoke-quad-light.pbrt", {}, false, light_media},
     };
     return r;
 }
