@@ -72,8 +72,6 @@ struct Row {
     std::string scene;  // in tests/agreement/scenes
     Budgets budgets;
     bool in_small = true;  // also in the default suite
-    // Why the row is expected to fail until a change lands (printed with its failures); empty: none.
-    std::string pending;
 };
 
 // Photon counts for 32 x 32 and 64 x 64 images (the defaults are for 512 x 512): what every row
@@ -87,40 +85,37 @@ const std::vector<std::pair<std::string, std::string>> kPhotonOptions{
 void PrintTo(const Row& row, std::ostream* out) { *out << row.scene; }
 
 const std::vector<Row>& rows() {
-    static const std::string light_media =
-        "the light declares no medium: it must sit in the smoke that tracking from the camera reaches, so "
-        "that photons and light subpaths start there (the light-media change)";
     // The default suite's rows between them hold every material, light and medium kind but the grid
     // medium, a light declared inside fog and a medium inside glass, which the full version adds.
     static const std::vector<Row> r{
         // homogeneous smoke bounded by one interface quad, the light inside it declaring no medium
-        {"a-smoke-box.pbrt", {}, true, light_media},
+        {"a-smoke-box.pbrt", {}, true},
         // a point light's caustic through glass: bdpt is the reference, path takes no part
-        {"a-caustic-point.scn", {}, true, ""},
+        {"a-caustic-point.scn", {}, true},
         // glass and mirror spheres, an area light's caustic on a checker texture
-        {"glass-mirror-checker.pbrt", {}, true, ""},
+        {"glass-mirror-checker.pbrt", {}, true},
         // point, spot and two-sided area lights, a rough conductor
-        {"spot-point-twosided.pbrt", {}, true, ""},
+        {"spot-point-twosided.pbrt", {}, true},
         // an image environment light, thin glass, an image texture
-        {"thin-glass-sky.pbrt", {}, true, ""},
+        {"thin-glass-sky.pbrt", {}, true},
         // a directional light and a constant sky outside homogeneous fog
-        {"sun-sky-fog.pbrt", {}, true, ""},
+        {"sun-sky-fog.pbrt", {}, true},
         // .scn: modified Phong, frosted glass, a spot light, a spherical texture
-        {"phong-frosted-spot.scn", {}, true, ""},
+        {"phong-frosted-spot.scn", {}, true},
         // an area light's caustics through glass and in a mirror
-        {"a-glass-mirror.pbrt", {}, false, ""},
+        {"a-glass-mirror.pbrt", {}, false},
         // rough conductors and a rough dielectric
-        {"cornell-rough-area.pbrt", {}, false, ""},
+        {"cornell-rough-area.pbrt", {}, false},
         // spot and point lights declared inside fog
-        {"fog-spot-inside.pbrt", {}, false, ""},
+        {"fog-spot-inside.pbrt", {}, false},
         // media inside glass
-        {"glass-media-area.pbrt", {}, false, ""},
+        {"glass-media-area.pbrt", {}, false},
         // a chromatic grid medium, a point light inside it and a spot light outside
-        {"grid-smoke-point.pbrt", {}, false, ""},
+        {"grid-smoke-point.pbrt", {}, false},
         // .scene: smoke with the light inside, murky glass inside the smoke, a sky
-        {"smoke-murky-sky.scene", {}, false, ""},
+        {"smoke-murky-sky.scene", {}, false},
         // the smoke box with the light declaring no medium again
-        {"smoke-quad-light.pbrt", {}, false, light_media},
+        {"smoke-quad-light.pbrt", {}, false},
     };
     return r;
 }
@@ -168,9 +163,8 @@ TEST_P(AgreementMatrix, IntegratorsAgreeWithTheReference) {
 
     const std::string reference = integrators::integrator(report.reference.kind).name;
     for (const AgreementRow& r : report.rows) {
-        const std::string who = row.scene + ": " + integrators::integrator(r.kind).name + " against " +
-                                reference +
-                                (row.pending.empty() ? "" : " (expected until " + row.pending + ")");
+        const std::string who =
+            row.scene + ": " + integrators::integrator(r.kind).name + " against " + reference;
         const film::Agreement& a = r.agreement;
         EXPECT_TRUE(a.mean_agrees()) << who << ": image mean ratio " << a.mean_ratio << ", tolerance ±"
                                      << a.mean_tolerance;
