@@ -154,9 +154,11 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
     const double scale = scale_;
     // --trace-pixel: what the traced slots gather is recorded as the photon arrives (in the
     // photon's own order of hits), by a search of its own (path_recorder.h).
-    const auto record = [&](uint64_t idx, Vec3 p, bool volume, Vec3 wi, const Rgb& power, int bounces) {
+    const auto record = [&](uint64_t idx, Vec3 p, int volume_medium, Vec3 wi, const Rgb& power, int bounces) {
+        const bool volume = volume_medium >= 0;
         grid.query(p, [&](uint32_t i) {
-            if (size_t(i) - trace_first_ >= trace_count_) return;
+            if (size_t(i) - trace_first_ >= trace_count_ || (volume && vps[i].medium != volume_medium))
+                return;
             const Rgb c = contribution(gather_[i], vps[i], volume, wi, power, bounces);
             if (!c.is_black() && c.is_finite()) trace_->photon(i, {idx, p, power, wi, c});
         });
@@ -170,23 +172,24 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
         const auto visitor_of = [&](uint64_t j) {
             const uint64_t idx = block_first + j;
             // Photons scattering in a medium (not straight from a light: single scattering is
-            // sampled at the visible point) reach the volume points whose ball holds them; few,
-            // so they search the grid one by one.
+            // sampled at the visible point) reach the volume points of that medium whose ball holds
+            // them; few, so they search the grid one by one.
             const auto on_volume = [&, idx](const photon::PhotonVolumeHit& h) {
                 if (h.bounces == 0) return;
                 if (!local) local = local_slots();
                 grid.query(h.p, [&](uint32_t i) {
+                    if (vps[i].medium != h.medium) return;
                     const Rgb c = contribution(gather_[i], vps[i], true, h.wi, h.power, h.bounces);
                     int64_t q[3];
                     if (quantize(c, scale, q)) add(local, i, q, 1);
                 });
-                if (trace_count_) record(idx, h.p, true, h.wi, h.power, h.bounces);
+                if (trace_count_) record(idx, h.p, h.medium, h.wi, h.power, h.bounces);
             };
             // Surface photons wait for the binned gather.
             const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
                 hits.push_back({h.hit.p, h.wi, h.power, h.bounces});
-                if (trace_count_) record(idx, h.hit.p, false, h.wi, h.power, h.bounces);
+                if (trace_count_) record(idx, h.hit.p, -1, h.wi, h.power, h.bounces);
             };
             return photon::Visitor{on_surface, on_volume};
         };
