@@ -30,9 +30,9 @@ void choose_size(RenderCommand& cmd, const scene::Scene& scene, int max_size) {
     const bool w = cmd.was_given("width"), h = cmd.was_given("height");
     if (w && h) return;
     if (w) {
-        r.height = std::max(1, int(std::lround(double(r.width) * sh / sw)));
+        r.height = keep_aspect(r.width, sw, sh);
     } else if (h) {
-        r.width = std::max(1, int(std::lround(double(r.height) * sw / sh)));
+        r.width = keep_aspect(r.height, sh, sw);
     } else {
         const double scale = std::min(1.0, double(max_size) / std::max(sw, sh));
         r.width = std::max(1, int(std::lround(sw * scale)));

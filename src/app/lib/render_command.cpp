@@ -168,10 +168,10 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     if (cmd.was_given("resolution") || (w && h)) {
         src.size = "command line";
     } else if (w) {
-        r.height = std::max(1, int(std::lround(double(r.width) * sh / sw)));
+        r.height = keep_aspect(r.width, sw, sh);
         src.size = std::string("command line; height keeps ") + aspect;
     } else if (h) {
-        r.width = std::max(1, int(std::lround(double(r.height) * sw / sh)));
+        r.width = keep_aspect(r.height, sh, sw);
         src.size = std::string("command line; width keeps ") + aspect;
     } else {
         r.width = sw;
@@ -343,6 +343,10 @@ bool output_exists(const std::string& path) {
 }
 
 }  // namespace
+
+int keep_aspect(int side, int scene_side, int scene_other) {
+    return std::max(1, int(std::lround(double(side) * scene_other / scene_side)));
+}
 
 // The scene file's integrator parameters (pbrt `Integrator "sppm" "float radius" ...`) mapped onto
 // the option tables by name, for options the command line did not give. A value outside the

@@ -21,6 +21,9 @@ std::set<std::string> apply_scene_parameters(RenderCommand& cmd, const scene::Sc
 // (`from_scene`); the sample count only while `spp_source` (where it came from) is still a default,
 // which then names the preset.
 void apply_quality(RenderCommand& cmd, const std::set<std::string>& from_scene, std::string& spp_source);
+// The image side that was not given, from the one that was (`side`), keeping the scene's aspect
+// ratio `scene_other` : `scene_side` (at least 1 pixel).
+int keep_aspect(int side, int scene_side, int scene_other);
 // How the scene is prepared for rendering (shading switches, --dof lens).
 render::PrepareOptions prepare_options(const RenderCommand& cmd);
 
