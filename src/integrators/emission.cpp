@@ -25,4 +25,18 @@ Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb 
     return L;
 }
 
+Rgb escaped_emission(const Prepared& P, Vec3 dir, Rgb beta, const BsdfSampledFrom* from) {
+    Rgb L(0.0f);
+    if (!from || P.options.background_light) L += beta * P.scene.background;
+    for (size_t i : P.lights.infinite_lights()) {
+        const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
+        if (Le.is_black()) continue;
+        float w = 1;
+        if (from)
+            w = warp::power_heuristic(from->pdf, P.lights.pmf(i) * P.lights[i].pdf_Li(from->p, dir, {}, {}));
+        L += beta * Le * w;
+    }
+    return L;
+}
+
 }  // namespace phos::integrators

@@ -68,15 +68,19 @@ void stop_on_surface(const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, Rg
     vp.bsdf.emplace(bsdf);
 }
 
-// Follows the delta part of the BSDF (chosen with probability 1 - p_ns): beta, the ray and the
-// walk go on. False when nothing was sampled.
-bool follow_delta_lobes(const Bsdf& bsdf, const Bsdf::LobeSplit& split, const accel::SurfaceHit& hit, Vec3 wo,
-                        Sampler& sampler, Rgb& beta, Ray& ray, shading::SurfaceWalk& walk) {
+// Follows the followed part of the BSDF (chosen with probability 1 - p_estimated): beta, the ray
+// and the walk go on; `from` is set when the sampled lobe is not a delta one (for MIS of the
+// emission the next vertex finds). False when nothing was sampled.
+bool follow_lobes(const Bsdf& followed, float p_estimated, const accel::SurfaceHit& hit, Vec3 wo,
+                  Sampler& sampler, Rgb& beta, Ray& ray, shading::SurfaceWalk& walk, BsdfSampledFrom& from,
+                  bool& delta) {
     const float u_lobe = sampler.next();
-    const auto s = bsdf.sample_lobes(split.delta, wo, u_lobe, sampler.next2());
+    const auto s = followed.sample(wo, u_lobe, sampler.next2());
     if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
     if (auto* r = recorder()) r->scattered(*s);
-    beta *= s->weight * (1 / (1 - split.p_non_delta));
+    beta *= s->weight * (1 / (1 - p_estimated));
+    from = {hit.p, s->pdf};
+    delta = s->is_specular();
     ray = accel::spawn_ray(hit, s->wi);
     walk.leave(hit, s->wi);
     return true;
@@ -97,6 +101,9 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
     const shading::MediaSet* media = P.active_media();
     // Its distance() is the visible point's path length.
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
+    bool camera_chain = true;  // only delta bounces so far: the .scn glow is seen (emission.h)
+    BsdfSampledFrom last{};    // the last vertex, when its bounce sampled a followed glossy lobe
+    const BsdfSampledFrom* from = nullptr;
     for (int depth = 0;;) {
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);
@@ -120,29 +127,42 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
             break;
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            // Every vertex so far was specular, so escaped light is seen directly.
-            add(beta * (P.scene.background + P.escaped(normalize(ray.dir))), TraceTerm::Emission);
+            // Every vertex so far was followed (mirror, glass, sharp glossy): escaped light is seen
+            // directly, weighted against light sampling after a glossy bounce.
+            add(escaped_emission(P, normalize(ray.dir), beta, from), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        add(seen_emission(P, hit, wo, beta), TraceTerm::Emission);
+        add(seen_emission(P, hit, wo, beta, camera_chain, from), TraceTerm::Emission);
         if (depth == P.options.max_depth) break;
         const Bsdf bsdf = P.bsdf(hit);
 
-        // Split the lobes into the non-specular part (a visible point) and the delta part (follow).
-        const Bsdf::LobeSplit split = bsdf.split_lobes(wo);
-        const float p_ns = split.p_non_delta;
-        const float u = p_ns > 0 && p_ns < 1 ? sampler.next() : 0.5f;
-        if (p_ns >= 1 || (p_ns > 0 && u < p_ns)) {
-            const Rgb w = beta * (1 / p_ns);
+        // Split the lobes into the estimated part (a visible point) and the followed part
+        // (Bsdf::split_lobes: delta and sharp glossy lobes).
+        const Bsdf::LobeSplit split = bsdf.split_lobes(wo, P.options.sharp_glossy);
+        const float p_est = split.p_estimated;
+        const float u = p_est > 0 && p_est < 1 ? sampler.next() : 0.5f;
+        if (p_est >= 1 || (p_est > 0 && u < p_est)) {
+            const Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const Rgb w = beta * (1 / p_est);
             const int n = std::max(1, direct_samples);
             const Rgb direct =
-                direct_light_sum(P, hit, bsdf, wo, n, light_sequence, sampler, rays, walk.medium());
+                direct_light_sum(P, hit, est, wo, n, light_sequence, sampler, rays, walk.medium());
             add(w * direct * (1.0f / float(n)), TraceTerm::Light);
-            stop_on_surface(hit, bsdf, wo, w, depth, walk, vp);
+            stop_on_surface(hit, est, wo, w, depth, walk, vp);
             break;
         }
-        if (!follow_delta_lobes(bsdf, split, hit, wo, sampler, beta, ray, walk)) break;
+        const Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        // Light through the followed glossy lobes: one light sample, MIS-weighted against the
+        // emission the continuation finds.
+        if (followed.has_non_specular())
+            add(beta * (1 / (1 - p_est)) *
+                    sample_one_light(P, hit, followed, wo, sampler, rays, true, walk.medium()),
+                TraceTerm::Light);
+        bool delta = true;
+        if (!follow_lobes(followed, p_est, hit, wo, sampler, beta, ray, walk, last, delta)) break;
+        from = delta ? nullptr : &last;
+        camera_chain = camera_chain && delta;
         ++rays.bounce;
         ++depth;
         if (!beta.is_finite() || beta.max() <= 0) break;

@@ -165,11 +165,11 @@ double stored_photons(const PhotonMapSettings& s, uint64_t emit) {
 // The photon mapper's phases (integrators/photon_map.cpp, build_maps): tracing, the k-d tree
 // builds (one map at a time, while the traced arrays of the others exist), then the maps with
 // their caches and beam BVHs through the render pass.
-void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, int threads, const Phase& common,
-                       std::vector<Phase>& phases) {
+void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, float sharp_exponent,
+                       int threads, const Phase& common, std::vector<Phase>& phases) {
     const double in_flight = in_flight_photons(threads);
     bool delta = false;
-    for (const scene::Material& m : scene.materials) delta |= photon::has_delta_lobe(m);
+    for (const scene::Material& m : scene.materials) delta |= photon::is_caustic_caster(m, sharp_exponent);
     const bool media = media_active(scene) && !o.photon_viz;
     const bool global = o.photon_viz || (o.indirect_light && !o.fast_global);
     const double n[photon::kMapCount] = {
@@ -318,7 +318,7 @@ MemoryEstimate estimate_memory(const scene::Scene& scene, const MemoryEstimateIn
     common.add("film", film);
     switch (info.memory) {
         case RenderMemory::PhotonMaps:
-            photon_map_phases(scene, in.photon_map, render_threads(in), common, phases);
+            photon_map_phases(scene, in.photon_map, ro.sharp_glossy, render_threads(in), common, phases);
             break;
         case RenderMemory::FixedSums:
         case RenderMemory::LightVertices:

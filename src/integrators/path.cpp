@@ -3,7 +3,6 @@
 // is weighted against the light-sampling pdf. `max_depth` counts bounces as pbrt's maxdepth does.
 #include "integrators/path.h"
 
-#include "core/warp.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
 #include "render/path_recorder.h"
@@ -36,7 +35,6 @@ RenderDone PathIntegrator::render(const Prepared& prepared, film::Film& film, Pr
 
 Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays,
                              RadianceParts* parts) {
-    const scene::Scene& scene = P.scene;
     PathRadiance L(parts);  // the estimate, split into components for --layers (path_radiance.h)
     Rgb beta(1.0f);
     bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
@@ -75,17 +73,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
             continue;
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            const Vec3 dir = normalize(ray.dir);
-            if (specular_bounce || P.options.background_light) L.emission(beta * scene.background);
-            for (size_t i : P.lights.infinite_lights()) {
-                const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
-                if (Le.is_black()) continue;
-                float w = 1;
-                if (!specular_bounce)
-                    w = warp::power_heuristic(from.pdf,
-                                              P.lights.pmf(i) * P.lights[i].pdf_Li(from.p, dir, {}, {}));
-                L.emission(beta * Le * w);
-            }
+            L.emission(escaped_emission(P, normalize(ray.dir), beta, specular_bounce ? nullptr : &from));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);

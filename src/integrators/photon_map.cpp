@@ -31,11 +31,12 @@ PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
     return r;
 }
 
-// True if some material has a delta lobe (mirror or smooth glass): only then can there be
-// caustic photons (L S+ D), and only then is the caustic map worth tracing.
-bool has_delta_materials(const scene::Scene& scene) {
+// True if some material has a delta lobe (mirror or smooth glass) or a glossy lobe sharp enough
+// to be followed (--sharp-glossy): only then can there be caustic photons (L S+ D), and only then
+// is the caustic map worth tracing.
+bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
     for (const scene::Material& m : scene.materials)
-        if (photon::has_delta_lobe(m)) return true;
+        if (photon::is_caustic_caster(m, sharp_exponent)) return true;
     return false;
 }
 
@@ -43,7 +44,8 @@ bool has_delta_materials(const scene::Scene& scene) {
 photon::TraceOptions trace_options(const PhotonMapOptions& o, const Prepared& P, bool record_bounces) {
     photon::TraceOptions to;
     to.wanted[photon::kGlobalMap] = o.photon_viz || (o.indirect_light && !o.fast_global);
-    to.wanted[photon::kCausticMap] = !o.photon_viz && o.caustics && has_delta_materials(P.scene);
+    to.wanted[photon::kCausticMap] =
+        !o.photon_viz && o.caustics && has_caustic_casters(P.scene, P.options.sharp_glossy);
     to.wanted[photon::kIndirectMap] = !o.photon_viz && o.indirect_light && o.fast_global;
     to.target[photon::kGlobalMap] = o.global.photons;
     to.target[photon::kCausticMap] = o.caustic.photons;
@@ -51,7 +53,8 @@ photon::TraceOptions trace_options(const PhotonMapOptions& o, const Prepared& P,
     // Media: multiple scattering and volume caustics (single scattering is sampled from the lights).
     const bool media = P.active_media() != nullptr && !o.photon_viz;
     to.wanted[photon::kVolumeMap] = media && o.indirect_light;
-    to.wanted[photon::kVolumeCausticMap] = media && o.caustics && has_delta_materials(P.scene);
+    to.wanted[photon::kVolumeCausticMap] =
+        media && o.caustics && has_caustic_casters(P.scene, P.options.sharp_glossy);
     to.target[photon::kVolumeMap] = o.volume.photons;
     to.target[photon::kVolumeCausticMap] = o.volume_caustic.photons;
     to.emit = o.photons;
@@ -133,7 +136,8 @@ PhotonMapIntegrator::PhotonMapIntegrator(const PhotonMapOptions& options, Render
 PhotonMaps PhotonMapIntegrator::build_maps(const Prepared& P, bool record_bounces) const {
     const PhotonMapOptions o = resolve(options_, P);
     const photon::TraceOptions to = trace_options(o, P, record_bounces);
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs, P.active_media()};
+    const photon::PhotonScene ps{P.scene, P.accel,          P.lights,
+                                 P.bsdfs, P.active_media(), P.options.sharp_glossy};
     photon::MapBuildTimes times;
     auto t0 = std::chrono::steady_clock::now();
     photon::TracedPhotons traced = photon::trace_photons(ps, to);

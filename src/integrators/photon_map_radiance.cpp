@@ -1,16 +1,21 @@
-// Pass 2 of the photon mapper (see photon_map_radiance.h). The radiance leaving the first
-// non-specular surface x seen by the camera (directly or through mirrors and glass) is split as in
-// Jensen 2001, sec. 9.1, so that every light path is counted exactly once:
-//   direct    L -> x             shadow rays towards every light (emitters hit by any other ray of
-//                                this pass contribute nothing)
-//   caustic   L S+ -> x          the caustic map's estimate at x
-//   indirect  L ... D S* -> x    final gathering: rays sampled from x's non-delta lobes, followed
-//                                through delta bounces to their first non-specular hit y, where the
-//                                global map's estimate (all light leaving y except emission) is
-//                                taken; with --fast-global, the indirect map's estimate at x
-// Light arriving at x through glossy lobes is covered by the same split (the lobes are sampled by
-// the gather and evaluated by the direct and caustic estimates), so there is no separate glossy
-// recursion to double count.
+// Pass 2 of the photon mapper (see photon_map_radiance.h). Each BSDF is split as in Jensen 2001,
+// sec. 9.1 (f_r = f_r,S + f_r,D, Bsdf::split_lobes): the followed part (mirrors, smooth glass and
+// glossy lobes at least as sharp as --sharp-glossy) is ray traced, the estimated part (diffuse and
+// wider glossy lobes) reads the photon maps. The radiance leaving the first vertex x with an
+// estimated part, seen by the camera directly or through followed bounces, is split so that every
+// light path is counted exactly once (S: a followed bounce, D: an estimated one):
+//   direct    L -> x             shadow rays towards every light through x's estimated part; the
+//                                followed glossy lobes sample one light, weighted by the power
+//                                heuristic against the continuation finding the emitter
+//   caustic   L S+ -> x          the caustic map's estimate at x (its photons took S bounces only)
+//   indirect  L ... D S* -> x    final gathering: rays sampled from x's estimated lobes, followed
+//                                through S bounces to their first vertex y with an estimated part,
+//                                where the global map's estimate (all light leaving y except
+//                                emission) is taken; with --fast-global, the indirect map's estimate
+//   specular  x's followed part  the camera path goes on through it (one sampled lobe) and adds
+//                                what the next vertex shows.
+// A photon estimate of a sharp lobe reads the few photons arriving inside it: behind frosted glass
+// in front of the lights those are rare, bright and isolated, so the sharp lobes are traced instead.
 // In participating media the camera ray gains, along every stretch in a medium (Jensen &
 // Christensen 1998, eq. 12), the same three parts: single scattering L V (light sampling), volume
 // caustics L S+ V and multiple scattering L ... {D|V} V (the volume maps' estimates: one beam
@@ -34,6 +39,23 @@ using namespace render;  // the render support the algorithms are written over (
 using photon::kCausticMap;
 using photon::kGlobalMap;
 using photon::kIndirectMap;
+
+namespace {
+
+// Russian roulette where a vertex has both parts: the estimated part is evaluated there, so going
+// on through the followed part (a plastic's sharp highlight, a coated surface's mirror) is kept
+// with the probability of its weight (at most 1) and reweighted. Chains of such vertices then
+// cost a geometric series instead of a gather at every one of max_depth bounces; chains of glass
+// and mirrors alone (weight ~1) are not played.
+bool survives_followed(const shading::BsdfSample& s, Sampler& sampler, Rgb& beta) {
+    const float q = std::min(1.0f, s.weight.max());
+    if (q >= 1) return true;
+    if (!(sampler.next() < q)) return false;
+    beta *= 1.0f / q;
+    return true;
+}
+
+}  // namespace
 
 PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps)
     : P_(P), o_(o), maps_(maps) {
@@ -72,7 +94,10 @@ Rgb PhotonMapRadiance::estimate(int m, const photon::SurfaceQuery& q, Vec3 wo,
 RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts& rays) const {
     RadianceParts out;
     Rgb beta(1.0f);
-    bool via_delta = false;
+    bool via_followed = false;  // the path went through a followed bounce: all it adds is "specular"
+    bool camera_chain = true;   // only delta bounces so far: the .scn glow is seen (emission.h)
+    BsdfSampledFrom last{};     // the last vertex, when its bounce sampled a followed glossy lobe
+    const BsdfSampledFrom* from = nullptr;
     // Adds c to component `part` (and to the trace as `term`).
     const auto add = [](Rgb& part, Rgb c, TraceTerm term) {
         part += c;
@@ -81,7 +106,7 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
     // Its distance() scales the pixel footprint.
     shading::SurfaceWalk walk(P_.accel, P_.active_media(), P_.camera_medium());
     for (int depth = 0;;) {
-        Rgb& seen = via_delta ? out.specular : out.direct;
+        Rgb& seen = via_followed ? out.specular : out.direct;
         accel::SurfaceHit hit;
         const shading::SurfaceWalk::Event event =
             walk.next_segments(ray, hit, [&](const shading::Medium& m, Vec3 o, Vec3 d, float t_end) {
@@ -90,57 +115,65 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
                     r->lookup({"volume caustic (stretch)", o, 0, 0, s.caustic});
                     r->lookup({"volume (stretch)", o, 0, 0, s.multiple});
                 }
-                add(via_delta ? out.specular : out.direct, beta * s.single, TraceTerm::Light);
-                add(via_delta ? out.specular : out.caustic, beta * s.caustic, TraceTerm::Caustic);
-                add(via_delta ? out.specular : out.indirect, beta * s.multiple, TraceTerm::Indirect);
+                add(via_followed ? out.specular : out.direct, beta * s.single, TraceTerm::Light);
+                add(via_followed ? out.specular : out.caustic, beta * s.caustic, TraceTerm::Caustic);
+                add(via_followed ? out.specular : out.indirect, beta * s.multiple, TraceTerm::Indirect);
                 beta *= s.T;
             });
         if (auto* r = recorder()) r->vertex(P_, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            add(seen, beta * (P_.scene.background + P_.escaped(normalize(ray.dir))), TraceTerm::Emission);
+            add(seen, escaped_emission(P_, normalize(ray.dir), beta, from), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        add(seen, seen_emission(P_, hit, wo, beta), TraceTerm::Emission);
+        add(seen, seen_emission(P_, hit, wo, beta, camera_chain, from), TraceTerm::Emission);
 
         const shading::Bsdf bsdf = P_.bsdf(hit);
-        if (bsdf.has_non_specular()) {
-            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
-            if (o_.photon_viz) {
-                add(seen, beta * estimate(kGlobalMap, q, wo, bsdf), TraceTerm::Indirect);
-            } else {
-                Rgb& d = via_delta ? out.specular : out.direct;
-                Rgb& c = via_delta ? out.specular : out.caustic;
-                Rgb& i = via_delta ? out.specular : out.indirect;
-                if (o_.direct)
-                    add(d, beta * sample_all_lights(P_, hit, bsdf, wo, sampler, rays, walk.medium()),
-                        TraceTerm::Light);
-                if (o_.caustics) {
-                    photon::SurfaceQuery qc = q;
-                    qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
-                    add(c, beta * estimate(kCausticMap, qc, wo, bsdf), TraceTerm::Caustic);
-                }
-                if (o_.indirect_light) {
-                    if (o_.fast_global)
-                        add(i, beta * estimate(kIndirectMap, q, wo, bsdf), TraceTerm::Indirect);
-                    else
-                        add(i, beta * final_gather(hit, bsdf, wo, walk.medium(), sampler, rays),
-                            TraceTerm::Indirect);
-                }
+        const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo, P_.options.sharp_glossy);
+        Rgb& d = via_followed ? out.specular : out.direct;
+        if (o_.photon_viz && bsdf.has_non_specular()) {
+            add(seen, beta * estimate(kGlobalMap, photon::make_query(hit.p, hit.ng, wo, bsdf), wo, bsdf),
+                TraceTerm::Indirect);
+        } else if (split.estimated) {
+            const shading::Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, est);
+            Rgb& c = via_followed ? out.specular : out.caustic;
+            Rgb& i = via_followed ? out.specular : out.indirect;
+            if (o_.direct)
+                add(d, beta * sample_all_lights(P_, hit, est, wo, sampler, rays, walk.medium()),
+                    TraceTerm::Light);
+            if (o_.caustics) {
+                photon::SurfaceQuery qc = q;
+                qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
+                add(c, beta * estimate(kCausticMap, qc, wo, est), TraceTerm::Caustic);
+            }
+            if (o_.indirect_light) {
+                if (o_.fast_global)
+                    add(i, beta * estimate(kIndirectMap, q, wo, est), TraceTerm::Indirect);
+                else
+                    add(i, beta * final_gather(hit, est, wo, walk.medium(), sampler, rays),
+                        TraceTerm::Indirect);
             }
         }
-        // Mirrors and glass: one stochastically chosen delta branch per sample (unbiased).
-        if (depth >= P_.options.max_depth) break;
-        const uint32_t delta = bsdf.split_lobes(wo).delta;
-        if (!delta) break;
-        const auto s = bsdf.sample_lobes(delta, wo, sampler.next(), sampler.next2());
+        // The followed part: one sampled lobe per sample (unbiased), as a path tracer would.
+        if (depth >= P_.options.max_depth || !split.followed) break;
+        const shading::Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        // Light through its glossy lobes: one light sample, MIS-weighted against the continuation.
+        if (o_.direct && followed.has_non_specular())
+            add(d, beta * sample_one_light(P_, hit, followed, wo, sampler, rays, true, walk.medium()),
+                TraceTerm::Light);
+        const auto s = followed.sample(wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         if ((s->flags & shading::kTransmission) ? !o_.transmissive : !o_.specular) break;
         if (auto* r = recorder()) r->scattered(*s);
+        if (split.estimated && !survives_followed(*s, sampler, beta)) break;
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
-        via_delta = true;
+        via_followed = true;
+        camera_chain = camera_chain && s->is_specular();
+        last = {hit.p, s->pdf};
+        from = s->is_specular() ? nullptr : &last;
         ray = accel::spawn_ray(hit, s->wi);
         walk.leave(hit, s->wi);
         ++rays.bounce;
@@ -151,15 +184,16 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
 
 Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
                                     int medium, Sampler& sampler, RayCounts& rays) const {
-    const uint32_t non_delta = bsdf.split_lobes(wo).non_delta;
+    // `bsdf` is the estimated part of the vertex's BSDF: every non-delta lobe of it is gathered.
+    const uint32_t lobes = bsdf.split_lobes(wo).estimated;
     const int n = std::max(o_.gather_rays, 1);
-    if (!non_delta) return Rgb(0.0f);
+    if (!lobes) return Rgb(0.0f);
     Rgb sum(0.0f);
     for (int i = 0; i < n; ++i) {
         // Stratified over the hemisphere (sqrt(n) x sqrt(n) cells of the lobe's sample square).
         const Vec2 u = stratified_sample(i, n, sampler.next2());
         const float u_lobe = sampler.next();
-        const auto s = bsdf.sample_lobes(non_delta, wo, u_lobe, u);
+        const auto s = bsdf.sample_lobes(lobes, wo, u_lobe, u);
         if (!s || s->is_specular() || s->weight.is_black()) continue;
         ++rays.bounce;
         sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi),
@@ -203,22 +237,28 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
         if (event != shading::SurfaceWalk::Event::Surface) break;
         const Vec3 wo = -normalize(ray.dir);
         const shading::Bsdf bsdf = P_.bsdf(hit);
-        if (bsdf.has_non_specular()) {
-            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, bsdf);
+        const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo, P_.options.sharp_glossy);
+        if (split.estimated) {
+            const shading::Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, est);
             Rgb E;
-            if (bsdf.is_lambertian() && !maps_.cache.empty() &&
+            if (est.is_lambertian() && !maps_.cache.empty() &&
                 maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E)) {
-                L += beta * bsdf.diffuse_albedo() * kInvPi * E;
+                L += beta * est.diffuse_albedo() * kInvPi * E;
                 if (auto* r = recorder())
-                    r->lookup({"irradiance cache", q.p, 0, 0, bsdf.diffuse_albedo() * kInvPi * E});
+                    r->lookup({"irradiance cache", q.p, 0, 0, est.diffuse_albedo() * kInvPi * E});
             } else {
-                L += beta * estimate(kGlobalMap, q, wo, bsdf);
+                L += beta * estimate(kGlobalMap, q, wo, est);
             }
         }
-        const uint32_t delta = bsdf.split_lobes(wo).delta;
-        if (!delta) break;
-        const auto s = bsdf.sample_lobes(delta, wo, sampler.next(), sampler.next2());
+        // Through the followed part (mirrors, glass, sharp glossy lobes) to the next vertex with an
+        // estimated part; emitters found this way are direct light or caustics of the gather's
+        // origin, counted there.
+        if (!split.followed) break;
+        const shading::Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        const auto s = followed.sample(wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
+        if (split.estimated && !survives_followed(*s, sampler, beta)) break;
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         ray = accel::spawn_ray(hit, s->wi);

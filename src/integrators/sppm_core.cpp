@@ -145,7 +145,8 @@ uint64_t PhotonAccumulator::photon_pass(const Prepared& P, const std::vector<Vis
 uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<VisiblePoint>& vps,
                                         const photon::HitPointGrid& grid, uint64_t seed, uint64_t pass,
                                         uint64_t first, uint64_t count) {
-    const photon::PhotonScene ps{P.scene, P.accel, P.lights, P.bsdfs, P.active_media()};
+    const photon::PhotonScene ps{P.scene, P.accel,          P.lights,
+                                 P.bsdfs, P.active_media(), P.options.sharp_glossy};
     const photon::PhotonPathOptions popt{P.options.max_depth - 1};
     const bool packets = photon::packets_possible(ps);
     const uint64_t blocks = (count + kBlock - 1) / kBlock;

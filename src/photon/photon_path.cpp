@@ -53,7 +53,7 @@ bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler,
 }
 
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
-                    bool& specular) {
+                    bool& specular, float sharp_exponent) {
     using namespace shading;
     // (surface_step gives a lone Lambert lobe to the overload above instead; this code would draw
     // the same sample for it.)
@@ -81,7 +81,7 @@ bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& p
         if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
         power = power * s->weight * (1.0f / p[k]);
         wi_out = s->wi;
-        specular = s->is_specular();
+        specular = s->is_specular() || (masks[k] & bsdf.sharp_lobes(sharp_exponent));
         return true;
     }
     return false;  // absorbed

@@ -27,12 +27,16 @@ struct PhotonScene {
     const shading::LightSet& lights;
     const shading::MaterialBsdfs& bsdfs;       // the BSDF at each hit
     const shading::MediaSet* media = nullptr;  // null or inactive: every ray travels in vacuum
+    // Glossy lobes at least this sharp (a Phong exponent, Bsdf::split_lobes) scatter like delta
+    // lobes: photons are not stored on them alone, and a path through them stays a caustic path.
+    float sharp_exponent = kInf;
 };
 
-// A photon arriving at a surface with a non-specular (diffuse or glossy) component.
+// A photon arriving at a surface whose BSDF has lobes the photon estimates read (diffuse or glossy
+// lobes not as sharp as PhotonScene::sharp_exponent).
 struct PhotonHit {
     const accel::SurfaceHit& hit;
-    uint32_t bsdf_flags;  // the LobeFlags of the BSDF at the hit (Bsdf::flags)
+    bool followed_lobes;  // the BSDF also has delta or sharp glossy lobes (a caustic path goes on)
     Vec3 wi;              // unit direction towards where the photon came from
     Rgb power;            // flux in W times the number of photons emitted (divide by N emitted)
     int bounces;          // scattering events before this hit (0 = straight from the light)
@@ -112,9 +116,10 @@ bool visit_hit(Visitor& visit, const Hit& h) {
 }
 // Russian roulette on the lobe kinds at a hit, then sampling of the chosen kind in Importance
 // mode. Returns false when the photon is absorbed; otherwise updates `power` (per-channel exact
-// expectation) and sets `wi_out` and whether the chosen lobe was specular.
+// expectation) and sets `wi_out` and whether the chosen lobe was specular: a delta lobe, or a
+// glossy lobe at least as sharp as `sharp_exponent` (Bsdf::sharp_lobes).
 bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
-                    bool& specular);
+                    bool& specular, float sharp_exponent = kInf);
 // The same for a BSDF made of `lobe` alone (what scatter_photon does for it, to the bit); the
 // scattering is diffuse.
 bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out);
@@ -149,11 +154,11 @@ template <class Visitor>
 bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const accel::SurfaceHit& hit,
                   PhotonState& st, Visitor& visit, Vec3& wi) {
     const Vec3 wo = -normalize(st.ray.dir);
-    // The visitor sees the hit if the BSDF (of these flags) has a non-specular part; then, unless
+    // The visitor sees the hit if the BSDF has lobes the estimates read (`stores`); then, unless
     // the path ends there, scatter() does the Russian roulette and samples the BSDF.
-    const auto visit_and_scatter = [&](uint32_t flags, auto&& scatter) {
-        if (flags & (shading::kDiffuse | shading::kGlossy)) {
-            const PhotonHit ph{hit, flags, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
+    const auto visit_and_scatter = [&](bool stores, bool followed, auto&& scatter) {
+        if (stores) {
+            const PhotonHit ph{hit, followed, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
             // A visitor returning bool may end the path (false): e.g. once no map it fills can
             // take this photon any more.
             if (!visit_hit(visit, ph)) return false;
@@ -164,13 +169,15 @@ bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const
     // A lone Lambert lobe (most surfaces) scatters without a copy of the whole BSDF.
     shading::LambertLobe lambert;
     if (ps.bsdfs.lambert_at(hit, lambert)) {
-        if (!visit_and_scatter(shading::kDiffuse | shading::kReflection,
+        if (!visit_and_scatter(true, false,
                                [&] { return scatter_photon(lambert, wo, st.sampler, st.power, wi); }))
             return false;
     } else {
         const shading::Bsdf bsdf = ps.bsdfs.at(hit);
-        if (!visit_and_scatter(bsdf.flags(),
-                               [&] { return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular); }))
+        const bool followed = (bsdf.flags() & shading::kSpecular) || bsdf.sharp_lobes(ps.sharp_exponent);
+        if (!visit_and_scatter(bsdf.has_estimated(ps.sharp_exponent), followed, [&] {
+                return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular, ps.sharp_exponent);
+            }))
             return false;
     }
     if (specular) {

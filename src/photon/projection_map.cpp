@@ -85,14 +85,18 @@ bool has_delta_lobe(const scene::Material& m) {
     return !m.transmission.is_black() && sharp;
 }
 
-// The tracer's caustic paths (L S+ D) start at a delta lobe: frosted glass scatters as a glossy
-// (non-specular) lobe and ends them, so it casts no caustic-map photons.
-bool is_caustic_caster(const scene::Material& m) { return has_delta_lobe(m); }
+bool is_caustic_caster(const scene::Material& m, float sharp_exponent) {
+    if (m.interface_only) return false;
+    if (has_delta_lobe(m)) return true;
+    const bool sharp_phong = !m.specular.is_black() && m.shininess >= sharp_exponent;
+    const bool sharp_frosted = !m.transmission.is_black() && m.transmission_shininess >= sharp_exponent;
+    return sharp_phong || sharp_frosted;
+}
 
-std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene) {
+std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, float sharp_exponent) {
     auto caster = [&](const scene::Shape& s) {
         return s.material >= 0 && size_t(s.material) < scene.materials.size() &&
-               is_caustic_caster(scene.materials[size_t(s.material)]);
+               is_caustic_caster(scene.materials[size_t(s.material)], sharp_exponent);
     };
     std::vector<BoundingSphere> out;
     auto add = [&](const BoundingSphere& b) {
@@ -109,7 +113,7 @@ std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene) {
 }
 
 ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::max(resolution, 1)) {
-    const std::vector<BoundingSphere> casters = caustic_caster_bounds(ps.scene);
+    const std::vector<BoundingSphere> casters = caustic_caster_bounds(ps.scene, ps.sharp_exponent);
     const int R = res_;
     const uint32_t n_cells = uint32_t(R) * uint32_t(R);
     const float below_one = std::nextafter(1.0f, 0.0f);

@@ -20,9 +20,10 @@
 
 namespace phos::photon {
 
-// True if the material has a delta or near-delta lobe that can start a caustic path: a mirror, or
-// glass (smooth or frosted) / a thin dielectric.
-bool is_caustic_caster(const scene::Material& m);
+// True if the material has a lobe that starts or continues a caustic path (L S+ D): a delta lobe
+// (mirror, smooth or thin glass) or a glossy lobe (Phong, frosted glass) at least as sharp as a
+// Phong lobe of exponent `sharp_exponent` (shading::Bsdf::sharp_lobes).
+bool is_caustic_caster(const scene::Material& m, float sharp_exponent);
 // True if the material has a delta lobe (mirror or smooth glass): only then can the scene have
 // L S+ D paths worth a caustic map.
 bool has_delta_lobe(const scene::Material& m);
@@ -32,8 +33,8 @@ struct BoundingSphere {
     float radius = 0;
 };
 // World-space bounding spheres of every shape (top-level and instanced) whose material is a
-// caustic caster.
-std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene);
+// caustic caster (at `sharp_exponent`).
+std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, float sharp_exponent);
 
 class ProjectionMap {
 public:

@@ -214,7 +214,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             // Only caustic maps still filling: a path that went diffuse can never store a
             // caustic photon again, so stop it here (most of the caustic map's batches).
             return active[kGlobalMap] || active[kIndirectMap] || active[kVolumeMap] ||
-                   (!h.after_diffuse && (h.bsdf_flags & shading::kSpecular));
+                   (!h.after_diffuse && h.followed_lobes);
         };
     };
     // Photon j's visitor; in packets (no media) only its surface visits are made. After sorting

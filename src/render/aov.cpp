@@ -50,9 +50,9 @@ AovSample trace(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays, b
             if (!albedo) break;
         }
         const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo);
-        if (split.non_delta) out.albedo += beta * albedo_of(bsdf.lobe_albedos(wo), split.non_delta);
-        if (!split.delta || depth >= P.options.max_depth) break;
-        const auto s = bsdf.sample_lobes(split.delta, wo, sampler.next(), sampler.next2());
+        if (split.estimated) out.albedo += beta * albedo_of(bsdf.lobe_albedos(wo), split.estimated);
+        if (!split.followed || depth >= P.options.max_depth) break;
+        const auto s = bsdf.sample_lobes(split.followed, wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         beta *= s->weight;
         if (!beta.is_finite() || beta.max() < 1e-6f) break;

@@ -11,12 +11,19 @@
 
 namespace phos::render {
 
+// The default --sharp-glossy exponent (see RenderOptions::sharp_glossy and docs/photon-mapping.md).
+inline constexpr float kDefaultSharpGlossy = 10;
+
 struct RenderOptions {
     int width = 512;
     int height = 512;
     int spp = 16;  // samples per pixel (iterations for progressive integrators)
     uint64_t seed = 0;
-    int max_depth = 16;        // path segments from the camera
+    int max_depth = 16;  // path segments from the camera
+    // Glossy lobes at least as sharp as a modified-Phong lobe of this exponent are followed by
+    // camera paths like mirrors and glass, and photons scattered by them stay caustic photons
+    // (Bsdf::split_lobes); photonmap, ppm and sppm read it.
+    float sharp_glossy = kDefaultSharpGlossy;
     int dof_samples = 1;       // lens samples per pixel sample (--dof)
     float lens_radius = -1;    // --dof aperture radius; < 0: the scene camera's own lens
     float focal_distance = 1;  // --dof focal distance (with lens_radius >= 0)

@@ -134,12 +134,25 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     if (!kdt_.is_black()) lobes_ |= 1u << kDiffTrans;
     if (lobes_ == 0) lobes_ = 1u << kLambert;  // black body: opaque, absorbs everything
 
+    set_flags();
+}
+
+void Bsdf::set_flags() {
+    flags_ = 0;
     if (lobes_ & (1u << kLambert)) flags_ |= kDiffuse | kReflection;
     if (lobes_ & (1u << kPhong)) flags_ |= kGlossy | kReflection;
     if (lobes_ & (1u << kMirror)) flags_ |= kSpecular | kReflection;
     if (lobes_ & (1u << kDielectric))
         flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
     if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
+}
+
+Bsdf Bsdf::only(uint32_t lobe_mask) const {
+    Bsdf b = *this;
+    for (int i = 0; i < kNumLobes; ++i)
+        if (!(lobe_mask & kKind[i])) b.lobes_ &= ~(1u << i);
+    b.set_flags();
+    return b;
 }
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
@@ -185,20 +198,37 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
     return a;
 }
 
-Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo) const {
+uint32_t Bsdf::sharp_lobes(float sharp_exponent) const {
+    uint32_t m = 0;
+    if ((lobes_ & (1u << kPhong)) && shininess_ >= sharp_exponent) m |= kGlossy;
+    if ((lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ >= sharp_exponent) m |= kTransmission;
+    return m;
+}
+
+bool Bsdf::has_estimated(float sharp_exponent) const {
+    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) return true;
+    if ((lobes_ & (1u << kPhong)) && shininess_ < sharp_exponent) return true;
+    return (lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ < sharp_exponent;
+}
+
+Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo, float sharp_exponent) const {
     LobeSplit s;
-    const bool dielectric = lobes_ & (1u << kDielectric);
-    if (lobes_ & (1u << kMirror)) s.delta |= kSpecular;
-    if (dielectric) (sharp_glass_ ? s.delta : s.non_delta) |= kTransmission;
-    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) s.non_delta |= kDiffuse;
-    if (lobes_ & (1u << kPhong)) s.non_delta |= kGlossy;
-    if (!s.non_delta) {
-        s.p_non_delta = 0;
-    } else if (s.delta) {
+    const uint32_t sharp = sharp_lobes(sharp_exponent);
+    const auto put = [&](uint32_t kind, bool followed) { (followed ? s.followed : s.estimated) |= kind; };
+    if (lobes_ & (1u << kMirror)) s.followed |= kSpecular;
+    if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
+    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) s.estimated |= kDiffuse;
+    if (lobes_ & (1u << kPhong)) put(kGlossy, sharp & kGlossy);
+    if (!s.estimated) {
+        s.p_estimated = 0;
+    } else if (s.followed) {
         const LobeAlbedos a = lobe_albedos(wo);
-        float ns = a.diffuse.average() + a.glossy.average(), d = a.specular.average();
-        if (dielectric) (sharp_glass_ ? d : ns) += a.transmission.average();
-        s.p_non_delta = ns + d > 0 ? ns / (ns + d) : 1;
+        const float kinds[4] = {a.diffuse.average(), a.glossy.average(), a.specular.average(),
+                                a.transmission.average()};
+        const uint32_t masks[4] = {kDiffuse, kGlossy, kSpecular, kTransmission};
+        float est = 0, fol = 0;
+        for (int k = 0; k < 4; ++k) (s.estimated & masks[k] ? est : fol) += std::max(kinds[k], 0.0f);
+        s.p_estimated = est + fol > 0 ? est / (est + fol) : 1;
     }
     return s;
 }

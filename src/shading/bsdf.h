@@ -145,17 +145,32 @@ public:
     // photon tracer divides by its Russian-roulette probability.
     std::optional<BsdfSample> sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
                                            TransportMode mode = TransportMode::Radiance) const;
-    // The lobes split into delta ones (mirror, smooth or thin glass), which camera paths follow by
-    // ray tracing, and the rest (Lambert, Phong, frosted glass, Lambertian transmission), which the
-    // photon estimates, visible points and final gathering handle; both as sample_lobes masks.
-    // `p_non_delta` is the probability of choosing the non-delta part at a vertex that takes one
-    // of the two: 0 without non-delta lobes, 1 without delta lobes, else the non-delta share of the
-    // lobes' average albedos at wo.
+    // The lobes split into those camera paths follow by ray tracing and those the photon estimates,
+    // visible points and final gathering handle (Jensen 2001, sec. 9.1: f_r = f_r,S + f_r,D), both
+    // as sample_lobes masks. Followed: the delta lobes (mirror, smooth or thin glass) and the glossy
+    // lobes at least as sharp as a modified-Phong lobe of exponent `sharp_exponent` (sharp_lobes);
+    // estimated: the rest (Lambert, Lambertian transmission, wider glossy lobes). A photon estimate
+    // of a sharp lobe reads the few photons that happen to arrive inside it, so it is made of
+    // fireflies; ray tracing it is cheap and exact. With the default (infinite) exponent only delta
+    // lobes are followed. `p_estimated` is the probability of choosing the estimated part at a
+    // vertex that takes one of the two: 0 without estimated lobes, 1 without followed ones, else
+    // the estimated share of the lobes' average albedos at wo.
     struct LobeSplit {
-        uint32_t delta = 0, non_delta = 0;
-        float p_non_delta = 1;
+        uint32_t followed = 0, estimated = 0;
+        float p_estimated = 1;
     };
-    LobeSplit split_lobes(Vec3 wo) const;
+    LobeSplit split_lobes(Vec3 wo, float sharp_exponent = kInf) const;
+    // The glossy lobes at least as sharp as a modified-Phong lobe of exponent `sharp_exponent`, as
+    // a sample_lobes mask: kGlossy for a Phong lobe of that exponent or more, kTransmission for a
+    // frosted dielectric of that Phong-equivalent exponent or more (alpha <= sqrt(2 / (n + 2))).
+    uint32_t sharp_lobes(float sharp_exponent) const;
+    // Whether split_lobes(wo, sharp_exponent).estimated is non-empty (for any wo): where photons
+    // are worth storing.
+    bool has_estimated(float sharp_exponent) const;
+    // This BSDF with only the lobes of the kinds in `lobe_mask` (a sample_lobes mask): eval, pdf,
+    // sample and the albedos then cover those lobes alone (selection renormalised over them), so
+    // estimates, light sampling and gathering can be restricted to one part of a LobeSplit.
+    Bsdf only(uint32_t lobe_mask) const;
     const Frame& frame() const { return frame_; }
     Vec3 geometric_normal() const { return ng_; }
 
@@ -176,6 +191,7 @@ private:
     // The constructor's three steps: the frame at the hit, the material's lobes, its textures.
     void place(const accel::SurfaceHit& hit);
     void set_material(const scene::Material& m, const BsdfOptions& options);
+    void set_flags();  // flags_ from lobes_
     void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;

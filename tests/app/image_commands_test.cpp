@@ -29,7 +29,7 @@ TEST(ImageCommands, InfoCountsMeanBlackAndNonFinite) {
     io::write_image(dir.file("a.pfm"), img);
     const auto r = run_phos("info " + dir.file("a.pfm"));
     EXPECT_EQ(r.exit_code, 0);
-    EXPECT_NE(r.output.find("a.pfm 2x2 mean 1.27273 black 0.2500 nonfinite 1"), std::string::npos)
+    EXPECT_NE(r.output.find("a.pfm 2x2 mean 1.27273 black 0.2500 nonfinite 1 speckle"), std::string::npos)
         << r.output;
     EXPECT_EQ(run_phos("info " + dir.file("missing.pfm")).exit_code, 2);
 }

@@ -73,5 +73,45 @@ TEST(Metrics, SharedReferences) {
     EXPECT_NEAR(window_mean(point, 104, 128, 132, 156), 4.58, 0.005);
 }
 
+TEST(Metrics, SpeckleFractionCountsIsolatedBrightPixelsOnly) {
+    Image img(10, 10);
+    for (Rgb& p : img.pixels) p = Rgb(0.2f);
+    EXPECT_EQ(speckle_fraction(img), 0.0);
+    // Threshold 3 x 0.2 + 0.05 = 0.65: a dot at 0.7 counts, one at 0.6 does not.
+    img.at(3, 3) = Rgb(0.7f);
+    img.at(7, 7) = Rgb(0.6f);
+    EXPECT_DOUBLE_EQ(speckle_fraction(img), 1.0 / 100.0);
+    // A corner dot counts too (its clipped 3x3 window still has a median of 0.2).
+    img.at(0, 0) = Rgb(5.0f);
+    EXPECT_DOUBLE_EQ(speckle_fraction(img), 2.0 / 100.0);
+    // A bright 6x6 patch is a feature: only the pixels whose 5x5 window holds at most 12 of its 36
+    // pixels (its 4 corners and their 8 neighbours along the edges) stand out from a dark median.
+    Image patch(12, 12);
+    for (Rgb& p : patch.pixels) p = Rgb(0.1f);
+    for (int y = 3; y < 9; ++y)
+        for (int x = 3; x < 9; ++x) patch.at(x, y) = Rgb(4.0f);
+    EXPECT_DOUBLE_EQ(speckle_fraction(patch), 12.0 / 144.0);
+    // Dark noise below the offset never counts.
+    Image dark(8, 8);
+    for (int i = 0; i < 64; ++i) dark.pixels[size_t(i)] = Rgb(i % 7 == 0 ? 0.04f : 0.0f);
+    EXPECT_EQ(speckle_fraction(dark), 0.0);
+}
+
+TEST(Metrics, BlockCorrelationOfAffineBrighteningIsOne) {
+    Image a(32, 32), b(64, 64);
+    for (int y = 0; y < 32; ++y)
+        for (int x = 0; x < 32; ++x) a.at(x, y) = Rgb(float(x / 16) + 0.5f * float(y / 16));
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 64; ++x) b.at(x, y) = Rgb(3.0f * a.at(x / 2, y / 2).r + 1.0f);
+    EXPECT_NEAR(block_correlation(a, b, 16), 1.0, 1e-9);
+    EXPECT_NEAR(block_correlation(b, a, 16), 1.0, 1e-9);
+    // The negative image correlates -1.
+    Image c = a;
+    for (Rgb& p : c.pixels) p = Rgb(2.0f) - p;
+    EXPECT_NEAR(block_correlation(a, c, 16), -1.0, 1e-9);
+    EXPECT_THROW(block_correlation(a, Image(48, 48), 16), InputError);
+    EXPECT_THROW(block_correlation(a, b, 64), InputError);
+}
+
 }  // namespace
 }  // namespace phos::film

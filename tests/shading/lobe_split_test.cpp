@@ -1,7 +1,10 @@
-// Tests of Bsdf::split_lobes (delta lobes followed by ray tracing vs the rest, and the probability
-// of the non-delta part) and Bsdf::is_lambertian.
+// Tests of Bsdf::split_lobes (delta and sharp glossy lobes followed by ray tracing vs the rest, and
+// the probability of the estimated part), Bsdf::only and Bsdf::is_lambertian.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "core/rng.h"
 #include "shading/bsdf.h"
 
 namespace phos::shading {
@@ -38,62 +41,62 @@ constexpr float kMirror = Material::kMirrorShininess;
 
 TEST(LobeSplit, PureMaterials) {
     const Bsdf::LobeSplit lambert = make(with(Rgb(0.5f), Rgb(0.0f), 0, Rgb(0.0f))).split_lobes(kUp);
-    EXPECT_EQ(lambert.delta, 0u);
-    EXPECT_EQ(lambert.non_delta, uint32_t(kDiffuse));
-    EXPECT_EQ(lambert.p_non_delta, 1.0f);
+    EXPECT_EQ(lambert.followed, 0u);
+    EXPECT_EQ(lambert.estimated, uint32_t(kDiffuse));
+    EXPECT_EQ(lambert.p_estimated, 1.0f);
 
     const Bsdf::LobeSplit mirror = make(with(Rgb(0.0f), Rgb(0.9f), kMirror, Rgb(0.0f))).split_lobes(kUp);
-    EXPECT_EQ(mirror.delta, uint32_t(kSpecular));
-    EXPECT_EQ(mirror.non_delta, 0u);
-    EXPECT_EQ(mirror.p_non_delta, 0.0f);
+    EXPECT_EQ(mirror.followed, uint32_t(kSpecular));
+    EXPECT_EQ(mirror.estimated, 0u);
+    EXPECT_EQ(mirror.p_estimated, 0.0f);
 
     const Bsdf::LobeSplit phong = make(with(Rgb(0.0f), Rgb(0.9f), 20, Rgb(0.0f))).split_lobes(kUp);
-    EXPECT_EQ(phong.delta, 0u);
-    EXPECT_EQ(phong.non_delta, uint32_t(kGlossy));
-    EXPECT_EQ(phong.p_non_delta, 1.0f);
+    EXPECT_EQ(phong.followed, 0u);
+    EXPECT_EQ(phong.estimated, uint32_t(kGlossy));
+    EXPECT_EQ(phong.p_estimated, 1.0f);
 
     const Bsdf::LobeSplit glass = make(with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f))).split_lobes(kUp);
-    EXPECT_EQ(glass.delta, uint32_t(kTransmission));
-    EXPECT_EQ(glass.non_delta, 0u);
-    EXPECT_EQ(glass.p_non_delta, 0.0f);
+    EXPECT_EQ(glass.followed, uint32_t(kTransmission));
+    EXPECT_EQ(glass.estimated, 0u);
+    EXPECT_EQ(glass.p_estimated, 0.0f);
 
     const Bsdf::LobeSplit frosted = make(with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f), 30)).split_lobes(kUp);
-    EXPECT_EQ(frosted.delta, 0u);
-    EXPECT_EQ(frosted.non_delta, uint32_t(kTransmission));
-    EXPECT_EQ(frosted.p_non_delta, 1.0f);
+    EXPECT_EQ(frosted.followed, 0u);
+    EXPECT_EQ(frosted.estimated, uint32_t(kTransmission));
+    EXPECT_EQ(frosted.p_estimated, 1.0f);
 
     Material dt;
     dt.diffuse_transmission = Rgb(0.4f);
     const Bsdf::LobeSplit translucent = make(dt).split_lobes(kUp);
-    EXPECT_EQ(translucent.delta, 0u);
-    EXPECT_EQ(translucent.non_delta, uint32_t(kDiffuse));
+    EXPECT_EQ(translucent.followed, 0u);
+    EXPECT_EQ(translucent.estimated, uint32_t(kDiffuse));
 }
 
 TEST(LobeSplit, MixedMaterialsChooseByAlbedo) {
     // Lambert under a mirror coat: p = kd / (kd + ks) on the channel averages.
     const Bsdf::LobeSplit coated =
         make(with(Rgb(0.2f, 0.3f, 0.4f), Rgb(0.6f), kMirror, Rgb(0.0f))).split_lobes(kUp);
-    EXPECT_EQ(coated.delta, uint32_t(kSpecular));
-    EXPECT_EQ(coated.non_delta, uint32_t(kDiffuse));
-    EXPECT_NEAR(coated.p_non_delta, 0.3f / 0.9f, 1e-6f);
+    EXPECT_EQ(coated.followed, uint32_t(kSpecular));
+    EXPECT_EQ(coated.estimated, uint32_t(kDiffuse));
+    EXPECT_NEAR(coated.p_estimated, 0.3f / 0.9f, 1e-6f);
 
     // Lambert plus smooth glass: the glass is delta.
     const Bsdf::LobeSplit lg = make(with(Rgb(0.2f), Rgb(0.0f), 0, Rgb(0.6f))).split_lobes(kUp);
-    EXPECT_EQ(lg.delta, uint32_t(kTransmission));
-    EXPECT_EQ(lg.non_delta, uint32_t(kDiffuse));
-    EXPECT_NEAR(lg.p_non_delta, 0.25f, 1e-6f);
+    EXPECT_EQ(lg.followed, uint32_t(kTransmission));
+    EXPECT_EQ(lg.estimated, uint32_t(kDiffuse));
+    EXPECT_NEAR(lg.p_estimated, 0.25f, 1e-6f);
 
     // Frosted glass under a mirror coat: the glass joins the non-delta part.
     const Bsdf::LobeSplit fm = make(with(Rgb(0.0f), Rgb(0.3f), kMirror, Rgb(0.6f), 30)).split_lobes(kUp);
-    EXPECT_EQ(fm.delta, uint32_t(kSpecular));
-    EXPECT_EQ(fm.non_delta, uint32_t(kTransmission));
-    EXPECT_NEAR(fm.p_non_delta, 0.6f / 0.9f, 1e-6f);
+    EXPECT_EQ(fm.followed, uint32_t(kSpecular));
+    EXPECT_EQ(fm.estimated, uint32_t(kTransmission));
+    EXPECT_NEAR(fm.p_estimated, 0.6f / 0.9f, 1e-6f);
 
     // Lambert plus Phong: nothing delta.
     const Bsdf::LobeSplit lp = make(with(Rgb(0.3f), Rgb(0.3f), 20, Rgb(0.0f))).split_lobes(kUp);
-    EXPECT_EQ(lp.delta, 0u);
-    EXPECT_EQ(lp.non_delta, uint32_t(kDiffuse | kGlossy));
-    EXPECT_EQ(lp.p_non_delta, 1.0f);
+    EXPECT_EQ(lp.followed, 0u);
+    EXPECT_EQ(lp.estimated, uint32_t(kDiffuse | kGlossy));
+    EXPECT_EQ(lp.p_estimated, 1.0f);
 }
 
 TEST(LobeSplit, SmoothGlassIsDeltaWhateverTheShadingNormal) {
@@ -104,9 +107,9 @@ TEST(LobeSplit, SmoothGlassIsDeltaWhateverTheShadingNormal) {
     for (float x : {-0.999f, -0.9f, 0.0f, 0.9f}) {
         const Vec3 wo = normalize(Vec3(x, 0, 0.05f));
         const Bsdf::LobeSplit s = b.split_lobes(wo);
-        EXPECT_EQ(s.delta, uint32_t(kTransmission));
-        EXPECT_EQ(s.non_delta, uint32_t(kDiffuse));
-        EXPECT_NEAR(s.p_non_delta, 0.25f, 1e-6f);
+        EXPECT_EQ(s.followed, uint32_t(kTransmission));
+        EXPECT_EQ(s.estimated, uint32_t(kDiffuse));
+        EXPECT_NEAR(s.p_estimated, 0.25f, 1e-6f);
         probe_failed += !b.sample_lobes(kTransmission, wo, 0.5f, {0.5f, 0.5f});
     }
     EXPECT_GT(probe_failed, 0);  // the case this test is about does occur
@@ -116,13 +119,68 @@ TEST(LobeSplit, DeltaMaskSamplesOnlyDeltaLobes) {
     const Bsdf b = make(with(Rgb(0.3f), Rgb(0.6f), kMirror, Rgb(0.0f)));
     const Bsdf::LobeSplit s = b.split_lobes(kUp);
     for (float u : {0.01f, 0.3f, 0.6f, 0.99f}) {
-        const auto d = b.sample_lobes(s.delta, kUp, u, {0.3f, 0.7f});
+        const auto d = b.sample_lobes(s.followed, kUp, u, {0.3f, 0.7f});
         ASSERT_TRUE(d);
         EXPECT_TRUE(d->is_specular());
-        const auto n = b.sample_lobes(s.non_delta, kUp, u, {0.3f, 0.7f});
+        const auto n = b.sample_lobes(s.estimated, kUp, u, {0.3f, 0.7f});
         ASSERT_TRUE(n);
         EXPECT_FALSE(n->is_specular());
     }
+}
+
+TEST(LobeSplit, GlossyLobesAtLeastAsSharpAsTheThresholdAreFollowed) {
+    // Phong exponent 20: estimated below a threshold of 30, followed from 20 down.
+    const Bsdf phong = make(with(Rgb(0.0f), Rgb(0.9f), 20, Rgb(0.0f)));
+    EXPECT_EQ(phong.split_lobes(kUp, 30).estimated, uint32_t(kGlossy));
+    EXPECT_EQ(phong.split_lobes(kUp, 30).followed, 0u);
+    EXPECT_TRUE(phong.has_estimated(30));
+    for (float sharp : {20.0f, 10.0f, 0.0f}) {
+        const Bsdf::LobeSplit s = phong.split_lobes(kUp, sharp);
+        EXPECT_EQ(s.followed, uint32_t(kGlossy));
+        EXPECT_EQ(s.estimated, 0u);
+        EXPECT_EQ(s.p_estimated, 0.0f);
+        EXPECT_EQ(phong.sharp_lobes(sharp), uint32_t(kGlossy));
+        EXPECT_FALSE(phong.has_estimated(sharp));
+    }
+    // Frosted glass of Phong-equivalent exponent 30: followed at 10, like smooth glass.
+    const Bsdf frosted = make(with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f), 30));
+    EXPECT_EQ(frosted.split_lobes(kUp, 10).followed, uint32_t(kTransmission));
+    EXPECT_EQ(frosted.sharp_lobes(10), uint32_t(kTransmission));
+    EXPECT_EQ(frosted.sharp_lobes(31), 0u);
+    // Smooth glass is followed but is not a sharp glossy lobe.
+    EXPECT_EQ(make(with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f))).sharp_lobes(0), 0u);
+    // Plastic: Lambert estimated, the sharp highlight followed, chosen by albedo.
+    const Bsdf plastic = make(with(Rgb(0.45f, 0.3f, 0.15f), Rgb(0.35f), 60, Rgb(0.0f)));
+    const Bsdf::LobeSplit p = plastic.split_lobes(kUp, 10);
+    EXPECT_EQ(p.estimated, uint32_t(kDiffuse));
+    EXPECT_EQ(p.followed, uint32_t(kGlossy));
+    EXPECT_NEAR(p.p_estimated, 0.3f / 0.65f, 1e-6f);
+    EXPECT_TRUE(plastic.has_estimated(10));
+}
+
+TEST(LobeSplit, TheTwoPartsSumToTheWholeBsdf) {
+    // Lambert + Phong 60 + frosted glass 30, split at 10: every lobe but the Lambert is followed.
+    // eval of the whole = eval of the parts; each part's pdf is what sampling its mask gives.
+    const Bsdf b = make(with(Rgb(0.3f), Rgb(0.2f), 60, Rgb(0.4f), 30), Vec3(0.1f, 0.2f, 1.0f));
+    const Bsdf::LobeSplit s = b.split_lobes(kUp, 10);
+    ASSERT_EQ(s.estimated, uint32_t(kDiffuse));
+    ASSERT_EQ(s.followed, uint32_t(kGlossy | kTransmission));
+    const Bsdf est = b.only(s.estimated), fol = b.only(s.followed);
+    EXPECT_TRUE(est.is_lambertian());
+    EXPECT_EQ(fol.flags() & kDiffuse, 0u);
+    Sampler sampler(7, 1, 2);
+    int sampled = 0;
+    for (int i = 0; i < 200; ++i) {
+        const auto bs = b.sample_lobes(s.followed, kUp, sampler.next(), sampler.next2());
+        if (!bs) continue;
+        ++sampled;
+        const Rgb whole = b.eval(kUp, bs->wi), parts = est.eval(kUp, bs->wi) + fol.eval(kUp, bs->wi);
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(whole[c], parts[c], 1e-5f * std::max(1.0f, whole[c]));
+        EXPECT_NEAR(fol.pdf(kUp, bs->wi), bs->pdf, 1e-4f * bs->pdf);
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(fol.eval(kUp, bs->wi)[c], bs->f[c], 1e-5f * std::max(1.0f, bs->f[c]));
+    }
+    EXPECT_GT(sampled, 150);
 }
 
 TEST(IsLambertian, OnlyASingleLambertLobe) {

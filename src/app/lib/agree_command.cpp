@@ -34,7 +34,7 @@ const options::Table& agree_run_options() {
 
 const options::Table& agree_sampling_options() {
     static const options::Table t = options::subset(render::sampling_options(), [](const std::string& n) {
-        return one_of(n, {"max-depth", "ambient", "background-light"});
+        return one_of(n, {"max-depth", "sharp-glossy", "ambient", "background-light"});
     });
     return t;
 }

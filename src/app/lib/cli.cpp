@@ -227,10 +227,16 @@ int run_cli(int argc, char** argv) {
     diff->add_option("reference", dc.reference, "reference image")->required();
     diff->add_option("--window", dc.window, "pixel window x0 x1 y0 y1 (half-open, y from the top)")
         ->expected(4);
+    diff->add_option(
+            "--block-correlation", dc.block_correlation,
+            "also the correlation of the BxB block mean luminances (the images may differ in size by an "
+            "integer factor, e.g. a 256x256 render and a 512x512 reference)")
+        ->check(CLI::Range(1, 1 << 16));
 
     std::vector<std::string> info_paths;
-    CLI::App* info =
-        app.add_subcommand("info", "per image: size, mean, fraction of black pixels, non-finite values");
+    CLI::App* info = app.add_subcommand(
+        "info",
+        "per image: size, mean, fraction of black pixels, non-finite values, speckle (firefly) fraction");
     info->add_option("images", info_paths, "images (.exr, .pfm, .png, ...)")->required();
     std::vector<int> info_windows;
     info->add_option("--window", info_windows,

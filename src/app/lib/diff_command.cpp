@@ -12,7 +12,11 @@ namespace phos::app {
 void run_diff(const DiffCommand& cmd) {
     const Image img = io::read_image(cmd.image);
     const Image ref = io::read_image(cmd.reference);
-    std::printf("relMSE %.6g\nmean_ratio %.6g\n", film::rel_mse(img, ref), film::mean_ratio(img, ref));
+    const bool same_size = img.width == ref.width && img.height == ref.height;
+    if (same_size || cmd.block_correlation <= 0)
+        std::printf("relMSE %.6g\nmean_ratio %.6g\n", film::rel_mse(img, ref), film::mean_ratio(img, ref));
+    if (cmd.block_correlation > 0)
+        std::printf("block_correlation %.6g\n", film::block_correlation(img, ref, cmd.block_correlation));
     if (!cmd.window.empty()) {
         if (cmd.window.size() != 4) throw InputError("--window takes x0 x1 y0 y1");
         const auto& w = cmd.window;

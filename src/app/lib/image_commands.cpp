@@ -6,7 +6,9 @@
 #include <cstdio>
 
 #include "core/error.h"
+#include "film/metrics.h"
 #include "io/image/image_io.h"
+#include "io/image/tonemap.h"
 
 namespace phos::app {
 
@@ -29,6 +31,11 @@ ImageInfo image_info(const Image& image) {
     }
     info.mean = finite > 0 ? sum / double(finite) : 0.0;
     info.black_fraction = image.pixels.empty() ? 0.0 : double(black) / double(image.pixels.size());
+    // Speckles as a viewer sees them: on the sRGB-encoded image, as the PNG shows it.
+    Image display = image;
+    for (Rgb& p : display.pixels)
+        for (int c = 0; c < 3; ++c) p[c] = io::linear_to_srgb(p[c]);
+    info.speckle = film::speckle_fraction(display);
     return info;
 }
 
@@ -49,8 +56,9 @@ void run_info(const std::vector<std::string>& paths, const std::vector<int>& win
     for (const std::string& path : paths) {
         const Image image = io::read_image(path);
         const ImageInfo i = image_info(image);
-        std::printf("%s %dx%d mean %.6g black %.4f nonfinite %llu\n", path.c_str(), i.width, i.height, i.mean,
-                    i.black_fraction, static_cast<unsigned long long>(i.non_finite));
+        std::printf("%s %dx%d mean %.6g black %.4f nonfinite %llu speckle %.5f\n", path.c_str(), i.width,
+                    i.height, i.mean, i.black_fraction, static_cast<unsigned long long>(i.non_finite),
+                    i.speckle);
         for (size_t w = 0; w + 3 < windows.size(); w += 4)
             std::printf("  window %d %d %d %d luminance %.6g\n", windows[w], windows[w + 1], windows[w + 2],
                         windows[w + 3],
