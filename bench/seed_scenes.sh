@@ -24,7 +24,7 @@ for scene in "$dir"/*.scn; do
   end=$(date +%s.%N)
   warnings=$(grep -c '^warning' "$out/$name.log")
   if [ "$code" -eq 0 ] && [ -f "$image" ]; then
-    read -r _ _ _ mean _ black _ nonfinite _ < <("$phos" info "$image")
+    read -r _ _ _ mean _ black _ nonfinite _ _ _ < <("$phos" info "$image")
     images+=("$image")
   else
     mean=-; black=-; nonfinite=-

@@ -12,6 +12,7 @@
 #include "integrators/vcm.h"
 #include "integrators/whitted.h"
 #include "photon/projection_map.h"
+#include "render/options.h"
 
 namespace phos::integrators {
 namespace {
@@ -106,11 +107,14 @@ bool delta_light(const scene::Light& l) {
 }
 
 // Whether a shape of the scene (or of an object it instances) has a material with a mirror or
-// sharp-glass lobe.
-bool has_delta_surface(const scene::Scene& scene) {
+// sharp-glass lobe, or with `sharp_glossy` also a glossy lobe followed at the default
+// --sharp-glossy.
+bool has_delta_surface(const scene::Scene& scene, bool sharp_glossy = false) {
     auto delta = [&](const scene::Shape& s) {
-        return s.material >= 0 && size_t(s.material) < scene.materials.size() &&
-               photon::has_delta_lobe(scene.materials[size_t(s.material)]);
+        if (s.material < 0 || size_t(s.material) >= scene.materials.size()) return false;
+        const scene::Material& m = scene.materials[size_t(s.material)];
+        return sharp_glossy ? photon::is_caustic_caster(m, render::kDefaultSharpGlossy)
+                            : photon::has_delta_lobe(m);
     };
     for (const scene::Shape& s : scene.shapes)
         if (delta(s)) return true;
@@ -144,7 +148,11 @@ bool claims(IntegratorKind kind, const scene::Scene& scene) {
 }
 
 IntegratorKind agreement_reference(const scene::Scene& scene) {
-    return claims(K::Path, scene) ? K::Path : K::Bdpt;
+    // A delta light behind sharp glossy surfaces: path reaches it only by next-event estimation at
+    // a vertex inside the glossy chain, which makes a reference of fireflies; bdpt's light paths
+    // carry it smoothly.
+    const bool delta_lights = std::any_of(scene.lights.begin(), scene.lights.end(), delta_light);
+    return claims(K::Path, scene) && !(delta_lights && has_delta_surface(scene, true)) ? K::Path : K::Bdpt;
 }
 
 film::BiasAllowance agreement_bias(IntegratorKind kind) {

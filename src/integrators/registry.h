@@ -108,8 +108,9 @@ std::string integrator_names(options::IntegratorSet set, const std::string& sepa
 // point): path does not claim scenes with both a delta light and a delta lobe. ppm and sppm emit no
 // photons from media, so they do not claim scenes whose media glow.
 bool claims(IntegratorKind kind, const scene::Scene& scene);
-// The integrator the others are compared with: path where it claims the scene, else bdpt
-// (unbiased, with light tracing for the caustics path misses). bdpt, too, misses a delta light's
+// The integrator the others are compared with: path where it claims the scene and no delta light
+// shines through a sharp glossy surface, else bdpt (unbiased, with light tracing for the caustics
+// path misses or finds only as fireflies). bdpt, too, misses a delta light's
 // caustic seen through a mirror or glass (L S+ D S+ E: no vertex to connect); on such a scene a
 // consistent integrator (vcm) is the better reference.
 IntegratorKind agreement_reference(const scene::Scene& scene);

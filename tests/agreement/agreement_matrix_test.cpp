@@ -8,7 +8,7 @@
 // agree on. A failure names the scene, the integrator, the reference, the block, its ratio and
 // its tolerance, and prints the scene's whole table.
 //
-// The default suite runs the small version: seven scenes at 32 x 32, fixed seeds and sample /
+// The default suite runs the small version: eight scenes at 32 x 32, fixed seeds and sample /
 // iteration budgets (deterministic), 60 to 80 s with ctest -j2 on 2 cores (Release). PHOS_AGREEMENT=full
 // runs the larger one: every scene at 64 x 64, twice the budgets (12 minutes with ctest -j2; the
 // slowest row about 250 s).
@@ -102,6 +102,8 @@ const std::vector<Row>& rows() {
         {"sun-sky-fog.pbrt", {}, true},
         // .scn: modified Phong, frosted glass, a spot light, a spherical texture
         {"phong-frosted-spot.scn", {}, true},
+        // .scn: a room lit only through a frosted pane (sharp glossy transmission, point light)
+        {"frosted-pane-point.scn", {}, true},
         // an area light's caustics through glass and in a mirror
         {"a-glass-mirror.pbrt", {}, false},
         // rough conductors and a rough dielectric

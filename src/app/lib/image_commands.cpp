@@ -36,6 +36,7 @@ ImageInfo image_info(const Image& image) {
     for (Rgb& p : display.pixels)
         for (int c = 0; c < 3; ++c) p[c] = io::linear_to_srgb(p[c]);
     info.speckle = film::speckle_fraction(display);
+    info.speckle_linear = film::speckle_fraction(image);
     return info;
 }
 
@@ -56,9 +57,9 @@ void run_info(const std::vector<std::string>& paths, const std::vector<int>& win
     for (const std::string& path : paths) {
         const Image image = io::read_image(path);
         const ImageInfo i = image_info(image);
-        std::printf("%s %dx%d mean %.6g black %.4f nonfinite %llu speckle %.5f\n", path.c_str(), i.width,
-                    i.height, i.mean, i.black_fraction, static_cast<unsigned long long>(i.non_finite),
-                    i.speckle);
+        std::printf("%s %dx%d mean %.6g black %.4f nonfinite %llu speckle %.5f speckle_linear %.5f\n",
+                    path.c_str(), i.width, i.height, i.mean, i.black_fraction,
+                    static_cast<unsigned long long>(i.non_finite), i.speckle, i.speckle_linear);
         for (size_t w = 0; w + 3 < windows.size(); w += 4)
             std::printf("  window %d %d %d %d luminance %.6g\n", windows[w], windows[w + 1], windows[w + 2],
                         windows[w + 3],

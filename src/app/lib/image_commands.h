@@ -16,6 +16,7 @@ struct ImageInfo {
     double black_fraction = 0;  // pixels whose three channels are exactly 0
     uint64_t non_finite = 0;    // channel values that are NaN or infinite
     double speckle = 0;         // film::speckle_fraction of the sRGB-encoded image (fireflies)
+    double speckle_linear = 0;  // the same on the linear values (finds dots on bright surfaces too)
 };
 ImageInfo image_info(const Image& image);
 
@@ -23,7 +24,8 @@ ImageInfo image_info(const Image& image);
 // clipped to the image (0 when empty).
 double window_luminance(const Image& image, int x0, int x1, int y0, int y1);
 
-// Prints one line per image: "path WxH mean M black B nonfinite N speckle S", then for each window
+// Prints one line per image: "path WxH mean M black B nonfinite N speckle S
+// speckle_linear L", then for each window
 // (x0 x1 y0 y1, four numbers each) "  window x0 x1 y0 y1 luminance L". Throws InputError.
 void run_info(const std::vector<std::string>& paths, const std::vector<int>& windows = {});
 

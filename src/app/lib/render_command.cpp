@@ -20,6 +20,7 @@
 #include <sstream>
 
 #include "app/lib/memory_check.h"
+#include "app/lib/scene_defaults.h"
 #include "app/lib/trace_output.h"
 #include "core/error.h"
 #include "core/format.h"
@@ -112,6 +113,7 @@ std::optional<IntegratorKind> scene_integrator(const scene::RenderSettings& st) 
 // Where the effective settings came from, for the start-up line.
 struct Sources {
     std::string integrator, size, spp, output;
+    bool default_integrator = false;  // neither the command line nor the scene file chose it
 };
 
 // The image to write: -o (or the seed's positional output), else the scene file's own (pbrt's Film
@@ -148,6 +150,10 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
     Sources src;
     if (cmd.was_given("integrator")) {
         src.integrator = "command line";
+    } else if (own && st.integrator_implied) {
+        cmd.run.integrator = *own;
+        src.integrator = "pbrt's default";
+        src.default_integrator = true;
     } else if (own) {
         cmd.run.integrator = *own;
         src.integrator = "scene file";
@@ -157,6 +163,7 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
                       " (choose another with --integrator)");
     } else {
         src.integrator = "default";
+        src.default_integrator = true;
     }
 
     const int sw = st.width.value_or(512), sh = st.height.value_or(512);
@@ -457,15 +464,18 @@ int run_render(const RenderCommand& command) {
     if (dist::root()) check_output(output);  // under MPI rank 0 alone writes
     Sources sources = resolve_settings(cmd, scene);
     sources.output = output_source;
-    apply_quality(cmd, apply_scene_parameters(cmd, scene), sources);
+    const std::set<std::string> from_scene = apply_scene_parameters(cmd, scene);
+    apply_quality(cmd, from_scene, sources);
     check_options(cmd);
     check_trace_options(cmd.run, cmd.render.width, cmd.render.height);  // --trace-pixel, before any work
     if (!cmd.run.trace_json.empty() && dist::root()) check_writable(cmd.run.trace_json, "--trace-json");
-    const integrators::IntegratorInfo& info = integrators::integrator(cmd.run.integrator);
-    const std::string& integrator_name = info.name;
-    const bool progressive = info.counts == integrators::Counts::Iterations;
-    if (cmd.render.layers && info.layers.empty())
-        throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
+    // The default integrator may still change with the scene (fit_defaults_to_light_paths), but
+    // only between integrators that count samples per pixel, as the default ones do.
+    const bool progressive =
+        integrators::integrator(cmd.run.integrator).counts == integrators::Counts::Iterations;
+    if (cmd.render.layers && integrators::integrator(cmd.run.integrator).layers.empty())
+        throw InputError("--layers: the " + name_of(cmd.run.integrator) +
+                         " integrator has no component layers");
     render::RenderObservers watch = setup_budget(cmd, output, progressive);
     cmd.budget.clock_start = clock_start;
     if (!dist::root()) {  // rank 0 alone writes, shows and streams (docs/distributed.md)
@@ -486,8 +496,6 @@ int run_render(const RenderCommand& command) {
         watch.on_frame = [l](const film::Film& f) { l->update_frame(f); };
     }
 
-    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, {cmd.budget, watch}};
-    auto integrator = integrators::make_integrator(cmd.run.integrator, config);
     const render::RenderOptions& opt = cmd.render;
     check_memory(cmd, scene, stats);  // refuses before any work when the memory would not do
 
@@ -497,6 +505,30 @@ int run_render(const RenderCommand& command) {
         ScopedTimer t(stats, "prepare");
         prepared.emplace(scene, opt, prep, stats);
     }
+    // A scene lit mostly through glass gets the defaults made for it (docs/usage.md).
+    if (const std::optional<double> share =
+            sources.default_integrator ? lit_through_interfaces(*prepared) : std::nullopt) {
+        const IntegratorKind before = cmd.run.integrator;
+        // The scene file's sample count was for its own integrator (resolve_settings' rule): the
+        // photon mapper starts from the default (and the --quality preset's) instead.
+        if (before != IntegratorKind::PhotonMap && sources.spp == "scene file" && !watch.resume) {
+            sources.spp = "default; the scene file's " + std::to_string(cmd.render.spp) + " are for its " +
+                          name_of(before) + " integrator";
+            cmd.render.spp = render::RenderOptions{}.spp;
+            apply_quality(cmd, from_scene, sources.spp);
+            prepared->options.spp = cmd.render.spp;
+        }
+        sources.integrator = fit_defaults_to_light_paths(cmd, before, *share, from_scene);
+        check_options(cmd);
+        check_memory(cmd, scene, stats);
+        watch.identity.options = image_options(cmd);
+    }
+    const integrators::IntegratorInfo& info = integrators::integrator(cmd.run.integrator);
+    const std::string& integrator_name = info.name;
+    if (cmd.render.layers && info.layers.empty())
+        throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
+    integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, {cmd.budget, watch}};
+    auto integrator = integrators::make_integrator(cmd.run.integrator, config);
     if (prepared->lights.size() == 0) {
         bool glows = false;
         for (const scene::Material& m : scene.materials) glows |= m.emission.max() > 0;

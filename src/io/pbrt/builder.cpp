@@ -18,7 +18,10 @@ scene::Scene load_pbrt(const std::string& path, const PbrtOptions& options) {
     scene::Scene s = builder.take_scene();
     s.source = path;
     // A pbrt file without an Integrator directive asks for pbrt-v4's default, volpath: phos's path.
-    if (!s.settings.integrator) s.settings.integrator = "path";
+    if (!s.settings.integrator) {
+        s.settings.integrator = "path";
+        s.settings.integrator_implied = true;
+    }
     return s;
 }
 
