@@ -34,7 +34,7 @@ struct RenderSettings {
     // The file names no integrator: `integrator` is its format's default (pbrt-v4's volpath: path),
     // which phos may replace by one fitted to the scene (app/lib/scene_defaults.h).
     bool integrator_implied = false;
-    std::optional<std::string> output;      // image filename
+    std::optional<std::string> output;  // image filename
     // When the file names an integrator phos does not have (pbrt "bdpt"): its name and where, so
     // the renderer can say which integrator it uses instead (unless --integrator chose one).
     std::string unavailable_integrator, integrator_location;
