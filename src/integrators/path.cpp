@@ -1,7 +1,16 @@
 // Path tracing (Veach's estimator): at every non-specular vertex one light sample (light chosen by
 // power) and one BSDF sample, combined with the power heuristic; emission found by BSDF sampling
 // is weighted against the light-sampling pdf. `max_depth` counts bounces as pbrt's maxdepth does.
+// Path regularisation (Kaplanyan & Dachsbacher 2013, sec. 4): after the path's first non-delta
+// bounce, every lobe sharper than a Phong lobe of exponent N (s + 1)^(1/3) (--regularize N, camera
+// sample s of the pixel) is widened to it (Bsdf::regularized), so light that reaches a diffuse
+// surface through mirrors, glass or sharp glossy lobes (caustics, glints behind frosted glass) is
+// found by next-event estimation at the widened vertex instead of by rare hits: fewer fireflies.
+// The bandwidth shrinks as samples grow (the bias with it, as in progressive photon mapping's
+// radius), so the pixel's average converges to the unregularised image.
 #include "integrators/path.h"
+
+#include <cmath>
 
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
@@ -41,7 +50,11 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
     // Whether surfaces show the .scn glow and ambient terms (emission.h): on the camera ray and
     // after a delta first bounce.
     bool camera_chain = true;
+    bool rough = false;      // the path has had a non-delta bounce: later vertices are regularised
     BsdfSampledFrom from{};  // the last vertex, when !specular_bounce
+    const float widest = P.options.regularize > 0
+                             ? P.options.regularize * std::cbrt(float(current_sample_index()) + 1.0f)
+                             : 0.0f;
     int depth = 0;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
@@ -65,6 +78,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
             if (auto* r = recorder()) r->scattered_in_medium(wi, pdf);
             if (depth == 1) camera_chain = false;
             specular_bounce = false;
+            rough = true;
             L.bounce(false);
             from = {p, pdf};
             ray = Ray{p, wi};
@@ -80,7 +94,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
         L.emission(seen_emission(P, hit, wo, beta, camera_chain, specular_bounce ? nullptr : &from));
 
         if (depth++ == P.options.max_depth) break;
-        const shading::Bsdf bsdf = P.bsdf(hit);
+        const shading::Bsdf bsdf = rough && widest > 0 ? P.bsdf(hit).regularized(widest) : P.bsdf(hit);
 
         if (bsdf.has_non_specular())
             L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()));
@@ -90,6 +104,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
         if (auto* r = recorder()) r->scattered(*bs);
         beta *= bs->weight;
         specular_bounce = bs->is_specular();
+        rough = rough || !specular_bounce;
         if (depth == 1) camera_chain = specular_bounce;
         L.bounce(specular_bounce);
         from = {hit.p, bs->pdf};

@@ -48,7 +48,8 @@ const std::vector<IntegratorInfo>& integrators() {
     static const std::vector<IntegratorInfo> table{
         {K::Whitted, "whitted", SamplesPerPixel, layers(Direct, Specular), Reads::Nothing, Film, true,
          Inconsistent, from_budget<WhittedIntegrator>},
-        {K::Path, "path", SamplesPerPixel, all_components(), Reads::Nothing, Film, true, Unbiased,
+        // path: consistent with its default regularisation (--regularize 0: unbiased).
+        {K::Path, "path", SamplesPerPixel, all_components(), Reads::Nothing, Film, true, Consistent,
          from_budget<PathIntegrator>},
         {K::PhotonMap, "photonmap", SamplesPerPixel, all_components(), Reads::PhotonMap, PhotonMaps, true,
          KernelBiased,

@@ -49,9 +49,10 @@ enum class RenderMemory {
 // How an integrator's image relates to the true one: what the agreement matrix
 // (tests/agreement) and `phos agree` compare it with, and how much bias they allow it.
 enum class Convergence {
-    Unbiased,      // its expectation is the true image at any budget (path, bdpt)
-    Consistent,    // biased by a density-estimation kernel that shrinks as the budget grows (ppm,
-                   // sppm, vcm): the bias vanishes in the limit
+    Unbiased,      // its expectation is the true image at any budget (bdpt; path with --regularize 0)
+    Consistent,    // biased by a density-estimation kernel or a regularisation bandwidth that
+                   // shrinks as the budget grows (ppm, sppm, vcm; path's --regularize): the bias
+                   // vanishes in the limit
     KernelBiased,  // biased by kernels that do not shrink (photonmap: k-nearest estimates of fixed
                    // k, the irradiance cache): close to the true image, never equal
     Inconsistent,  // leaves light transport out by design (whitted: no indirect diffuse light);

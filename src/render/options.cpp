@@ -106,14 +106,6 @@ const options::Table& sampling_options() {
         b.number("max-depth", &RenderOptions::max_depth, "N", between(0, 100000),
                  "maximum number of bounces from the camera (pbrt's maxdepth)")
             .pbrt = "maxdepth";
-        b.number(
-            "sharp-glossy", &RenderOptions::sharp_glossy, "N", at_least(0),
-            "(photonmap ppm sppm) glossy lobes at least as sharp as a Phong lobe of exponent N (frosted "
-            "glass and "
-            "microfacet lobes: alpha <= sqrt(2 / (N + 2))) are followed by camera rays like mirrors and "
-            "glass, "
-            "and light through them is a caustic; wider lobes read the photon maps (0: every glossy lobe is "
-            "followed)");
         auto& dof = b.custom(
             "dof", "SAMPLES DISTANCE RADIUS", 3,
             "thin-lens depth of field: lens samples per pixel sample, focal distance, aperture radius "

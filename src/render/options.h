@@ -13,6 +13,8 @@ namespace phos::render {
 
 // The default --sharp-glossy exponent (see RenderOptions::sharp_glossy and docs/photon-mapping.md).
 inline constexpr float kDefaultSharpGlossy = 10;
+// The default --regularize exponent (see RenderOptions::regularize and docs/usage.md).
+inline constexpr float kDefaultRegularize = 30;
 
 struct RenderOptions {
     int width = 512;
@@ -22,8 +24,11 @@ struct RenderOptions {
     int max_depth = 16;  // path segments from the camera
     // Glossy lobes at least as sharp as a modified-Phong lobe of this exponent are followed by
     // camera paths like mirrors and glass, and photons scattered by them stay caustic photons
-    // (Bsdf::split_lobes); photonmap, ppm and sppm read it.
+    // (Bsdf::split_lobes); photonmap, ppm and sppm read it (integrators/transport_options.h).
     float sharp_glossy = kDefaultSharpGlossy;
+    // Path regularisation (path): after a rough bounce, lobes sharper than a Phong lobe of exponent
+    // regularize x (s + 1)^(1/3) at camera sample s are widened to it (Bsdf::regularized); 0 = off.
+    float regularize = kDefaultRegularize;
     int dof_samples = 1;       // lens samples per pixel sample (--dof)
     float lens_radius = -1;    // --dof aperture radius; < 0: the scene camera's own lens
     float focal_distance = 1;  // --dof focal distance (with lens_radius >= 0)

@@ -11,6 +11,12 @@
 
 namespace phos::render {
 
+namespace {
+constinit thread_local uint32_t t_sample_index = 0;
+}  // namespace
+
+uint32_t current_sample_index() { return t_sample_index; }
+
 void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
                          const SampleFn& sample, RayCounts& rays) {
     const RenderOptions& opt = prepared.options;
@@ -24,7 +30,9 @@ void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint3
                 const Vec2 lens = sampler.next2();
                 const Ray ray = prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                 ++rays.camera;
+                t_sample_index = s;
                 sample(x, y, ray, sampler, rays);
+                t_sample_index = 0;
             }
         }
 }

@@ -47,6 +47,10 @@ RenderDone render_samples(const Prepared& prepared, film::Film& film, const Rend
 // statistics. For passes beside the render (AOVs).
 void for_each_sample(const Prepared& prepared, int samples, const SampleFn& sample,
                      const std::function<void(const RayCounts& rays)>& tile_done = {});
+// The index (0, 1, ...) of the camera sample being traced in its pixel, set by
+// render_tile_samples around each sample function call it makes (0 elsewhere): what schedules that
+// change with the sample count read (path regularisation, integrators/path.cpp).
+uint32_t current_sample_index();
 // Samples [s0, s1) of every pixel of `tile`, in pixel order, each sample's camera ray built here.
 void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
                          const SampleFn& sample, RayCounts& rays);

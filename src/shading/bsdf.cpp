@@ -123,6 +123,7 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     cond_eta_ = m.conductor_eta;
     cond_k_ = m.conductor_k;
     schlick_ = options.schlick;
+    microfacet_ = options.microfacet;
     // Only the frosted dielectric reads the microfacet distribution.
     if (!kt_.is_black() && !sharp_glass_)
         dist_ = MicrofacetDistribution(options.microfacet,
@@ -145,6 +146,24 @@ void Bsdf::set_flags() {
     if (lobes_ & (1u << kDielectric))
         flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
     if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
+}
+
+Bsdf Bsdf::regularized(float max_exponent) const {
+    Bsdf b = *this;
+    if ((lobes_ & (1u << kPhong)) && shininess_ > max_exponent) b.shininess_ = max_exponent;
+    if (lobes_ & (1u << kMirror)) {
+        b.lobes_ = (b.lobes_ & ~(1u << kMirror)) | (1u << kPhong);
+        b.mirror_ = false;
+        b.shininess_ = max_exponent;
+    }
+    const bool widenable = (lobes_ & (1u << kDielectric)) && !thin_ && ior_ != 1;
+    if (widenable && (sharp_glass_ || t_shininess_ > max_exponent)) {
+        b.sharp_glass_ = false;
+        b.t_shininess_ = max_exponent;
+        b.dist_ = MicrofacetDistribution(microfacet_, MicrofacetDistribution::alpha_from_phong(max_exponent));
+    }
+    b.set_flags();
+    return b;
 }
 
 Bsdf Bsdf::only(uint32_t lobe_mask) const {

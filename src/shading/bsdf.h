@@ -171,6 +171,14 @@ public:
     // sample and the albedos then cover those lobes alone (selection renormalised over them), so
     // estimates, light sampling and gathering can be restricted to one part of a LobeSplit.
     Bsdf only(uint32_t lobe_mask) const;
+    // This BSDF mollified for path regularisation (Kaplanyan & Dachsbacher 2013): every lobe
+    // sharper than a modified-Phong lobe of exponent `max_exponent` is widened to it. A Phong lobe's
+    // exponent is clamped; a mirror becomes a Phong lobe of that exponent (with its Fresnel); smooth
+    // and frosted glass become frosted glass of alpha = sqrt(2 / (max_exponent + 2)). Thin glass and
+    // an index of 1 (straight through, no lobe to widen) are kept. As max_exponent grows the result
+    // tends to this BSDF, so an estimator that widens by a schedule growing with the samples converges
+    // to the same image.
+    Bsdf regularized(float max_exponent) const;
     const Frame& frame() const { return frame_; }
     Vec3 geometric_normal() const { return ng_; }
 
@@ -184,6 +192,7 @@ private:
     Rgb cond_eta_, cond_k_;
     float ior_ = 1;
     bool schlick_ = false;
+    MicrofacetModel microfacet_ = MicrofacetModel::GGX;  // BsdfOptions::microfacet
     uint32_t lobes_ = 0;  // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
     MicrofacetDistribution dist_;
 

@@ -1,5 +1,5 @@
 // Tests of Bsdf::split_lobes (delta and sharp glossy lobes followed by ray tracing vs the rest, and
-// the probability of the estimated part), Bsdf::only and Bsdf::is_lambertian.
+// the probability of the estimated part), Bsdf::only, Bsdf::regularized and Bsdf::is_lambertian.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -181,6 +181,46 @@ TEST(LobeSplit, TheTwoPartsSumToTheWholeBsdf) {
             EXPECT_NEAR(fol.eval(kUp, bs->wi)[c], bs->f[c], 1e-5f * std::max(1.0f, bs->f[c]));
     }
     EXPECT_GT(sampled, 150);
+}
+
+TEST(Regularized, WidensSharpLobesToTheExponentAndKeepsTheRest) {
+    const Vec3 wo = normalize(Vec3(0.3f, 0.0f, 1.0f));
+    // A mirror becomes a Phong lobe of the exponent: no longer delta, sampled around the mirror
+    // direction, with energy close to the mirror's at this incidence.
+    const Bsdf mirror = make(with(Rgb(0.0f), Rgb(0.9f), kMirror, Rgb(0.0f))).regularized(200);
+    EXPECT_EQ(mirror.flags() & kSpecular, 0u);
+    EXPECT_EQ(mirror.flags() & kGlossy, uint32_t(kGlossy));
+    const Vec3 r(-wo.x, -wo.y, wo.z);
+    Sampler sampler(11, 2, 3);
+    double cos_sum = 0, weight_sum = 0;
+    const int n = 4000;
+    for (int i = 0; i < n; ++i) {
+        const auto s = mirror.sample(wo, sampler.next(), sampler.next2());
+        if (!s) continue;
+        EXPECT_FALSE(s->is_specular());
+        cos_sum += dot(s->wi, r);
+        weight_sum += s->weight.average();
+    }
+    // cos^200 about the mirror direction: mean cosine (n + 1) / (n + 2) = 0.995.
+    EXPECT_NEAR(cos_sum / n, 201.0 / 202.0, 0.002);
+    // Modified Phong: weight ks (n + 2) / (n + 1) cos theta, about 0.9 x cos(16.7 deg) here.
+    EXPECT_NEAR(weight_sum / n, 0.9 * wo.z * 202.0 / 201.0, 0.02);
+
+    // Smooth glass becomes frosted glass of that exponent; a sharper Phong lobe is clamped; a wider
+    // one, Lambert and thin glass are kept.
+    const Bsdf glass = make(with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f))).regularized(50);
+    EXPECT_EQ(glass.flags() & kSpecular, 0u);
+    EXPECT_EQ(glass.sharp_lobes(50), uint32_t(kTransmission));
+    EXPECT_EQ(glass.sharp_lobes(51), 0u);
+    const Bsdf phong = make(with(Rgb(0.2f), Rgb(0.5f), 1000, Rgb(0.0f)));
+    EXPECT_EQ(phong.regularized(100).sharp_lobes(101), 0u);
+    EXPECT_EQ(phong.regularized(100).sharp_lobes(100), uint32_t(kGlossy));
+    const Bsdf wide = make(with(Rgb(0.2f), Rgb(0.5f), 20, Rgb(0.0f)));
+    const Vec3 wi = normalize(Vec3(-0.2f, 0.1f, 1.0f));
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(wide.regularized(100).eval(wo, wi)[c], wide.eval(wo, wi)[c]);
+    Material thin = with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f));
+    thin.thin = true;
+    EXPECT_EQ(make(thin).regularized(10).flags(), make(thin).flags());
 }
 
 TEST(IsLambertian, OnlyASingleLambertLobe) {

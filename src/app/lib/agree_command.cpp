@@ -15,6 +15,7 @@
 #include "core/format.h"
 #include "core/log.h"
 #include "integrators/progressive_options.h"
+#include "integrators/transport_options.h"
 
 namespace phos::app {
 namespace {
@@ -34,7 +35,7 @@ const options::Table& agree_run_options() {
 
 const options::Table& agree_sampling_options() {
     static const options::Table t = options::subset(render::sampling_options(), [](const std::string& n) {
-        return one_of(n, {"max-depth", "sharp-glossy", "ambient", "background-light"});
+        return one_of(n, {"max-depth", "ambient", "background-light"});
     });
     return t;
 }
@@ -115,6 +116,7 @@ CLI::App* add_agree_command(CLI::App& app, AgreeCommand& cmd, RegisterTable regi
         ->group(group);
     for (const BoundTable& b : std::vector<BoundTable>{{&agree_run_options(), &s.run},
                                                        {&agree_sampling_options(), &s.render},
+                                                       {&integrators::transport_options(), &s.render},
                                                        {&scene_options(), &s.scene},
                                                        {&integrators::photon_map_options(), &s.photon_map},
                                                        {&agree_progressive_options(), &s.progressive}})

@@ -73,14 +73,15 @@ AgreementScene::AgreementScene(const RenderCommand& settings, int max_size) : cm
     }
 }
 
-AgreementRender AgreementScene::render(IntegratorKind kind, const AgreementBudget& budget,
-                                       uint64_t seed) const {
+AgreementRender AgreementScene::render(IntegratorKind kind, const AgreementBudget& budget, uint64_t seed,
+                                       bool reference) const {
     if (budget.units <= 0 && budget.seconds <= 0) throw InputError("agreement: a render needs a budget");
     RenderCommand cmd = cmd_;
     cmd.run.integrator = kind;
     cmd.render.seed = seed;
     cmd.render.spp = budget.units > 0 ? budget.units : int(render::kUnboundedIterations);
     cmd.budget.time = budget.units > 0 ? 0 : budget.seconds;
+    if (reference && !cmd.was_given("regularize")) cmd.render.regularize = 0;
     Stats stats;
     check_memory(cmd, scene_, stats);
     const integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, {cmd.budget, {}}};
@@ -110,7 +111,8 @@ AgreementReport run_agreement(const AgreementScene& scene, const AgreementReques
             film::block_comparisons(scene.width(), scene.height(), report.blocks.block));
 
     // Two renders of `e`, seeds `seed` and `seed` + 1, into `row`.
-    auto render_pair = [&](const AgreementRequest::Entry& e, uint64_t seed, AgreementRow& row) {
+    auto render_pair = [&](const AgreementRequest::Entry& e, uint64_t seed, AgreementRow& row,
+                           bool reference) {
         row.kind = e.kind;
         row.budget = e.budget;
         row.claims = integrators::claims(e.kind, scene.scene());
@@ -118,17 +120,17 @@ AgreementReport run_agreement(const AgreementScene& scene, const AgreementReques
         for (int i = 0; i < 2; ++i) {
             if (request.on_render)
                 request.on_render(name_of(e.kind) + " seed " + std::to_string(seed + uint64_t(i)));
-            (i == 0 ? out.first : out.second) = scene.render(e.kind, e.budget, seed + uint64_t(i));
+            (i == 0 ? out.first : out.second) = scene.render(e.kind, e.budget, seed + uint64_t(i), reference);
         }
         row.seconds = (out.first.seconds + out.second.seconds) / 2;
         row.units = out.first.units;
         return out;
     };
-    const auto reference = render_pair(request.reference, request.seed + 2, report.reference);
+    const auto reference = render_pair(request.reference, request.seed + 2, report.reference, true);
     const film::BiasAllowance reference_bias = integrators::agreement_bias(request.reference.kind);
     for (const AgreementRequest::Entry& e : request.tested) {
         AgreementRow row;
-        const auto tested = render_pair(e, request.seed, row);
+        const auto tested = render_pair(e, request.seed, row, false);
         row.agreement = film::compare_blocks(
             {tested.first.image, tested.second.image}, integrators::agreement_bias(e.kind),
             {reference.first.image, reference.second.image}, reference_bias, report.blocks);

@@ -49,9 +49,11 @@ public:
     int width() const { return cmd_.render.width; }
     int height() const { return cmd_.render.height; }
 
-    // One render with `kind` (its options as resolved, the memory checked first).
-    AgreementRender render(integrators::IntegratorKind kind, const AgreementBudget& budget,
-                           uint64_t seed) const;
+    // One render with `kind` (its options as resolved, the memory checked first). A reference
+    // render (`reference`) leaves out path's regularisation unless the command line set it: the
+    // reference is then unbiased at any budget.
+    AgreementRender render(integrators::IntegratorKind kind, const AgreementBudget& budget, uint64_t seed,
+                           bool reference = false) const;
 
 private:
     RenderCommand cmd_;

@@ -170,6 +170,7 @@ std::vector<BoundTable> RenderCommand::tables() {
     return {{&run_options(), &run},
             {&render::image_options(), &render},
             {&render::sampling_options(), &render},
+            {&integrators::transport_options(), &render},
             {&scene_options(), &scene},
             {&integrators::photon_map_options(), &photon_map},
             {&integrators::progressive_options(), &progressive},

@@ -12,6 +12,7 @@
 #include "integrators/photon_map_options.h"
 #include "integrators/progressive_options.h"
 #include "integrators/registry.h"
+#include "integrators/transport_options.h"
 #include "render/options.h"
 #include "render/render_budget.h"
 
