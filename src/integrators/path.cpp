@@ -97,7 +97,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
         const shading::Bsdf bsdf = rough && widest > 0 ? P.bsdf(hit).regularized(widest) : P.bsdf(hit);
 
         if (bsdf.has_non_specular())
-            L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()));
+            L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()),
+                    bsdf.only_widened());
 
         const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2());
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
@@ -106,7 +107,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
         specular_bounce = bs->is_specular();
         rough = rough || !specular_bounce;
         if (depth == 1) camera_chain = specular_bounce;
-        L.bounce(specular_bounce);
+        // A lobe widened from a mirror or glass still counts as specular for the layers.
+        L.bounce(specular_bounce || (bs->flags & shading::kWidened));
         from = {hit.p, bs->pdf};
         ray = accel::spawn_ray(hit, bs->wi);
         walk.leave(hit, bs->wi);

@@ -60,9 +60,11 @@ void PathRadiance::emission(Rgb c) {
     add(c, Component::Indirect, true);
 }
 
-void PathRadiance::light(Rgb c) {
+void PathRadiance::light(Rgb c, bool widened) {
     if (stage_ == Stage::Camera) return add(c, Component::Direct, false);
     if (stage_ == Stage::SpecularChain) return add(c, Component::Specular, false);
+    if (widened && (stage_ == Stage::FromX || stage_ == Stage::CausticChain))
+        return add(c, Component::Caustic, false);
     add(c, Component::Indirect, false);
 }
 

@@ -37,7 +37,9 @@ public:
     // the path's throughput included.
     void emission(Rgb c);
     // Light sampled at the path's current vertex (next-event estimation), throughput included.
-    void light(Rgb c);
+    // `widened`: the vertex is a mirror or glass widened by path regularisation, so the light
+    // counts as if it had come through the delta lobe (a caustic of x rather than indirect light).
+    void light(Rgb c, bool widened = false);
     // The path went on from its current vertex: through a delta lobe (mirror, glass) or not
     // (a diffuse or glossy lobe, a medium's phase function).
     void bounce(bool delta);

@@ -155,15 +155,23 @@ Bsdf Bsdf::regularized(float max_exponent) const {
         b.lobes_ = (b.lobes_ & ~(1u << kMirror)) | (1u << kPhong);
         b.mirror_ = false;
         b.shininess_ = max_exponent;
+        b.widened_mirror_ = true;
     }
     const bool widenable = (lobes_ & (1u << kDielectric)) && !thin_ && ior_ != 1;
     if (widenable && (sharp_glass_ || t_shininess_ > max_exponent)) {
+        b.widened_glass_ = widened_glass_ || sharp_glass_;
         b.sharp_glass_ = false;
         b.t_shininess_ = max_exponent;
         b.dist_ = MicrofacetDistribution(microfacet_, MicrofacetDistribution::alpha_from_phong(max_exponent));
     }
     b.set_flags();
     return b;
+}
+
+bool Bsdf::only_widened() const {
+    const uint32_t widened =
+        (widened_mirror_ ? 1u << kPhong : 0u) | (widened_glass_ ? 1u << kDielectric : 0u);
+    return widened != 0 && (lobes_ & ~widened) == 0;
 }
 
 Bsdf Bsdf::only(uint32_t lobe_mask) const {
@@ -280,7 +288,13 @@ Rgb Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, TransportMode m
                 const float cos_h = length_squared(h) > 0 ? dot(wo_l, normalize(h)) : 1.0f;
                 spec = specular_reflectance(cos_h);
             }
-            f += spec * ((shininess_ + 2) * (0.5f * kInvPi) * std::pow(ca, shininess_));
+            // A mirror widened by regularized(): its lobe is the sampling density over cos theta_i,
+            // so that it reflects ks at every incidence as the mirror does (the modified Phong
+            // lobe reflects ks cos theta_i and would not tend to the mirror).
+            if (widened_mirror_)
+                f += spec * (warp::power_cosine_pdf(ca, shininess_) / wi_l.z);
+            else
+                f += spec * ((shininess_ + 2) * (0.5f * kInvPi) * std::pow(ca, shininess_));
         }
     }
     if (trans && has(kDiffTrans)) f += kdt_ * kInvPi;
@@ -399,7 +413,7 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
             const Vec3 r(-wo_l.x, -wo_l.y, wo_l.z);
             wi_l = Frame(r).to_world(warp::power_cosine(u, shininess_));
             if (wi_l.z <= 0) return std::nullopt;  // below the surface: lost, pdf not renormalised
-            bs.flags = kGlossy | kReflection;
+            bs.flags = kGlossy | kReflection | (widened_mirror_ ? kWidened : 0u);
             break;
         }
         case kMirror:
@@ -428,7 +442,8 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
                 wi_l = *wi;
                 transmitted = wi_l.z < 0;
                 if (transmitted) bs.eta = eta;
-                bs.flags = kGlossy | (transmitted ? kTransmission : kReflection);
+                bs.flags =
+                    kGlossy | (transmitted ? kTransmission : kReflection) | (widened_glass_ ? kWidened : 0u);
             }
             break;
         }

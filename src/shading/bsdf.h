@@ -39,6 +39,9 @@ enum LobeFlags : uint32_t {
     kSpecular = 1u << 2,  // delta distribution (mirror, smooth glass)
     kReflection = 1u << 3,
     kTransmission = 1u << 4,
+    // On a sample (never in flags()): drawn from a lobe that Bsdf::regularized widened from a delta
+    // lobe (a mirror or smooth glass), so a path's classification can still count it as specular.
+    kWidened = 1u << 5,
 };
 
 // Radiance transport (camera paths) scales refracted radiance by 1/eta^2; importance / photon
@@ -173,12 +176,17 @@ public:
     Bsdf only(uint32_t lobe_mask) const;
     // This BSDF mollified for path regularisation (Kaplanyan & Dachsbacher 2013): every lobe
     // sharper than a modified-Phong lobe of exponent `max_exponent` is widened to it. A Phong lobe's
-    // exponent is clamped; a mirror becomes a Phong lobe of that exponent (with its Fresnel); smooth
-    // and frosted glass become frosted glass of alpha = sqrt(2 / (max_exponent + 2)). Thin glass and
+    // exponent is clamped; a mirror becomes a lobe sampled as a Phong lobe of that exponent whose
+    // value is that density over cos theta_i (so it reflects the mirror's ks, with its Fresnel, at
+    // every incidence); smooth and frosted glass become frosted glass of alpha = sqrt(2 /
+    // (max_exponent + 2)). Thin glass and
     // an index of 1 (straight through, no lobe to widen) are kept. As max_exponent grows the result
     // tends to this BSDF, so an estimator that widens by a schedule growing with the samples converges
     // to the same image.
     Bsdf regularized(float max_exponent) const;
+    // True if every lobe of this BSDF was widened from a delta lobe by regularized(): light found
+    // through it is, for the --layers split, light through a mirror or glass.
+    bool only_widened() const;
     const Frame& frame() const { return frame_; }
     Vec3 geometric_normal() const { return ng_; }
 
@@ -189,6 +197,7 @@ private:
     Rgb kd_, ks_, kt_, kdt_;
     float shininess_ = 0, t_shininess_ = 0;
     bool mirror_ = false, sharp_glass_ = false, thin_ = false, conductor_ = false;
+    bool widened_mirror_ = false, widened_glass_ = false;  // regularized(): from delta lobes
     Rgb cond_eta_, cond_k_;
     float ior_ = 1;
     bool schlick_ = false;

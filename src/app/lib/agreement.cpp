@@ -127,7 +127,12 @@ AgreementReport run_agreement(const AgreementScene& scene, const AgreementReques
         return out;
     };
     const auto reference = render_pair(request.reference, request.seed + 2, report.reference, true);
-    const film::BiasAllowance reference_bias = integrators::agreement_bias(request.reference.kind);
+    // A path reference renders without regularisation (AgreementScene::render): unbiased.
+    const bool plain_path =
+        request.reference.kind == IntegratorKind::Path &&
+        !(scene.settings().was_given("regularize") && scene.settings().render.regularize > 0);
+    const film::BiasAllowance reference_bias =
+        plain_path ? film::BiasAllowance{} : integrators::agreement_bias(request.reference.kind);
     for (const AgreementRequest::Entry& e : request.tested) {
         AgreementRow row;
         const auto tested = render_pair(e, request.seed, row, false);

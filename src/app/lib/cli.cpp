@@ -227,10 +227,10 @@ int run_cli(int argc, char** argv) {
     diff->add_option("reference", dc.reference, "reference image")->required();
     diff->add_option("--window", dc.window, "pixel window x0 x1 y0 y1 (half-open, y from the top)")
         ->expected(4);
-    diff->add_option(
-            "--block-correlation", dc.block_correlation,
-            "also the correlation of the BxB block mean luminances (the images may differ in size by an "
-            "integer factor, e.g. a 256x256 render and a 512x512 reference)")
+    diff->add_option("--block-correlation", dc.block_correlation,
+                     "also the correlation of the BxB block mean luminances of the images as displayed "
+                     "(sRGB, clamped; they may differ in size by an integer factor, e.g. a 256x256 render "
+                     "and a 512x512 reference)")
         ->check(CLI::Range(1, 1 << 16));
 
     std::vector<std::string> info_paths;

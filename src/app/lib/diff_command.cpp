@@ -6,8 +6,16 @@
 #include "core/error.h"
 #include "film/metrics.h"
 #include "io/image/image_io.h"
+#include "io/image/tonemap.h"
 
 namespace phos::app {
+
+Image displayed(const Image& image) {
+    Image out = image;
+    for (Rgb& p : out.pixels)
+        for (int c = 0; c < 3; ++c) p[c] = io::linear_to_srgb(p[c]);
+    return out;
+}
 
 void run_diff(const DiffCommand& cmd) {
     const Image img = io::read_image(cmd.image);
@@ -16,7 +24,8 @@ void run_diff(const DiffCommand& cmd) {
     if (same_size || cmd.block_correlation <= 0)
         std::printf("relMSE %.6g\nmean_ratio %.6g\n", film::rel_mse(img, ref), film::mean_ratio(img, ref));
     if (cmd.block_correlation > 0)
-        std::printf("block_correlation %.6g\n", film::block_correlation(img, ref, cmd.block_correlation));
+        std::printf("block_correlation %.6g\n",
+                    film::block_correlation(displayed(img), displayed(ref), cmd.block_correlation));
     if (!cmd.window.empty()) {
         if (cmd.window.size() != 4) throw InputError("--window takes x0 x1 y0 y1");
         const auto& w = cmd.window;

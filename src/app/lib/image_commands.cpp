@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/lib/diff_command.h"
 #include "core/error.h"
 #include "film/metrics.h"
 #include "io/image/image_io.h"
-#include "io/image/tonemap.h"
 
 namespace phos::app {
 
@@ -32,10 +32,7 @@ ImageInfo image_info(const Image& image) {
     info.mean = finite > 0 ? sum / double(finite) : 0.0;
     info.black_fraction = image.pixels.empty() ? 0.0 : double(black) / double(image.pixels.size());
     // Speckles as a viewer sees them: on the sRGB-encoded image, as the PNG shows it.
-    Image display = image;
-    for (Rgb& p : display.pixels)
-        for (int c = 0; c < 3; ++c) p[c] = io::linear_to_srgb(p[c]);
-    info.speckle = film::speckle_fraction(display);
+    info.speckle = film::speckle_fraction(displayed(image));
     info.speckle_linear = film::speckle_fraction(image);
     return info;
 }
