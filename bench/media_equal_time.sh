@@ -13,8 +13,8 @@ extra="$*"
 scene=$here/../../shared/bench/media/fog-caustic.pbrt
 ref=$here/../../shared/bench/media/fog-caustic.exr
 . "$here/media_common.sh"
-printf '| %-9s | %-22s | %7s | %8s | %6s | %8s |\n' integrator budget wall relMSE ratio contrast
-printf '| %-9s | %-22s | %7s | %8s | %6s | %8s |\n' --- --- --- --- --- ---
+printf '| %-9s | %-27s | %7s | %8s | %6s | %8s |\n' integrator budget wall relMSE ratio contrast
+printf '| %-9s | %-27s | %7s | %8s | %6s | %8s |\n' --- --- --- --- --- ---
 run() {  # integrator, budget text, phos options...
     integ=$1 budget=$2
     shift 2
@@ -24,9 +24,10 @@ run() {  # integrator, budget text, phos options...
     "$phos" render "$scene" --integrator "$integ" "$@" $extra --quiet -o "$img"
     wall=$(seconds_since "$t0")
     measure "$img" "$ref"
-    printf '| %-9s | %-22s | %7.1f | %8.5f | %6.3f | %8s |\n' "$integ" "$budget" "$wall" "$rel" "$ratio" \
+    printf '| %-9s | %-27s | %7.1f | %8.5f | %6.3f | %8s |\n' "$integ" "$budget" "$wall" "$rel" "$ratio" \
         "$(caustic_contrast "$img")"
 }
+for spp in 16 64 256; do run path "--spp $spp --regularize 0" --spp "$spp" --regularize 0; done
 for spp in 16 64 256; do run path "--spp $spp" --spp "$spp"; done
 for spp in 1 4 16; do run photonmap "--spp $spp" --spp "$spp"; done
 for t in 10 30 60; do run sppm "--time $t" --time "$t"; done
