@@ -9,9 +9,9 @@
 // its tolerance, and prints the scene's whole table.
 //
 // The default suite runs the small version: eight scenes at 32 x 32, fixed seeds and sample /
-// iteration budgets (deterministic), 60 to 80 s with ctest -j2 on 2 cores (Release). PHOS_AGREEMENT=full
-// runs the larger one: every scene at 64 x 64, twice the budgets (12 minutes with ctest -j2; the
-// slowest row about 250 s).
+// iteration budgets (deterministic), about 80 s with ctest -j2 on 2 cores (Release).
+// PHOS_AGREEMENT=full runs the larger one: every scene at 64 x 64, twice the budgets (about 14
+// minutes; the slowest row, frosted-pane-point, about 250 s).
 //
 // The tolerance's sigmas are chosen for the whole matrix: with N comparisons (blocks x channels x
 // integrators x scenes) each is held to a false-failure chance of 1e-4 / N under Gaussian noise, so
