@@ -143,7 +143,7 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         const float p_est = split.p_estimated;
         const float u = p_est > 0 && p_est < 1 ? sampler.next() : 0.5f;
         if (p_est >= 1 || (p_est > 0 && u < p_est)) {
-            const Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const Bsdf est = bsdf.only(split.estimated);
             const Rgb w = beta * (1 / p_est);
             const int n = std::max(1, direct_samples);
             const Rgb direct =
@@ -152,7 +152,7 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
             stop_on_surface(hit, est, wo, w, depth, walk, vp);
             break;
         }
-        const Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        const Bsdf followed = bsdf.only(split.followed);
         // Light through the followed glossy lobes: one light sample, MIS-weighted against the
         // emission the continuation finds.
         if (followed.has_non_specular())

@@ -168,8 +168,7 @@ double stored_photons(const PhotonMapSettings& s, uint64_t emit) {
 void photon_map_phases(const scene::Scene& scene, const PhotonMapOptions& o, float sharp_exponent,
                        int threads, const Phase& common, std::vector<Phase>& phases) {
     const double in_flight = in_flight_photons(threads);
-    bool delta = false;
-    for (const scene::Material& m : scene.materials) delta |= photon::is_caustic_caster(m, sharp_exponent);
+    const bool delta = photon::has_caustic_casters(scene, sharp_exponent);
     const bool media = media_active(scene) && !o.photon_viz;
     const bool global = o.photon_viz || (o.indirect_light && !o.fast_global);
     const double n[photon::kMapCount] = {

@@ -31,21 +31,12 @@ PhotonMapOptions resolve(const PhotonMapOptions& o, const Prepared& P) {
     return r;
 }
 
-// True if some material has a delta lobe (mirror or smooth glass) or a glossy lobe sharp enough
-// to be followed (--sharp-glossy): only then can there be caustic photons (L S+ D), and only then
-// is the caustic map worth tracing.
-bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
-    for (const scene::Material& m : scene.materials)
-        if (photon::is_caustic_caster(m, sharp_exponent)) return true;
-    return false;
-}
-
 // What pass 1 traces: only the maps pass 2 will read, each to its target.
 photon::TraceOptions trace_options(const PhotonMapOptions& o, const Prepared& P, bool record_bounces) {
     photon::TraceOptions to;
     to.wanted[photon::kGlobalMap] = o.photon_viz || (o.indirect_light && !o.fast_global);
     to.wanted[photon::kCausticMap] =
-        !o.photon_viz && o.caustics && has_caustic_casters(P.scene, P.options.sharp_glossy);
+        !o.photon_viz && o.caustics && photon::has_caustic_casters(P.scene, P.options.sharp_glossy);
     to.wanted[photon::kIndirectMap] = !o.photon_viz && o.indirect_light && o.fast_global;
     to.target[photon::kGlobalMap] = o.global.photons;
     to.target[photon::kCausticMap] = o.caustic.photons;
@@ -54,7 +45,7 @@ photon::TraceOptions trace_options(const PhotonMapOptions& o, const Prepared& P,
     const bool media = P.active_media() != nullptr && !o.photon_viz;
     to.wanted[photon::kVolumeMap] = media && o.indirect_light;
     to.wanted[photon::kVolumeCausticMap] =
-        media && o.caustics && has_caustic_casters(P.scene, P.options.sharp_glossy);
+        media && o.caustics && photon::has_caustic_casters(P.scene, P.options.sharp_glossy);
     to.target[photon::kVolumeMap] = o.volume.photons;
     to.target[photon::kVolumeCausticMap] = o.volume_caustic.photons;
     to.emit = o.photons;

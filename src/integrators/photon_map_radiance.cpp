@@ -136,7 +136,7 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
             add(seen, beta * estimate(kGlobalMap, photon::make_query(hit.p, hit.ng, wo, bsdf), wo, bsdf),
                 TraceTerm::Indirect);
         } else if (split.estimated) {
-            const shading::Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const shading::Bsdf est = bsdf.only(split.estimated);
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, est);
             Rgb& c = via_followed ? out.specular : out.caustic;
             Rgb& i = via_followed ? out.specular : out.indirect;
@@ -158,7 +158,7 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
         }
         // The followed part: one sampled lobe per sample (unbiased), as a path tracer would.
         if (depth >= P_.options.max_depth || !split.followed) break;
-        const shading::Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        const shading::Bsdf followed = bsdf.only(split.followed);
         // Light through its glossy lobes: one light sample, MIS-weighted against the continuation.
         if (o_.direct && followed.has_non_specular())
             add(d, beta * sample_one_light(P_, hit, followed, wo, sampler, rays, true, walk.medium()),
@@ -239,7 +239,7 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
         const shading::Bsdf bsdf = P_.bsdf(hit);
         const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo, P_.options.sharp_glossy);
         if (split.estimated) {
-            const shading::Bsdf est = split.followed ? bsdf.only(split.estimated) : bsdf;
+            const shading::Bsdf est = bsdf.only(split.estimated);
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, est);
             Rgb E;
             if (est.is_lambertian() && !maps_.cache.empty() &&
@@ -255,7 +255,7 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
         // estimated part; emitters found this way are direct light or caustics of the gather's
         // origin, counted there.
         if (!split.followed) break;
-        const shading::Bsdf followed = split.estimated ? bsdf.only(split.followed) : bsdf;
+        const shading::Bsdf followed = bsdf.only(split.followed);
         const auto s = followed.sample(wo, sampler.next(), sampler.next2());
         if (!s || s->weight.is_black()) break;
         if (split.estimated && !survives_followed(*s, sampler, beta)) break;

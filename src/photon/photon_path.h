@@ -174,10 +174,10 @@ bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const
             return false;
     } else {
         const shading::Bsdf bsdf = ps.bsdfs.at(hit);
-        const bool followed = (bsdf.flags() & shading::kSpecular) || bsdf.sharp_lobes(ps.sharp_exponent);
-        if (!visit_and_scatter(bsdf.has_estimated(ps.sharp_exponent), followed, [&] {
-                return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular, ps.sharp_exponent);
-            }))
+        if (!visit_and_scatter(
+                bsdf.has_estimated(ps.sharp_exponent), bsdf.has_followed(ps.sharp_exponent), [&] {
+                    return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular, ps.sharp_exponent);
+                }))
             return false;
     }
     if (specular) {

@@ -93,6 +93,11 @@ bool is_caustic_caster(const scene::Material& m, float sharp_exponent) {
     return sharp_phong || sharp_frosted;
 }
 
+bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
+    return std::any_of(scene.materials.begin(), scene.materials.end(),
+                       [&](const scene::Material& m) { return is_caustic_caster(m, sharp_exponent); });
+}
+
 std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, float sharp_exponent) {
     auto caster = [&](const scene::Shape& s) {
         return s.material >= 0 && size_t(s.material) < scene.materials.size() &&

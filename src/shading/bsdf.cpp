@@ -232,20 +232,31 @@ uint32_t Bsdf::sharp_lobes(float sharp_exponent) const {
     return m;
 }
 
+void Bsdf::part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estimated) const {
+    followed = estimated = 0;
+    const uint32_t sharp = sharp_lobes(sharp_exponent);
+    const auto put = [&](uint32_t kind, bool follow) { (follow ? followed : estimated) |= kind; };
+    if (lobes_ & (1u << kMirror)) followed |= kSpecular;
+    if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
+    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) estimated |= kDiffuse;
+    if (lobes_ & (1u << kPhong)) put(kGlossy, sharp & kGlossy);
+}
+
 bool Bsdf::has_estimated(float sharp_exponent) const {
-    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) return true;
-    if ((lobes_ & (1u << kPhong)) && shininess_ < sharp_exponent) return true;
-    return (lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ < sharp_exponent;
+    uint32_t followed, estimated;
+    part_masks(sharp_exponent, followed, estimated);
+    return estimated != 0;
+}
+
+bool Bsdf::has_followed(float sharp_exponent) const {
+    uint32_t followed, estimated;
+    part_masks(sharp_exponent, followed, estimated);
+    return followed != 0;
 }
 
 Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo, float sharp_exponent) const {
     LobeSplit s;
-    const uint32_t sharp = sharp_lobes(sharp_exponent);
-    const auto put = [&](uint32_t kind, bool followed) { (followed ? s.followed : s.estimated) |= kind; };
-    if (lobes_ & (1u << kMirror)) s.followed |= kSpecular;
-    if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
-    if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) s.estimated |= kDiffuse;
-    if (lobes_ & (1u << kPhong)) put(kGlossy, sharp & kGlossy);
+    part_masks(sharp_exponent, s.followed, s.estimated);
     if (!s.estimated) {
         s.p_estimated = 0;
     } else if (s.followed) {

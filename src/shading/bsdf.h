@@ -167,12 +167,14 @@ public:
     // a sample_lobes mask: kGlossy for a Phong lobe of that exponent or more, kTransmission for a
     // frosted dielectric of that Phong-equivalent exponent or more (alpha <= sqrt(2 / (n + 2))).
     uint32_t sharp_lobes(float sharp_exponent) const;
-    // Whether split_lobes(wo, sharp_exponent).estimated is non-empty (for any wo): where photons
-    // are worth storing.
+    // Whether split_lobes(wo, sharp_exponent).estimated / .followed is non-empty (for any wo):
+    // where photons are worth storing, and whether a caustic path can go on.
     bool has_estimated(float sharp_exponent) const;
+    bool has_followed(float sharp_exponent) const;
     // This BSDF with only the lobes of the kinds in `lobe_mask` (a sample_lobes mask): eval, pdf,
     // sample and the albedos then cover those lobes alone (selection renormalised over them), so
-    // estimates, light sampling and gathering can be restricted to one part of a LobeSplit.
+    // estimates, light sampling and gathering can be restricted to one part of a LobeSplit. A mask
+    // covering every lobe gives this BSDF unchanged.
     Bsdf only(uint32_t lobe_mask) const;
     // This BSDF mollified for path regularisation (Kaplanyan & Dachsbacher 2013): every lobe
     // sharper than a modified-Phong lobe of exponent `max_exponent` is widened to it. A Phong lobe's
@@ -210,6 +212,8 @@ private:
     void place(const accel::SurfaceHit& hit);
     void set_material(const scene::Material& m, const BsdfOptions& options);
     void set_flags();  // flags_ from lobes_
+    // split_lobes' two masks, which do not depend on wo.
+    void part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estimated) const;
     void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;

@@ -110,6 +110,12 @@ std::optional<IntegratorKind> scene_integrator(const scene::RenderSettings& st) 
     return integrators::integrator_kind(*st.integrator);
 }
 
+// Where the sample count came from when the scene file's count was written for another integrator.
+std::string spp_for_another_integrator(int scene_spp, const std::string& its_integrator) {
+    return "default; the scene file's " + std::to_string(scene_spp) + " are for its " + its_integrator +
+           " integrator";
+}
+
 // Where the effective settings came from, for the start-up line.
 struct Sources {
     std::string integrator, size, spp, output;
@@ -199,10 +205,9 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
         r.spp = *st.spp;
         src.spp = "scene file";
     } else if (st.spp) {
-        src.spp =
-            "default; the scene file's " + std::to_string(*st.spp) + " are for its " +
-            (st.unavailable_integrator.empty() ? st.integrator.value_or("path") : st.unavailable_integrator) +
-            " integrator";
+        src.spp = spp_for_another_integrator(*st.spp, st.unavailable_integrator.empty()
+                                                          ? st.integrator.value_or("path")
+                                                          : st.unavailable_integrator);
     } else {
         src.spp = "default";
     }
@@ -512,8 +517,7 @@ int run_render(const RenderCommand& command) {
         // The scene file's sample count was for its own integrator (resolve_settings' rule): the
         // photon mapper starts from the default (and the --quality preset's) instead.
         if (before != IntegratorKind::PhotonMap && sources.spp == "scene file" && !watch.resume) {
-            sources.spp = "default; the scene file's " + std::to_string(cmd.render.spp) + " are for its " +
-                          name_of(before) + " integrator";
+            sources.spp = spp_for_another_integrator(cmd.render.spp, name_of(before));
             cmd.render.spp = render::RenderOptions{}.spp;
             apply_quality(cmd, from_scene, sources.spp);
             prepared->options.spp = cmd.render.spp;
@@ -523,10 +527,8 @@ int run_render(const RenderCommand& command) {
         check_memory(cmd, scene, stats);
         watch.identity.options = image_options(cmd);
     }
-    const integrators::IntegratorInfo& info = integrators::integrator(cmd.run.integrator);
-    const std::string& integrator_name = info.name;
-    if (cmd.render.layers && info.layers.empty())
-        throw InputError("--layers: the " + integrator_name + " integrator has no component layers");
+    // (--layers was checked above: the scene's defaults only ever choose photonmap, which has them.)
+    const std::string& integrator_name = name_of(cmd.run.integrator);
     integrators::IntegratorConfig config{cmd.photon_map, cmd.progressive, {cmd.budget, watch}};
     auto integrator = integrators::make_integrator(cmd.run.integrator, config);
     if (prepared->lights.size() == 0) {
