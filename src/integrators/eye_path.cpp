@@ -108,15 +108,20 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         accel::SurfaceHit hit;
         Rgb emitted(0.0f);
         // Single scattering is integrated over each whole stretch in a medium (equiangular
-        // sampling finds the glow around point lights); the free flight then decides whether the
-        // path stops in the medium (a volume visible point, for multiple scattering) or goes on.
+        // sampling finds the glow around point lights), as the average of `direct_samples`
+        // estimates like direct light at a surface point: near an area light the estimate is
+        // heavy-tailed, and a PPM hit point keeps its value for the whole render. The free flight
+        // then decides whether the path stops in the medium (a volume visible point, for multiple
+        // scattering) or goes on.
+        const auto stretch = [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
+            const int n = std::max(1, direct_samples);
+            Rgb sum(0.0f);
+            for (int k = 0; k < n; ++k)
+                sum += single_scattering(P, walk.medium(), o, d, t_end, sampler, rays);
+            add(beta * sum * (1.0f / float(n)), TraceTerm::Light);
+        };
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, beta, emitted,
-                              [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
-                                  add(beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, rays),
-                                      TraceTerm::Light);
-                              })
-                  : walk.next(ray, hit);
+            media ? walk.next(ray, hit, sampler, beta, emitted, stretch) : walk.next(ray, hit);
         add(emitted, TraceTerm::Emission);
         if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)

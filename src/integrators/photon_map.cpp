@@ -90,9 +90,10 @@ void build_beams(const PhotonMapOptions& o, const Prepared& P, PhotonMaps& maps)
     if (o.volume_estimate != VolumeEstimate::Beam || (maps.volume().empty() && maps.volume_caustic().empty()))
         return;
     const auto t0 = std::chrono::steady_clock::now();
-    maps.volume_beams.build(photon::photon_spheres(maps.volume(), o.volume.samples, o.volume.radius));
-    maps.volume_caustic_beams.build(
-        photon::photon_spheres(maps.volume_caustic(), o.volume_caustic.samples, o.volume_caustic.radius));
+    maps.volume_beams.build(
+        photon::photon_spheres(maps.volume(), o.volume.samples, o.volume.radius, &P.accel));
+    maps.volume_caustic_beams.build(photon::photon_spheres(maps.volume_caustic(), o.volume_caustic.samples,
+                                                           o.volume_caustic.radius, &P.accel));
     P.stats.add_time("beam BVH build", seconds_since(t0));
 }
 
@@ -109,8 +110,9 @@ void build_caches(const PhotonMapOptions& o, const photon::TraceOptions& to, con
     }
     if (o.irradiance_cache && to.wanted[photon::kVolumeMap] && !maps.volume().empty()) {
         const auto t0 = std::chrono::steady_clock::now();
-        maps.volume_cache.build(maps.volume(), {o.volume.samples, o.volume.radius}, maps.volume_caustic(),
-                                {o.volume_caustic.samples, o.volume_caustic.radius}, o.cache_stride);
+        maps.volume_cache.build(
+            maps.volume(), {o.volume.samples, o.volume.radius, &P.accel}, maps.volume_caustic(),
+            {o.volume_caustic.samples, o.volume_caustic.radius, &P.accel}, o.cache_stride);
         P.stats.add_time("volume cache", seconds_since(t0));
         P.stats.add_value("volume cache points", std::to_string(maps.volume_cache.size()));
     }

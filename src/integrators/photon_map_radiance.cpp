@@ -59,8 +59,8 @@ bool survives_followed(const shading::BsdfSample& s, Sampler& sampler, Rgb& beta
 
 PhotonMapRadiance::PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps)
     : P_(P), o_(o), maps_(maps) {
-    volume_est_ = {o.volume.samples, o.volume.radius};
-    volume_caustic_est_ = {o.volume_caustic.samples, o.volume_caustic.radius};
+    volume_est_ = {o.volume.samples, o.volume.radius, &P.accel};
+    volume_caustic_est_ = {o.volume_caustic.samples, o.volume_caustic.radius, &P.accel};
     const PhotonMapSettings* s[3] = {&o.global, &o.caustic, &o.indirect};
     for (int m = 0; m < 3; ++m) {
         est_[m].k = s[m]->samples;

@@ -8,22 +8,24 @@
 
 namespace phos::photon {
 
-std::vector<PhotonSphere> photon_spheres(const PhotonKdTree& map, uint32_t k, float max_radius) {
+std::vector<PhotonSphere> photon_spheres(const PhotonKdTree& map, uint32_t k, float max_radius,
+                                         const accel::EmbreeScene* surfaces) {
     std::vector<PhotonSphere> out(map.size());
     if (map.empty()) return out;
     k = std::max(k, 1u);
     const float r_min = 1e-3f * max_radius;
-    tbb::parallel_for(tbb::blocked_range<size_t>(0, map.size(), 1024),
-                      [&](const tbb::blocked_range<size_t>& r) {
-                          thread_local std::vector<Neighbour> nb;
-                          nb.resize(k);
-                          for (size_t i = r.begin(); i < r.end(); ++i) {
-                              const Photon& p = map.photon(uint32_t(i));
-                              const KnnResult kr = map.knn(p.position, k, max_radius * max_radius, nb.data());
-                              const float radius = kr.count < k ? max_radius : std::sqrt(kr.max_dist2);
-                              out[i] = {p.position, std::max(radius, r_min), p.power(), p.wi()};
-                          }
-                      });
+    tbb::parallel_for(
+        tbb::blocked_range<size_t>(0, map.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+            thread_local std::vector<Neighbour> nb;
+            nb.resize(k);
+            for (size_t i = r.begin(); i < r.end(); ++i) {
+                const Photon& p = map.photon(uint32_t(i));
+                const KnnResult kr = map.knn(p.position, k, max_radius * max_radius, nb.data());
+                const float radius = std::max(kr.count < k ? max_radius : std::sqrt(kr.max_dist2), r_min);
+                const float open = surfaces ? open_ball_fraction(*surfaces, p.position, radius) : 1.0f;
+                out[i] = {p.position, radius, p.power() * (1 / open), p.wi()};
+            }
+        });
     return out;
 }
 

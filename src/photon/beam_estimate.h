@@ -33,6 +33,7 @@
 
 #include "photon/beam_bvh.h"
 #include "photon/kdtree.h"
+#include "photon/open_ball.h"
 #include "photon/stretch_transmittance.h"
 #include "shading/phase.h"
 
@@ -40,8 +41,13 @@ namespace phos::photon {
 
 // The photons of `map` with their kernel radii: the distance to the k-th nearest photon (itself
 // included), `max_radius` where fewer than k lie within it, and never below max_radius / 1000 (so
-// coincident photons keep their power). In tree order; parallel, and the same at any thread count.
-std::vector<PhotonSphere> photon_spheres(const PhotonKdTree& map, uint32_t k, float max_radius);
+// coincident photons keep their power). With `surfaces` (the surfaces that bound the media) each
+// photon's power is divided by the open share of its ball (photon/open_ball.h): the part behind a
+// wall or outside the medium is never crossed by a camera ray, and the 3D estimate above then
+// loses nothing at boundaries to first order. In tree order; parallel, and the same at any thread
+// count.
+std::vector<PhotonSphere> photon_spheres(const PhotonKdTree& map, uint32_t k, float max_radius,
+                                         const accel::EmbreeScene* surfaces = nullptr);
 
 // L_b above along o + t d, t in [0, T.end()] (d unit): the in-scattered radiance the stretch adds
 // towards -d, before what lies behind it. `n_used` (optional) receives the photons counted.
