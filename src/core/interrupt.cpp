@@ -99,6 +99,11 @@ void request(int signo) {
     g_requested.store(true);
 }
 
+void reset() {
+    g_requested.store(false);
+    g_signal.store(0);
+    g_count.store(0);
+}
 int exit_status(int signo) { return 128 + (signo > 0 ? signo : SIGINT); }
 
 }  // namespace phos::interrupt

@@ -25,6 +25,9 @@ int signal_number();
 // Asks the render to stop, as the first signal would (`signo` 0: not a signal, e.g. the preview
 // window's quit key).
 void request(int signo = 0);
+// Forgets a request, so that a process running several renders (the Python module) starts the
+// next one afresh. Not for use while a render runs.
+void reset();
 // The conventional exit status of a process stopped by `signo`: 128 + signo (130 for SIGINT,
 // 143 for SIGTERM); 130 when the stop did not come from a signal.
 int exit_status(int signo);

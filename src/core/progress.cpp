@@ -26,15 +26,28 @@ Progress::Mode Progress::mode_for(bool bar, bool given, bool quiet) {
 
 void Progress::begin(const std::string& label, uint64_t total, double budget, Clock::time_point since,
                      const std::string& unit) {
-    label_ = label;
-    unit_ = unit;
-    total_ = total;
-    budget_ = std::max(budget, 0.0);
-    done_ = 0;
-    last_draw_ns_ = 0;
-    last_step_ = 0;
-    start_ = std::min(since, Clock::now());
+    {
+        std::lock_guard lock(draw_mutex_);
+        label_ = label;
+        unit_ = unit;
+        total_ = total;
+        budget_ = std::max(budget, 0.0);
+        done_ = 0;
+        last_draw_ns_ = 0;
+        last_step_ = 0;
+        start_ = std::min(since, Clock::now());
+    }
     if (mode_ == Mode::Bar) draw(0, false);
+}
+
+Progress::Snapshot Progress::snapshot() const {
+    std::lock_guard lock(draw_mutex_);
+    Snapshot s;
+    s.label = label_;
+    s.done = done_.load(std::memory_order_relaxed);
+    s.seconds = label_.empty() ? 0.0 : elapsed();
+    s.fraction = label_.empty() ? -1.0 : std::min(1.0, fraction(s.done, s.seconds));
+    return s;
 }
 
 void Progress::start(const std::string& label, uint64_t total) { begin(label, total, 0, Clock::now(), ""); }

@@ -45,6 +45,17 @@ public:
     // Ends the phase (Bar: completes the line; Lines: a final line).
     void finish();
     bool enabled() const { return mode_ != Mode::Off; }
+
+    // Where the current phase stands, readable from any thread while the render runs (the Python
+    // module's progress callback polls it): its label, the fraction done (< 0: unknown), the units
+    // done and the seconds since it started.
+    struct Snapshot {
+        std::string label;
+        double fraction = -1;
+        uint64_t done = 0;
+        double seconds = 0;
+    };
+    Snapshot snapshot() const;
     Mode mode() const { return mode_; }
 
 private:
@@ -66,7 +77,7 @@ private:
     std::atomic<int64_t> last_draw_ns_{0};
     std::atomic<int> last_step_{0};  // Lines: the last tenth (or 10 s step) reported
     Clock::time_point start_;
-    std::mutex draw_mutex_;
+    mutable std::mutex draw_mutex_;  // guards the output and label_, unit_, total_, budget_, start_
 };
 
 }  // namespace phos

@@ -33,10 +33,17 @@ public:
     // own): reported by -v with the film's.
     void add_dropped_samples(uint64_t n) { dropped_.fetch_add(n, std::memory_order_relaxed); }
     uint64_t dropped_samples() const { return dropped_.load(std::memory_order_relaxed); }
+    // Photons emitted by the photon-map integrators (photonmap, ppm, sppm).
+    void add_photons_emitted(uint64_t n) { photons_.fetch_add(n, std::memory_order_relaxed); }
+    uint64_t photons_emitted() const { return photons_.load(std::memory_order_relaxed); }
+    // The "name: value" lines and the phases' times so far, in their order.
+    std::vector<std::pair<std::string, std::string>> values() const;
+    std::vector<std::pair<std::string, double>> times() const;
 
 private:
     std::atomic<uint64_t> camera_{0}, shadow_{0}, bounce_{0}, photon_{0};
     std::atomic<uint64_t> dropped_{0};
+    std::atomic<uint64_t> photons_{0};
     mutable std::mutex mutex_;
     std::vector<std::pair<std::string, double>> times_;
     std::vector<std::pair<std::string, std::string>> values_;

@@ -459,6 +459,7 @@ RenderDone finish_progressive(const Prepared& P, const std::string& name, const 
     const RenderDone done = budget.finish();
     P.stats.add_value(name, std::to_string(state.iterations) + " iterations, " +
                                 std::to_string(state.photons_emitted) + " photons");
+    P.stats.add_photons_emitted(state.photons_emitted);
     return done;
 }
 

@@ -71,6 +71,7 @@ void report_map_build(Stats& stats, const TraceOptions& to, const TracedPhotons&
                                                         maps.volume_caustic_beams.memory_bytes()) /
                                                      1e6));
     stats.add_value("photons emitted", std::to_string(traced.total_emitted));
+    stats.add_photons_emitted(traced.total_emitted);
     report_maps(stats, to, traced, maps, has_lights);
     if (to.wanted[kCausticMap] && to.caustic_projection)
         stats.add_value("caustic projection maps",

@@ -124,23 +124,9 @@ CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable 
     return sub;
 }
 
-int run_photons(const PhotonsCommand& command) {
-    RenderCommand cmd = command.settings;
-    log::set_quiet(cmd.run.quiet);
-    std::vector<int> kinds = check_request(command);
-    interrupt::install_handlers();
-    std::optional<tbb::global_control> threads;
-    if (cmd.run.threads > 0)
-        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
-
-    // As run_render (render_command.cpp): load, resolve options, prepare.
-    Stats stats;
-    scene::Scene scene;
-    {
-        ScopedTimer t(stats, "load");
-        cmd.scene_path = command.scene_path;
-        scene = load_render_scene(cmd);
-    }
+PhotonTrace trace_photon_maps(const RenderCommand& settings, const scene::Scene& scene,
+                              std::vector<int> kinds, bool bounces, Stats& stats) {
+    RenderCommand cmd = settings;
     cmd.run.integrator = integrators::IntegratorKind::PhotonMap;
     std::string spp_source = "default";  // the sample count plays no part here
     apply_quality(cmd, apply_scene_parameters(cmd, scene), spp_source);
@@ -171,19 +157,16 @@ int run_photons(const PhotonsCommand& command) {
         prepared.emplace(scene, opt, prep, stats);
     }
     if (prepared->lights.size() == 0)
-        log::warn(command.scene_path + ": the scene has no lights; the photon maps are empty");
-    log::info("phos: " + std::filesystem::path(command.scene_path).filename().string() +
+        log::warn(cmd.scene_path + ": the scene has no lights; the photon maps are empty");
+    log::info("phos: " + std::filesystem::path(cmd.scene_path).filename().string() +
               ": tracing the photonmap integrator's photon maps, seed " + std::to_string(opt.seed));
 
-    // Bounce counts (5 more bytes per photon) only for what shows them: the PLY file and the viewer.
-    const bool bounces = command.view || command.format != "text";
-    const integrators::PhotonMaps maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared, bounces);
+    PhotonTrace out;
+    out.maps = integrators::PhotonMapIntegrator(pm).build_maps(*prepared, bounces);
+    const integrators::PhotonMaps& maps = out.maps;
     if (interrupt::requested()) {
-        log::warn("interrupted while tracing photons: nothing written" +
-                  std::string(std::filesystem::exists(command.output)
-                                  ? " ('" + command.output + "' is unchanged)"
-                                  : ""));
-        return interrupt::exit_status(interrupt::signal_number());
+        out.interrupted = true;
+        return out;
     }
     if (kinds.empty()) {
         for (int m = 0; m < photon::kMapCount; ++m)
@@ -195,8 +178,42 @@ int run_photons(const PhotonsCommand& command) {
                                  " map holds no photons for this scene and these options (" +
                                  empty_map_hint(m, prepared->lights.size()) + ")");
     }
+    out.kinds = std::move(kinds);
+    out.cloud = photon_cloud(maps, out.kinds);
+    return out;
+}
 
-    const io::PointCloud cloud = photon_cloud(maps, kinds);
+int run_photons(const PhotonsCommand& command) {
+    RenderCommand cmd = command.settings;
+    log::set_quiet(cmd.run.quiet);
+    const std::vector<int> requested = check_request(command);
+    interrupt::install_handlers();
+    std::optional<tbb::global_control> threads;
+    if (cmd.run.threads > 0)
+        threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(cmd.run.threads));
+
+    // As run_render (render_command.cpp): load, resolve options, prepare.
+    Stats stats;
+    scene::Scene scene;
+    {
+        ScopedTimer t(stats, "load");
+        cmd.scene_path = command.scene_path;
+        scene = load_render_scene(cmd);
+    }
+    // Bounce counts (5 more bytes per photon) only for what shows them: the PLY file and the viewer.
+    const bool bounces = command.view || command.format != "text";
+    const PhotonTrace traced = trace_photon_maps(cmd, scene, requested, bounces, stats);
+    if (traced.interrupted) {
+        log::warn("interrupted while tracing photons: nothing written" +
+                  std::string(std::filesystem::exists(command.output)
+                                  ? " ('" + command.output + "' is unchanged)"
+                                  : ""));
+        return interrupt::exit_status(interrupt::signal_number());
+    }
+    const integrators::PhotonMaps& maps = traced.maps;
+    const std::vector<int>& kinds = traced.kinds;
+
+    const io::PointCloud& cloud = traced.cloud;
     if (command.view) {
         std::vector<std::string> names;
         for (int m = 0; m < photon::kMapCount; ++m) names.push_back(photon_map_label(m));

@@ -5,8 +5,13 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/lib/render_options.h"
+#include "core/stats.h"
+#include "integrators/photon_map.h"
+#include "io/mesh/point_cloud.h"
+#include "scene/scene.h"
 
 namespace phos::app {
 
@@ -26,6 +31,20 @@ struct PhotonsCommand {
 
 // Adds the `photons` subcommand to `app`, filling `cmd` when parsed.
 CLI::App* add_photons_command(CLI::App& app, PhotonsCommand& cmd, RegisterTable register_table);
+
+// The photon maps of `scene` (loaded from settings.scene_path) traced as `phos render --integrator
+// photonmap` traces them with `settings`' options, and the maps `kinds` (empty: every map traced)
+// as a point cloud (photon_cloud.h); `bounces`: with each photon's bounce count. Throws InputError
+// for bad options or a requested map that stays empty. Interrupted (interrupt::requested), the
+// cloud is left empty.
+struct PhotonTrace {
+    integrators::PhotonMaps maps;
+    std::vector<int> kinds;
+    io::PointCloud cloud;
+    bool interrupted = false;
+};
+PhotonTrace trace_photon_maps(const RenderCommand& settings, const scene::Scene& scene,
+                              std::vector<int> kinds, bool bounces, Stats& stats);
 
 // Runs it; throws ParseError / InputError for bad input (nothing is written). Returns the exit
 // status: 0, or 128 + the signal when an interrupt stopped the tracing (nothing written).

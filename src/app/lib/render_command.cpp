@@ -443,11 +443,12 @@ std::string layer_path(const std::string& output, const std::string& layer) {
     return (p.parent_path() / (p.stem().string() + "." + layer + p.extension().string())).string();
 }
 
-int run_render(const RenderCommand& command) {
+int run_render(const RenderCommand& command, const RenderHooks& hooks) {
     const auto clock_start = std::chrono::steady_clock::now();
     RenderCommand cmd = command;
+    const bool to_memory = hooks.result != nullptr;
     log::set_quiet(cmd.run.quiet);
-    interrupt::install_handlers(!dist::root(), dist::distributed());
+    if (hooks.signal_handlers) interrupt::install_handlers(!dist::root(), dist::distributed());
     if (const std::vector<int> pids = dist::pids_on_this_machine(); dist::root() && !pids.empty())
         interrupt::watch_ranks(pids.data(), int(pids.size()));  // to name a rank that dies
     std::optional<tbb::global_control> threads;
@@ -457,16 +458,17 @@ int run_render(const RenderCommand& command) {
         threads.emplace(tbb::global_control::max_allowed_parallelism, size_t(t));
 
     Stats stats;
-    scene::Scene scene;
-    {
+    scene::Scene loaded;
+    if (!hooks.scene) {
         ScopedTimer t(stats, "load");
-        scene = load_render_scene(cmd);
+        loaded = load_render_scene(cmd);
     }
+    const scene::Scene& scene = hooks.scene ? *hooks.scene : loaded;
 
     // Resolve settings: command line, then the scene file, then defaults.
     std::string output_source;
     const std::string output = choose_output(cmd, scene, output_source);
-    if (dist::root()) check_output(output);  // under MPI rank 0 alone writes
+    if (dist::root() && !to_memory) check_output(output);  // under MPI rank 0 alone writes
     Sources sources = resolve_settings(cmd, scene);
     sources.output = output_source;
     const std::set<std::string> from_scene = apply_scene_parameters(cmd, scene);
@@ -553,7 +555,8 @@ int run_render(const RenderCommand& command) {
         log::info("phos: " + std::filesystem::path(cmd.scene_path).filename().string() + ": " +
                   integrator_name + " (" + sources.integrator + "), " + std::to_string(opt.width) + "x" +
                   std::to_string(opt.height) + " (" + sources.size + "), " + budget + " (" + sources.spp +
-                  "), seed " + std::to_string(opt.seed) + ", output " + output + " (" + sources.output + ")");
+                  "), seed " + std::to_string(opt.seed) +
+                  (to_memory ? "" : ", output " + output + " (" + sources.output + ")"));
     }
 
     display::PreviewWindow window;
@@ -588,7 +591,8 @@ int run_render(const RenderCommand& command) {
 
     film::Film film(opt.width, opt.height);
     const bool bar = cmd.was_given("progress") ? cmd.run.progress : Progress::stderr_is_terminal();
-    Progress progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet || !dist::root()));
+    Progress own_progress(Progress::mode_for(bar, cmd.was_given("progress"), cmd.run.quiet || !dist::root()));
+    Progress& progress = hooks.progress ? *hooks.progress : own_progress;
     // --trace-pixel: the integrator records that pixel's camera samples (render/path_recorder.h).
     std::optional<render::PathRecorder> trace;
     if (cmd.run.trace_x >= 0) trace.emplace(cmd.run.trace_x, cmd.run.trace_y);
@@ -596,11 +600,13 @@ int run_render(const RenderCommand& command) {
     if (dist::distributed() && dist::agree_start(true).any_failed) return 2;
     std::vector<std::string> rank_lines;  // -v under MPI: each rank's render time and rays
     render::RenderDone done;
+    double render_seconds = 0;
     {
         ScopedTimer t(stats, "render");
         const render::TraceRequest request(trace ? &*trace : nullptr);
         const auto t0 = std::chrono::steady_clock::now();
         done = integrator->render(*prepared, film, progress);
+        render_seconds = seconds_since(t0);
         if (dist::distributed()) {
             const double seconds = seconds_since(t0);
             const RayCounts rays = stats.rays();
@@ -616,6 +622,7 @@ int run_render(const RenderCommand& command) {
                                                           : 0;
     const bool interrupted = done.interrupted || interrupt::requested();
     const int status = interrupted ? interrupt::exit_status(interrupt::signal_number()) : 0;
+    if (to_memory) hooks.result->interrupted = interrupted;
     if (interrupted && !done.started) {
         log::warn("interrupted before any " + std::string(progressive ? "iteration" : "sample") +
                   " was complete: no image written" +
@@ -630,7 +637,18 @@ int run_render(const RenderCommand& command) {
     }
     if (live) live->update_frame(film);  // the final image, with the AOVs
     const std::vector<std::string> layers = written_layers(film, opt);
-    {
+    if (to_memory) {
+        RenderResult& r = *hooks.result;
+        r.image = film.image();
+        r.layers.clear();
+        for (const std::string& name : layers) r.layers.emplace_back(name, film.find_layer(name)->image());
+        r.integrator = cmd.run.integrator;
+        r.done = done;
+        r.seconds = render_seconds;
+        r.rays = stats.rays();
+        r.photons = stats.photons_emitted();
+        r.interrupted = interrupted;
+    } else {
         ScopedTimer t(stats, "write");
         write_images(output, film, layers, cmd.run.exposure);
     }
@@ -651,7 +669,7 @@ int run_render(const RenderCommand& command) {
     }
     std::string also;
     for (const std::string& name : layers) also += (also.empty() ? "" : ", ") + name;
-    log::info("phos: wrote " + output + (also.empty() ? "" : " (and layers " + also + ")"));
+    if (!to_memory) log::info("phos: wrote " + output + (also.empty() ? "" : " (and layers " + also + ")"));
     if (interrupted)
         log::warn("interrupted: the image holds the work done so far (" + so_far + ")" +
                   (cmd.budget.checkpoint_path.empty()

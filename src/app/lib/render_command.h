@@ -3,8 +3,13 @@
 
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "app/lib/render_options.h"
+#include "core/image.h"
+#include "core/progress.h"
+#include "core/stats.h"
 #include "render/prepared.h"
 #include "scene/scene.h"
 
@@ -30,9 +35,29 @@ render::PrepareOptions prepare_options(const RenderCommand& cmd);
 // Where layer `layer` of `output` is written: out.png -> out.caustic.png.
 std::string layer_path(const std::string& output, const std::string& layer);
 
+// What a render made, for a caller that keeps it in memory (the Python module).
+struct RenderResult {
+    Image image;                                        // the final image (linear RGB)
+    std::vector<std::pair<std::string, Image>> layers;  // --layers' components and the --aov images
+    integrators::IntegratorKind integrator{};           // the one that rendered
+    render::RenderDone done;
+    double seconds = 0;  // the render's wall time (loading and preparing not counted)
+    RayCounts rays;
+    uint64_t photons = 0;  // photons emitted (photon-based integrators)
+    bool interrupted = false;
+};
+
+// How a caller running renders in process changes run_render.
+struct RenderHooks {
+    const scene::Scene* scene = nullptr;  // the scene already loaded from cmd.scene_path, else loaded
+    RenderResult* result = nullptr;       // set: the images land here and nothing is written
+    Progress* progress = nullptr;         // set: progress is reported here instead of on stderr
+    bool signal_handlers = true;          // false: the caller stops the render (interrupt::request)
+};
+
 // Runs the render; throws ParseError / InputError for bad input. Returns the exit status: 0, or
 // 128 + the signal (130 SIGINT, 143 SIGTERM) when an interrupt stopped it (the image so far, and
 // the checkpoint with --checkpoint, are written first).
-int run_render(const RenderCommand& cmd);
+int run_render(const RenderCommand& cmd, const RenderHooks& hooks = {});
 
 }  // namespace phos::app
