@@ -41,7 +41,7 @@ def main():
         for col, (a, b, names) in enumerate(((0, 1, "x y"), (0, 2, "x z"))):
             ax = axes[row][col]
             ax.set_facecolor("black")
-            ax.scatter(pos[:, a], pos[:, b], s=0.3, c=colour, linewidths=0)
+            ax.scatter(pos[:, a], pos[:, b], s=0.8, c=colour, linewidths=0)
             ax.set_aspect("equal")
             ax.set_xlabel(names.split()[0])
             ax.set_ylabel(names.split()[1])
