@@ -9,9 +9,9 @@
 // its tolerance, and prints the scene's whole table.
 //
 // The default suite runs the small version: eight scenes at 32 x 32, fixed seeds and sample /
-// iteration budgets (deterministic), about 80 s with ctest -j2 on 2 cores (Release).
+// iteration budgets (deterministic), about 90 s with ctest -j2 on 2 cores (Release).
 // PHOS_AGREEMENT=full runs the larger one: every scene at 64 x 64, twice the budgets (about 14
-// minutes; the slowest row, frosted-pane-point, about 250 s).
+// minutes; the slowest row, frosted-pane-point, about 230 s).
 //
 // The tolerance's sigmas are chosen for the whole matrix: with N comparisons (blocks x channels x
 // integrators x scenes) each is held to a false-failure chance of 1e-4 / N under Gaussian noise, so
@@ -102,8 +102,12 @@ const std::vector<Row>& rows() {
         {"sun-sky-fog.pbrt", {}, true},
         // .scn: modified Phong, frosted glass, a spot light, a spherical texture
         {"phong-frosted-spot.scn", {}, true},
-        // .scn: a room lit only through a frosted pane (sharp glossy transmission, point light)
-        {"frosted-pane-point.scn", {}, true},
+        // .scn: a room lit only through a frosted pane (sharp glossy transmission, point light).
+        // Path reaches the point light only by next-event estimation from inside the pane, through
+        // its exponent-300 lobe: a heavy-tailed estimate whose image mean scatters by about 6 %
+        // per seed at 128 spp (and regularisation's widened lobes lose a little light at that
+        // budget), so path gets 32 times its usual samples here (0.986 and 0.994 at 4096 spp).
+        {"frosted-pane-point.scn", Budgets{.path = 2048}, true},
         // an area light's caustics through glass and in a mirror
         {"a-glass-mirror.pbrt", {}, false},
         // rough conductors and a rough dielectric
