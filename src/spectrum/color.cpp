@@ -1,0 +1,105 @@
+// Colour-matching, and the sRGB matrices from the primaries (see color.h).
+#include "spectrum/color.h"
+
+#include <cmath>
+
+#include "spectrum/cie_tables.h"
+
+namespace phos::spectrum {
+
+namespace {
+
+// Linear interpolation in a table sampled at every nanometre from kCieMin.
+float lookup(const float* table, float lambda) {
+    const float x = lambda - float(kCieMin);
+    if (!(x >= 0 && x <= float(kCieSamples - 1))) return 0;
+    const int i = std::min(int(x), kCieSamples - 2);
+    const float t = x - float(i);
+    return table[i] * (1 - t) + table[i + 1] * t;
+}
+
+Mat3 inverse(const Mat3& m) {
+    const double a = m[0][0], b = m[0][1], c = m[0][2], d = m[1][0], e = m[1][1], f = m[1][2], g = m[2][0],
+                 h = m[2][1], k = m[2][2];
+    const double A = e * k - f * h, B = -(d * k - f * g), C = d * h - e * g;
+    const double det = a * A + b * B + c * C;
+    Mat3 r;
+    r[0] = {A / det, -(b * k - c * h) / det, (b * f - c * e) / det};
+    r[1] = {B / det, (a * k - c * g) / det, -(a * f - c * d) / det};
+    r[2] = {C / det, -(a * h - b * g) / det, (a * e - b * d) / det};
+    return r;
+}
+
+// The RGB -> XYZ matrix of primaries (x, y) whose white (x, y) has Y = 1: each primary's XYZ
+// column scaled so that the three sum to the white.
+Mat3 rgb_to_xyz_from(const double prim[3][2], const double white[2]) {
+    Mat3 p;
+    for (int j = 0; j < 3; ++j) {
+        const double x = prim[j][0], y = prim[j][1];
+        p[0][size_t(j)] = x / y;
+        p[1][size_t(j)] = 1;
+        p[2][size_t(j)] = (1 - x - y) / y;
+    }
+    const double W[3] = {white[0] / white[1], 1, (1 - white[0] - white[1]) / white[1]};
+    const Mat3 pi = inverse(p);
+    double s[3];
+    for (int j = 0; j < 3; ++j)
+        s[j] = pi[size_t(j)][0] * W[0] + pi[size_t(j)][1] * W[1] + pi[size_t(j)][2] * W[2];
+    Mat3 m;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) m[size_t(i)][size_t(j)] = p[size_t(i)][size_t(j)] * s[j];
+    return m;
+}
+
+}  // namespace
+
+Vec3 cie_xyz(float lambda) { return {lookup(kCieX, lambda), lookup(kCieY, lambda), lookup(kCieZ, lambda)}; }
+
+float d65(float lambda) { return lookup(kCieD65, lambda); }
+
+Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w) {
+    double X = 0, Y = 0, Z = 0;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        if (!(w.pdf(i) > 0)) continue;
+        const Vec3 c = cie_xyz(w[i]);
+        const double v = double(L[i]) / double(w.pdf(i));
+        X += c.x * v, Y += c.y * v, Z += c.z * v;
+    }
+    const double s = 1.0 / (kSpectrumSamples * kCieYIntegral);
+    return {float(X * s), float(Y * s), float(Z * s)};
+}
+
+Vec3 integrate_xyz(const std::function<double(double lambda)>& S) {
+    double X = 0, Y = 0, Z = 0;
+    for (int i = 0; i < kCieSamples; ++i) {
+        const double v = S(double(kCieMin + i));
+        X += kCieX[i] * v, Y += kCieY[i] * v, Z += kCieZ[i] * v;
+    }
+    return {float(X / kCieYIntegral), float(Y / kCieYIntegral), float(Z / kCieYIntegral)};
+}
+
+const Mat3& srgb_to_xyz() {
+    static const Mat3 m = [] {
+        // The white is the chromaticity of the D65 table itself (the standard's (0.3127, 0.3290) to
+        // within 3e-5), as pbrt-v4 derives it, so that D65 light maps to RGB (1, 1, 1) exactly.
+        const double prim[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
+        const Vec3 w = integrate_xyz([](double l) { return double(d65(float(l))); });
+        const double sum = double(w.x) + double(w.y) + double(w.z);
+        const double white[2] = {w.x / sum, w.y / sum};
+        return rgb_to_xyz_from(prim, white);
+    }();
+    return m;
+}
+
+const Mat3& xyz_to_srgb() {
+    static const Mat3 m = inverse(srgb_to_xyz());
+    return m;
+}
+
+Vec3 apply(const Mat3& m, Vec3 v) {
+    double r[3];
+    for (int i = 0; i < 3; ++i) r[i] = m[size_t(i)][0] * v.x + m[size_t(i)][1] * v.y + m[size_t(i)][2] * v.z;
+    return {float(r[0]), float(r[1]), float(r[2])};
+}
+
+}  // namespace phos::spectrum
