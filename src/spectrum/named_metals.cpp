@@ -1,0 +1,47 @@
+// Lookups in the named metals' tables (see named_metals.h).
+#include "spectrum/named_metals.h"
+
+#include <algorithm>
+
+namespace phos::spectrum {
+
+namespace {
+
+// Linear interpolation of the member `field` at `lambda` (clamped to the table's ends).
+float interpolate(const std::vector<OpticalConstant>& t, float lambda, float OpticalConstant::*field) {
+    if (t.empty()) return 0;
+    if (lambda <= t.front().lambda) return t.front().*field;
+    if (lambda >= t.back().lambda) return t.back().*field;
+    const auto hi = std::upper_bound(t.begin(), t.end(), lambda,
+                                     [](float l, const OpticalConstant& c) { return l < c.lambda; });
+    const auto lo = hi - 1;
+    const float s = (lambda - lo->lambda) / (hi->lambda - lo->lambda);
+    return (*lo).*field * (1 - s) + (*hi).*field * s;
+}
+
+}  // namespace
+
+float NamedMetal::eta(float lambda) const { return interpolate(table, lambda, &OpticalConstant::eta); }
+float NamedMetal::k(float lambda) const { return interpolate(table, lambda, &OpticalConstant::k); }
+
+float NamedMetal::normal_reflectance(float lambda) const {
+    const float n = eta(lambda), kk = k(lambda);
+    return ((n - 1) * (n - 1) + kk * kk) / ((n + 1) * (n + 1) + kk * kk);
+}
+
+std::optional<NamedMetal> named_metal(const std::string& name) {
+    std::string key = name;
+    if (key.rfind("metal-", 0) == 0) {
+        key = key.substr(6);
+        for (const char* suffix : {"-eta", "-k"}) {
+            const std::string s = suffix;
+            if (key.size() > s.size() && key.compare(key.size() - s.size(), s.size(), s) == 0)
+                key = key.substr(0, key.size() - s.size());
+        }
+    }
+    for (const NamedMetal& m : named_metals())
+        if (m.name == key) return m;
+    return std::nullopt;
+}
+
+}  // namespace phos::spectrum
