@@ -259,7 +259,8 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
             const auto v = named_spectrum_value(p->strings[0]);
             if (!v) p->loc.fail("unknown named spectrum \"" + p->strings[0] + "\"");
             eta = *v;
-            warn_once("dispersion", p->loc, d + ": dispersion is not rendered; eta at ~550 nm is used");
+            warn_once("dispersion", p->loc,
+                      d + ": dispersion is not rendered; the index at the d line (587.6 nm) is used");
         } else if (p->type == "spectrum") {
             std::vector<float> l, v;
             for (size_t i = 0; i + 1 < p->numbers.size(); i += 2)

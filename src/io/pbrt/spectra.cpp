@@ -1,24 +1,23 @@
 // Spectrum to RGB conversion for the pbrt loader. phos renders in RGB, so spectra are integrated
-// once against the CIE matching functions at load time.
+// once at load time, through the spectral layer's CIE tables, Planck's law and named glasses
+// (src/spectrum, docs/spectral.md).
 #include "io/pbrt/spectra.h"
 
 #include <cmath>
 #include <map>
 
+#include "spectrum/blackbody.h"
+#include "spectrum/color.h"
+#include "spectrum/dispersion.h"
+
 namespace phos::io::pbrt {
 namespace {
 
-float lobe(float x, float mu, float s1, float s2) {
-    const float t = (x - mu) / (x < mu ? s1 : s2);
-    return std::exp(-0.5f * t * t);
-}
-
-// Integrates f(lambda) * CMF over 360..830 nm in 1 nm steps.
+// Integrates f(lambda) * CMF over 360..830 nm in 1 nm steps, over ∫ȳ (normalise() divides any
+// such scale out again).
 template <class F>
 Vec3 integrate_xyz(F f) {
-    Vec3 xyz{0.0f};
-    for (int l = 360; l <= 830; ++l) xyz += cie_xyz(float(l)) * f(float(l));
-    return xyz;
+    return spectrum::integrate_xyz([&](double l) { return double(f(float(l))); });
 }
 
 Rgb normalise(Vec3 xyz, SpectrumUse use) {
@@ -50,43 +49,26 @@ const std::map<std::string, Metal>& metals() {
     return m;
 }
 
-// Refractive indices of pbrt-v4's named glasses at the d line (587.6 nm).
-const std::map<std::string, float>& glasses() {
-    static const std::map<std::string, float> g = {
-        {"glass-BK7", 1.5168f},  {"glass-BAF10", 1.6700f}, {"glass-FK51A", 1.4866f}, {"glass-LASF9", 1.8503f},
-        {"glass-F5", 1.6034f},   {"glass-F10", 1.7283f},   {"glass-F11", 1.7847f},   {"glass-SF5", 1.6727f},
-        {"glass-SF10", 1.7283f}, {"glass-SF11", 1.7847f},
-    };
-    return g;
+// Refractive index of one of pbrt-v4's named glasses at the d line (587.6 nm), from its Sellmeier
+// coefficients (spectrum/dispersion.h).
+std::optional<float> glass_index(const std::string& name) {
+    if (const auto g = spectrum::named_glass(name)) return float(g->ior(spectrum::kLineD));
+    return std::nullopt;
 }
 
 }  // namespace
 
-Vec3 cie_xyz(float l) {
-    // Wyman, Sloan and Shirley (2013), "Simple analytic approximations to the CIE XYZ colour
-    // matching functions", multi-lobe fit.
-    const float x = 1.056f * lobe(l, 599.8f, 37.9f, 31.0f) + 0.362f * lobe(l, 442.0f, 16.0f, 26.7f) -
-                    0.065f * lobe(l, 501.1f, 20.4f, 26.2f);
-    const float y = 0.821f * lobe(l, 568.8f, 46.9f, 40.5f) + 0.286f * lobe(l, 530.9f, 16.3f, 31.1f);
-    const float z = 1.217f * lobe(l, 437.0f, 11.8f, 36.0f) + 0.681f * lobe(l, 459.0f, 26.0f, 13.8f);
-    return {x, y, z};
-}
+Vec3 cie_xyz(float l) { return spectrum::cie_xyz(l); }
 
 Rgb xyz_to_linear_srgb(Vec3 c) {
-    return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z,
-            -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
-            0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
+    const Vec3 rgb = spectrum::apply(spectrum::xyz_to_srgb(), c);
+    return {rgb.x, rgb.y, rgb.z};
 }
 
 Rgb blackbody_rgb(float kelvin) {
     if (!(kelvin > 0)) return Rgb(0.0f);
-    const double h = 6.62606957e-34, c = 299792458.0, kb = 1.3806488e-23;
-    const Vec3 xyz = integrate_xyz([&](float nm) {
-        const double l = double(nm) * 1e-9;
-        return float(2 * h * c * c / (std::pow(l, 5) * (std::exp(h * c / (l * kb * double(kelvin))) - 1)) *
-                     1e-12);
-    });
-    return normalise(xyz, SpectrumUse::Illuminant);
+    const spectrum::Blackbody b(kelvin);
+    return normalise(integrate_xyz([&](float nm) { return b(nm); }), SpectrumUse::Illuminant);
 }
 
 float sampled_spectrum_at(const std::vector<float>& lambda, const std::vector<float>& value, float nm) {
@@ -111,7 +93,7 @@ std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use) 
         if (it == metals().end() || (part != "eta" && part != "k")) return std::nullopt;
         return part == "eta" ? it->second.eta : it->second.k;
     }
-    if (const auto g = glasses().find(name); g != glasses().end()) return Rgb(g->second);
+    if (const auto g = glass_index(name)) return Rgb(*g);
     // Standard illuminants: luminance 1 with their colour (D65 is the sRGB white). The same colour
     // serves for any use, since pbrt normalises emission spectra to 1 nit anyway.
     (void)use;
@@ -124,7 +106,7 @@ std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use) 
 }
 
 std::optional<float> named_spectrum_value(const std::string& name) {
-    if (const auto g = glasses().find(name); g != glasses().end()) return g->second;
+    if (const auto g = glass_index(name)) return *g;
     if (const auto c = named_spectrum_rgb(name, SpectrumUse::Unbounded)) return c->g;
     return std::nullopt;
 }

@@ -16,7 +16,8 @@ namespace phos::io::pbrt {
 //    result has luminance Y = 1 and only its colour comes from the spectrum.
 enum class SpectrumUse { Albedo, Unbounded, Illuminant };
 
-// CIE 1931 colour matching functions (multi-lobe Gaussian fit, accurate to ~1%).
+// CIE 1931 colour matching functions (the CIE's 1 nm tables, spectrum/cie_tables.h) and XYZ to
+// linear sRGB (spectrum/color.h).
 Vec3 cie_xyz(float lambda_nm);
 Rgb xyz_to_linear_srgb(Vec3 xyz);
 
@@ -31,7 +32,8 @@ float sampled_spectrum_at(const std::vector<float>& lambda, const std::vector<fl
 // pbrt-v4's named spectra ("metal-Cu-eta", "glass-BK7", "stdillum-D65", ...) as RGB;
 // nullopt for names phos does not know.
 std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use);
-// A named spectrum's value near 550 nm (the index of refraction of a named glass).
+// A named spectrum's single value: a named glass's index at the d line (587.6 nm), else the green
+// of its RGB.
 std::optional<float> named_spectrum_value(const std::string& name);
 
 }  // namespace phos::io::pbrt
