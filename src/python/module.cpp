@@ -103,9 +103,8 @@ std::vector<std::string> option_words(const options::Option& o, const py::handle
 }
 
 // Sets keyword `key` (underscores for dashes: photons_per_iter; global_ for --global) on `cmd`
-// through its option table,
-// with the command line's checks and messages; returns the table's title. ValueError for an unknown
-// option or a bad value.
+// through its option table, with the command line's checks and messages; returns the table's
+// title. ValueError for an unknown option or a bad value.
 std::string set_option(RenderCommand& cmd, const std::string& key, const py::handle& value) {
     // A trailing underscore is Python's way round its keywords: global_=50000 is --global.
     std::string name = key.size() > 1 && key.back() == '_' ? key.substr(0, key.size() - 1) : key;
