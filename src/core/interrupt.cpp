@@ -104,6 +104,7 @@ void reset() {
     g_signal.store(0);
     g_count.store(0);
 }
+
 int exit_status(int signo) { return 128 + (signo > 0 ? signo : SIGINT); }
 
 }  // namespace phos::interrupt

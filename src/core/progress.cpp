@@ -44,9 +44,8 @@ Progress::Snapshot Progress::snapshot() const {
     std::lock_guard lock(draw_mutex_);
     Snapshot s;
     s.label = label_;
-    s.done = done_.load(std::memory_order_relaxed);
-    s.seconds = label_.empty() ? 0.0 : elapsed();
-    s.fraction = label_.empty() ? -1.0 : std::min(1.0, fraction(s.done, s.seconds));
+    if (!label_.empty())
+        s.fraction = std::min(1.0, fraction(done_.load(std::memory_order_relaxed), elapsed()));
     return s;
 }
 

@@ -47,13 +47,10 @@ public:
     bool enabled() const { return mode_ != Mode::Off; }
 
     // Where the current phase stands, readable from any thread while the render runs (the Python
-    // module's progress callback polls it): its label, the fraction done (< 0: unknown), the units
-    // done and the seconds since it started.
+    // module's progress callback polls it): its label and the fraction done (< 0: unknown).
     struct Snapshot {
         std::string label;
         double fraction = -1;
-        uint64_t done = 0;
-        double seconds = 0;
     };
     Snapshot snapshot() const;
     Mode mode() const { return mode_; }

@@ -51,14 +51,4 @@ std::string Stats::report() const {
     return s;
 }
 
-std::vector<std::pair<std::string, std::string>> Stats::values() const {
-    std::lock_guard lock(mutex_);
-    return values_;
-}
-
-std::vector<std::pair<std::string, double>> Stats::times() const {
-    std::lock_guard lock(mutex_);
-    return times_;
-}
-
 }  // namespace phos

@@ -36,9 +36,6 @@ public:
     // Photons emitted by the photon-map integrators (photonmap, ppm, sppm).
     void add_photons_emitted(uint64_t n) { photons_.fetch_add(n, std::memory_order_relaxed); }
     uint64_t photons_emitted() const { return photons_.load(std::memory_order_relaxed); }
-    // The "name: value" lines and the phases' times so far, in their order.
-    std::vector<std::pair<std::string, std::string>> values() const;
-    std::vector<std::pair<std::string, double>> times() const;
 
 private:
     std::atomic<uint64_t> camera_{0}, shadow_{0}, bounce_{0}, photon_{0};

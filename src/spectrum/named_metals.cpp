@@ -1,22 +1,15 @@
 // Lookups in the named metals' tables (see named_metals.h).
 #include "spectrum/named_metals.h"
 
-#include <algorithm>
+#include "spectrum/piecewise_linear.h"
 
 namespace phos::spectrum {
 
 namespace {
 
-// Linear interpolation of the member `field` at `lambda` (clamped to the table's ends).
 float interpolate(const std::vector<OpticalConstant>& t, float lambda, float OpticalConstant::*field) {
-    if (t.empty()) return 0;
-    if (lambda <= t.front().lambda) return t.front().*field;
-    if (lambda >= t.back().lambda) return t.back().*field;
-    const auto hi = std::upper_bound(t.begin(), t.end(), lambda,
-                                     [](float l, const OpticalConstant& c) { return l < c.lambda; });
-    const auto lo = hi - 1;
-    const float s = (lambda - lo->lambda) / (hi->lambda - lo->lambda);
-    return (*lo).*field * (1 - s) + (*hi).*field * s;
+    return piecewise_linear(
+        t.size(), [&](size_t i) { return t[i].lambda; }, [&](size_t i) { return t[i].*field; }, lambda);
 }
 
 }  // namespace

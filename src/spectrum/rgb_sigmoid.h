@@ -53,8 +53,6 @@ public:
     SigmoidPolynomial exact(Vec3 rgb) const;
 
     int resolution() const { return res_; }
-    // The z grid's k-th value.
-    float z(int k) const { return z_[size_t(k)]; }
     // Serialised form: "PHOSRGBS", version, res, then the coefficients (float, little-endian).
     std::vector<uint8_t> bytes() const;
     static RgbSigmoidTable from_bytes(const uint8_t* data, size_t size);

@@ -12,16 +12,6 @@
 namespace phos::photon {
 namespace {
 
-// A large quad in the plane y = 0.
-scene::Scene floor_plane() {
-    scene::Scene s;
-    s.materials.emplace_back();
-    scene::Shape q = testing::quad({-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10});
-    q.material = 0;
-    s.shapes.push_back(q);
-    return s;
-}
-
 double plane_cut_fraction(double h, double r) {
     if (h >= r) return 1;
     const double cap = M_PI * (r - h) * (r - h) * (2 * r + h) / 3;
@@ -29,13 +19,13 @@ double plane_cut_fraction(double h, double r) {
 }
 
 TEST(OpenBall, FreeSpaceIsWhole) {
-    const scene::Scene s = floor_plane();
+    const scene::Scene s = testing::floor_scene();
     const accel::EmbreeScene accel(s);
     EXPECT_EQ(open_ball_fraction(accel, {0, 2, 0}, 1.0f), 1.0f);
 }
 
 TEST(OpenBall, APlaneThroughTheBallMatchesTheCapVolume) {
-    const scene::Scene s = floor_plane();
+    const scene::Scene s = testing::floor_scene();
     const accel::EmbreeScene accel(s);
     // Sixteen directions estimate the integral over the sphere: within 0.06 of the closed form.
     for (double h : {0.05, 0.25, 0.5, 0.75}) {

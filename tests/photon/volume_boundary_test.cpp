@@ -29,15 +29,6 @@ constexpr int kPhotons = 200000;
 constexpr double kVolume = 4.0;
 const double kTruth = kPhotons / kVolume / (4 * M_PI);  // n / V times the isotropic phase
 
-scene::Scene floor_scene() {
-    scene::Scene s;
-    s.materials.emplace_back();
-    scene::Shape q = testing::quad({-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10});
-    q.material = 0;
-    s.shapes.push_back(q);
-    return s;
-}
-
 std::vector<Photon> uniform_photons() {
     Sampler rng(17);
     std::vector<Photon> v;
@@ -59,7 +50,7 @@ shading::Medium vacuum_like() {
 }
 
 TEST(VolumeBoundary, KNearestEstimateBesideAFloorReadsTheTrueDensity) {
-    const scene::Scene s = floor_scene();
+    const scene::Scene s = testing::floor_scene();
     const accel::EmbreeScene accel(s);
     const PhotonKdTree map(uniform_photons());
     const shading::Medium medium = vacuum_like();
@@ -89,7 +80,7 @@ TEST(VolumeBoundary, BeamEstimateKeepsThePowerOfPhotonsBesideAFloor) {
     // at each point (within a radius of the floor points read a little low and points a radius
     // away a little high), so the check is on the slab 0 < y < 0.3 (three radii) as a whole: rays
     // along +x at heights spread evenly through it average the true value.
-    const scene::Scene s = floor_scene();
+    const scene::Scene s = testing::floor_scene();
     const accel::EmbreeScene accel(s);
     const PhotonKdTree map(uniform_photons());
     const shading::Medium medium = vacuum_like();

@@ -15,6 +15,7 @@
 #include "spectrum/cie_tables.h"
 #include "spectrum/color.h"
 #include "spectrum/dispersion.h"
+#include "spectrum/piecewise_linear.h"
 #include "spectrum/sampled_spectrum.h"
 
 namespace phos::spectrum {
@@ -151,6 +152,23 @@ TEST(NamedGlass, IndexAndAbbeNumberMatchTheCatalogue) {
     }
     EXPECT_TRUE(named_glass("glass-F11").has_value());
     EXPECT_FALSE(named_glass("glass-unknown").has_value());
+}
+
+TEST(PiecewiseLinear, InterpolatesHoldsItsEndsAndTakesTheFirstValueAtAStep) {
+    const std::vector<float> x{400, 500, 600, 600, 700}, y{1, 3, 3, 5, 7};
+    const auto at = [&](float l) {
+        return piecewise_linear(
+            x.size(), [&](size_t i) { return x[i]; }, [&](size_t i) { return y[i]; }, l);
+    };
+    EXPECT_FLOAT_EQ(at(450), 2.0f);
+    EXPECT_FLOAT_EQ(at(300), 1.0f);
+    EXPECT_FLOAT_EQ(at(900), 7.0f);
+    EXPECT_FLOAT_EQ(at(500), 3.0f);
+    EXPECT_FLOAT_EQ(at(600), 3.0f);  // the step's first point
+    EXPECT_FLOAT_EQ(at(650), 6.0f);
+    EXPECT_EQ(piecewise_linear(
+                  0, [](size_t) { return 0.0f; }, [](size_t) { return 0.0f; }, 500.0f),
+              0.0f);
 }
 
 }  // namespace

@@ -60,6 +60,17 @@ inline scene::Shape quad(Vec3 p0, Vec3 p1, Vec3 p2, Vec3 p3) {
     return s;
 }
 
+// A scene holding one default material and a 20 x 20 quad in the plane y = 0 facing +y (a floor
+// that bounds whatever lies above it).
+inline scene::Scene floor_scene() {
+    scene::Scene s;
+    s.materials.emplace_back();
+    scene::Shape q = quad({-10, 0, -10}, {-10, 0, 10}, {10, 0, 10}, {10, 0, -10});
+    q.material = 0;
+    s.shapes.push_back(q);
+    return s;
+}
+
 // A closed UV-sphere mesh (outward, counter-clockwise from outside), optionally with normals.
 inline scene::Shape mesh_sphere(Vec3 c, float r, int nu, int nv, bool normals) {
     scene::Shape s;

@@ -608,12 +608,11 @@ int run_render(const RenderCommand& command, const RenderHooks& hooks) {
         done = integrator->render(*prepared, film, progress);
         render_seconds = seconds_since(t0);
         if (dist::distributed()) {
-            const double seconds = seconds_since(t0);
             const RayCounts rays = stats.rays();
-            rank_lines = dist::gather(
-                printf_string("%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged", worker_threads(),
-                              seconds, double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
-                              double(dist::bytes_exchanged()) * 1e-6));
+            rank_lines = dist::gather(printf_string(
+                "%d threads, render %.3f s, %.4g M rays, %.3g MB exchanged", worker_threads(), render_seconds,
+                double(rays.camera + rays.shadow + rays.bounce + rays.photon) * 1e-6,
+                double(dist::bytes_exchanged()) * 1e-6));
         }
         dist::mark_finished();
     }
@@ -646,8 +645,7 @@ int run_render(const RenderCommand& command, const RenderHooks& hooks) {
         r.done = done;
         r.seconds = render_seconds;
         r.rays = stats.rays();
-        r.photons = stats.photons_emitted();
-        r.interrupted = interrupted;
+        r.photons = stats.photons_emitted();  // r.interrupted is set above
     } else {
         ScopedTimer t(stats, "write");
         write_images(output, film, layers, cmd.run.exposure);

@@ -9,15 +9,14 @@
 #include "spectrum/blackbody.h"
 #include "spectrum/color.h"
 #include "spectrum/dispersion.h"
+#include "spectrum/piecewise_linear.h"
 
 namespace phos::io::pbrt {
 namespace {
 
-// Integrates f(lambda) * CMF over 360..830 nm in 1 nm steps, over ∫ȳ (normalise() divides any
-// such scale out again).
-template <class F>
-Vec3 integrate_xyz(F f) {
-    return spectrum::integrate_xyz([&](double l) { return double(f(float(l))); });
+Rgb xyz_to_linear_srgb(Vec3 c) {
+    const Vec3 rgb = spectrum::apply(spectrum::xyz_to_srgb(), c);
+    return {rgb.x, rgb.y, rgb.z};
 }
 
 Rgb normalise(Vec3 xyz, SpectrumUse use) {
@@ -27,7 +26,7 @@ Rgb normalise(Vec3 xyz, SpectrumUse use) {
     }
     // Reflectance-like: divide by the response to a flat spectrum of 1, so grey stays grey
     // (a von Kries-style white balance from the equal-energy white to RGB white).
-    static const Rgb white = xyz_to_linear_srgb(integrate_xyz([](float) { return 1.0f; }));
+    static const Rgb white = xyz_to_linear_srgb(spectrum::integrate_xyz([](double) { return 1.0; }));
     return xyz_to_linear_srgb(xyz) / white;
 }
 
@@ -58,31 +57,22 @@ std::optional<float> glass_index(const std::string& name) {
 
 }  // namespace
 
-Vec3 cie_xyz(float l) { return spectrum::cie_xyz(l); }
-
-Rgb xyz_to_linear_srgb(Vec3 c) {
-    const Vec3 rgb = spectrum::apply(spectrum::xyz_to_srgb(), c);
-    return {rgb.x, rgb.y, rgb.z};
-}
-
 Rgb blackbody_rgb(float kelvin) {
     if (!(kelvin > 0)) return Rgb(0.0f);
     const spectrum::Blackbody b(kelvin);
-    return normalise(integrate_xyz([&](float nm) { return b(nm); }), SpectrumUse::Illuminant);
+    return normalise(spectrum::integrate_xyz([&](double nm) { return double(b(float(nm))); }),
+                     SpectrumUse::Illuminant);
 }
 
 float sampled_spectrum_at(const std::vector<float>& lambda, const std::vector<float>& value, float nm) {
-    if (lambda.empty()) return 0.0f;
-    if (nm <= lambda.front()) return value.front();
-    if (nm >= lambda.back()) return value.back();
-    size_t i = 1;
-    while (lambda[i] < nm) ++i;
-    const float t = (nm - lambda[i - 1]) / (lambda[i] - lambda[i - 1]);
-    return value[i - 1] + t * (value[i] - value[i - 1]);
+    return spectrum::piecewise_linear(
+        lambda.size(), [&](size_t i) { return lambda[i]; }, [&](size_t i) { return value[i]; }, nm);
 }
 
 Rgb sampled_spectrum_rgb(const std::vector<float>& lambda, const std::vector<float>& value, SpectrumUse use) {
-    return normalise(integrate_xyz([&](float nm) { return sampled_spectrum_at(lambda, value, nm); }), use);
+    return normalise(spectrum::integrate_xyz(
+                         [&](double nm) { return double(sampled_spectrum_at(lambda, value, float(nm))); }),
+                     use);
 }
 
 std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use) {

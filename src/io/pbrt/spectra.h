@@ -16,11 +16,6 @@ namespace phos::io::pbrt {
 //    result has luminance Y = 1 and only its colour comes from the spectrum.
 enum class SpectrumUse { Albedo, Unbounded, Illuminant };
 
-// CIE 1931 colour matching functions (the CIE's 1 nm tables, spectrum/cie_tables.h) and XYZ to
-// linear sRGB (spectrum/color.h).
-Vec3 cie_xyz(float lambda_nm);
-Rgb xyz_to_linear_srgb(Vec3 xyz);
-
 // Normalised blackbody emitter colour: linear sRGB with luminance 1.
 Rgb blackbody_rgb(float kelvin);
 

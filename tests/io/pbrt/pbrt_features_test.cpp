@@ -13,6 +13,7 @@
 
 #include "io/pbrt/spectra.h"
 #include "pbrt_test_util.h"
+#include "spectrum/color.h"
 #include "support/mesh_writers.h"
 
 namespace phos::io::test {
@@ -486,8 +487,8 @@ TEST(PbrtSpectra, BlackbodyAndSampledSpectra) {
     EXPECT_GT(red.r, 0.5f);
     EXPECT_LT(red.b, 0.05f);
     // CIE y peaks near 555 nm
-    EXPECT_GT(pbrt::cie_xyz(555).y, 0.95f);
-    EXPECT_LT(pbrt::cie_xyz(450).y, 0.1f);
+    EXPECT_GT(spectrum::cie_xyz(555).y, 0.95f);
+    EXPECT_LT(spectrum::cie_xyz(450).y, 0.1f);
 
     const Loaded l = load_text(
         "WorldBegin\nLightSource \"point\" \"blackbody I\" 3000\nLightSource \"point\" \"spectrum I\" "
