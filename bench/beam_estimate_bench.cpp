@@ -58,7 +58,8 @@ struct Setup {
         for (int i = 0; i < kPhotons; ++i) {
             const Vec3 p(rng.next(), rng.next(), rng.next());
             const Vec3 wi(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f);
-            photons.push_back(Photon(p, Rgb(1.0f / kPhotons), wi, Vec3(0.0f)));
+            photons.push_back(
+                Photon(p, Spectrum(1.0f / kPhotons), Wavelengths::visible(rng.next()), wi, Vec3(0.0f)));
         }
         map.build(photons);
         bvh.build(photon_spheres(map, kK, kMaxRadius), leaf_size());
@@ -89,7 +90,7 @@ struct Setup {
         Rgb sum(0.0f);
         for (int k = 0; k < n; ++k) {
             const float t = (float(k) + jitter) * dt;
-            sum += exp(medium.sigma_t() * -t) * dt *
+            sum += exp(medium.sigma_t_rgb() * -t) * dt *
                    volume_radiance_estimate(map, opt, o[i] + d[i] * t, -d[i], medium.phase());
         }
         return sum;

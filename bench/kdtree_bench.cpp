@@ -117,7 +117,7 @@ std::vector<Photon> make_photons(size_t n, uint64_t seed) {
         } else {
             p = surfaces.sample(rng);
         }
-        photons[i] = Photon(p, Rgb(1e-6f), Vec3(0, 1, 0), Vec3(0, 1, 0));
+        photons[i] = Photon(p, Spectrum(1e-6f), Wavelengths::visible(0.5f), Vec3(0, 1, 0), Vec3(0, 1, 0));
     });
     return photons;
 }

@@ -30,7 +30,8 @@ RenderDone BdptIntegrator::render(const Prepared& P, film::Film& film, Progress&
         camera_pass(P, it, nullptr, tiles, iteration, sums,
                     [&](size_t i, std::vector<Vertex>& light, RayCounts& rays) {
                         Sampler sampler(ro.seed, kLightSubpathStream, i, iteration);
-                        trace_light_path(P, light_rules, sampler, light, rays);
+                        trace_light_path(P, light_rules, sampler, subpath_wavelengths(ro.seed, i, iteration),
+                                         light, rays);
                     });
         sums.sum_over_ranks();
         loop.after_iteration(resolve_film);

@@ -7,18 +7,23 @@
 
 namespace phos::integrators::vcm {
 
-Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode) {
+Wavelengths subpath_wavelengths(uint64_t seed, uint64_t j, uint64_t iteration) {
+    return Wavelengths::visible(Sampler(seed, 0x7761766573ULL, j, iteration).next());
+}
+
+Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode,
+                    const Wavelengths& lambda) {
     Scattering s;
     if (v.in_medium) {
         const shading::PhaseFunction& phase = P.media[v.medium].phase();
         const float p = phase.eval(v.wo, wi);
-        s.f = Rgb(p);
+        s.f = Spectrum(p);
         s.pdf_dir = p;
         s.pdf_rev = phase.eval(wi, v.wo);
         return s;
     }
     const shading::Bsdf& b = *v.bsdf;
-    const shading::Bsdf::Evaluation e = b.evaluate(v.wo, wi, mode);
+    const shading::Bsdf::Evaluation e = b.evaluate(v.wo, wi, lambda, mode);
     s.f = e.f;
     s.cos = std::fabs(dot(b.frame().n, wi));
     s.pdf_dir = e.pdf;
@@ -35,31 +40,36 @@ int medium_towards(const Vertex& v, Vec3 dir) {
 
 }  // namespace
 
-Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler) {
+Spectrum transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler,
+                               const Wavelengths& lambda) {
     if (!a.in_medium && !b.in_medium) {
         const Ray ray = accel::spawn_ray_between(a.hit, b.hit);
         return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir),
-                                             sampler);
+                                             sampler, lambda);
     }
-    if (a.in_medium && !b.in_medium) return transmittance_to(P, b, a.p, sampler);
-    return transmittance_to(P, a, b.p, sampler);
+    if (a.in_medium && !b.in_medium) return transmittance_to(P, b, a.p, sampler, lambda);
+    return transmittance_to(P, a, b.p, sampler, lambda);
 }
 
-Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler) {
+Spectrum transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler,
+                          const Wavelengths& lambda) {
     Ray ray;
     if (a.in_medium) {
         ray = Ray{a.p, target - a.p, 0.0f, 1 - 1e-4f};
     } else {
         ray = accel::spawn_ray_to(a.hit, target);
     }
-    return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir), sampler);
+    return shading::shadow_transmittance(P.accel, P.active_media(), ray, medium_towards(a, ray.dir), sampler,
+                                         lambda);
 }
 
 Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
-                    const Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta) {
+                    const Ray& ray, const accel::SurfaceHit& hit, int length, const Spectrum& beta,
+                    const Wavelengths& lambda) {
     Vertex v;
     v.length = length;
     v.beta = beta;
+    v.lambda = lambda;
     v.medium = walk.medium();
     if (event == shading::SurfaceWalk::Event::Medium) {
         v.p = walk.medium_point();
@@ -84,10 +94,11 @@ std::optional<Direction> continue_from(const Prepared& P, const Vertex& v, shadi
         pdf_rev = phase.eval(d.wi, v.wo);
     } else {
         const float u_lobe = sampler.next();
-        const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), mode);
+        const auto bs = v.bsdf->sample(v.wo, u_lobe, sampler.next2(), path.lambda, mode);
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) return std::nullopt;
         d.wi = bs->wi;
         path.beta *= bs->weight;
+        if (bs->dispersive) spectrum::terminate_secondary(path.lambda, path.beta);
         d.delta = bs->is_specular();
         pdf = bs->pdf;
         if (!d.delta) pdf_rev = v.bsdf->pdf(d.wi, v.wo);
@@ -105,7 +116,7 @@ Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk) {
     return accel::spawn_ray(v.hit, wi);
 }
 
-bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
+bool survives(int length, Spectrum& beta, const Spectrum& beta0, Sampler& sampler) {
     if (length > 3) {
         const float start = beta0.max();
         const float p = std::clamp(start > 0 ? beta.max() / start : 0.0f, 0.05f, 1.0f);
@@ -116,14 +127,14 @@ bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler) {
 }
 
 bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler& sampler,
-                      std::vector<Vertex>& out, RayCounts& rays) {
+                      const Wavelengths& lambda, std::vector<Vertex>& out, RayCounts& rays) {
     if (P.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = P.lights.choose(sampler.next(), pmf);
     const Vec2 u_pos = sampler.next2(), u_dir = sampler.next2();
     if (!(pmf > 0)) return false;
     const shading::Light& light = P.lights[li];
-    const shading::LightLeSample e = light.sample_Le(u_pos, u_dir);
+    const shading::LightLeSample e = light.sample_Le(u_pos, u_dir, lambda);
     if (e.weight.is_black() || !e.weight.is_finite() || !(e.pdf_pos > 0) || !(e.pdf_dir > 0)) return false;
     const scene::Light::Kind kind = P.scene.lights[li].kind;
     const bool at_infinity = light.is_infinite() || kind == scene::Light::Kind::Directional;
@@ -131,9 +142,10 @@ bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler
     const float direct_pdf = direct_density(pmf, e.pdf_pos, e.pdf_dir, at_infinity);
     const float emit_pdf = pmf * e.pdf_pos * e.pdf_dir;
     const float cos_light = area ? std::fabs(dot(e.n, e.ray.dir)) : 1.0f;
-    SubpathState path{e.weight * (1.0f / pmf), start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(),
-                                                           at_infinity, rules.factors)};
-    const Rgb beta0 = path.beta;
+    SubpathState path{
+        e.weight * (1.0f / pmf),
+        start_light(direct_pdf, emit_pdf, cos_light, light.is_delta(), at_infinity, rules.factors), lambda};
+    const Spectrum beta0 = path.beta;
     Ray ray = e.ray;
     const shading::MediaSet* media = P.active_media();
     shading::SurfaceWalk walk(P.accel, media, P.lights.emission_medium(li, e));
@@ -141,12 +153,13 @@ bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler
     bool delta_chain = true;
     for (int segments = 1;; ++segments) {
         accel::SurfaceHit hit;
-        Rgb emitted(0.0f);  // light paths ignore media's own emission (only camera paths see it)
-        const auto event = media ? walk.next(ray, hit, sampler, path.beta, emitted) : walk.next(ray, hit);
+        Spectrum emitted(0.0f);  // light paths ignore media's own emission (only camera paths see it)
+        const auto event =
+            media ? walk.next(ray, hit, sampler, path.lambda, path.beta, emitted) : walk.next(ray, hit);
         ++rays.photon;
         if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
             break;
-        Vertex v = reach_vertex(P, event, walk, ray, hit, segments, path.beta);
+        Vertex v = reach_vertex(P, event, walk, ray, hit, segments, path.beta, path.lambda);
         v.delta_chain = delta_chain;
         // The first segment from a light at infinity has no distance to convert (its start is a
         // direction).

@@ -1,6 +1,8 @@
 // The vertices of bidirectional methods (bdpt, vcm) and the light subpath walk they share: a
 // vertex on a surface (its BSDF) or in a medium (its phase function), with the throughput that
-// reached it and the recursive MIS state of its subpath (vcm_mis.h).
+// reached it and the recursive MIS state of its subpath (vcm_mis.h). A subpath carries its
+// wavelengths: a pixel's light subpath and its first camera subpath share theirs
+// (subpath_wavelengths), so that connecting them makes one path at one set of wavelengths.
 #pragma once
 
 #include <cmath>
@@ -25,7 +27,8 @@ namespace phos::integrators::vcm {
 struct VertexCore {
     Vec3 p;
     Vec3 wo;                // unit, towards the previous vertex of its subpath
-    Rgb beta;               // throughput of the subpath up to (not including) this vertex
+    Spectrum beta;          // throughput of the subpath up to (not including) this vertex
+    Wavelengths lambda;     // the subpath's wavelengths at this vertex
     accel::SurfaceHit hit;  // surface vertices
     int medium = -1;        // a medium vertex: its medium; a surface vertex: the medium the path came in
     bool in_medium = false;
@@ -53,24 +56,37 @@ inline Vertex with_bsdf(const Prepared& P, const VertexCore& c) {
 // given its wo: the value f (BSDF, or phase function in a medium), |cos| with the shading normal
 // (1 in a medium), and the solid-angle pdfs of sampling wi from wo (dir) and wo from wi (rev).
 struct Scattering {
-    Rgb f;
+    Spectrum f;  // at the wavelengths asked
     float cos = 1, pdf_dir = 0, pdf_rev = 0;
 };
-Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode);
+Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode,
+                    const Wavelengths& lambda);
 
 // The vertex a subpath's walk reached with `event` (Surface or Medium) after `length` segments,
 // arriving with throughput `beta` (its MIS state is the caller's).
 Vertex reach_vertex(const Prepared& P, shading::SurfaceWalk::Event event, const shading::SurfaceWalk& walk,
-                    const Ray& ray, const accel::SurfaceHit& hit, int length, Rgb beta);
+                    const Ray& ray, const accel::SurfaceHit& hit, int length, const Spectrum& beta,
+                    const Wavelengths& lambda);
 // |cos| of unit direction w with v's shading normal (1 in a medium).
 inline float cos_at(const Vertex& v, Vec3 w) {
     return v.in_medium ? 1.0f : std::fabs(dot(v.bsdf->frame().n, w));
 }
-// What a subpath carries from vertex to vertex: its throughput and its MIS state.
+// What a subpath carries from vertex to vertex: its throughput, its MIS state and its wavelengths.
 struct SubpathState {
-    Rgb beta;
+    Spectrum beta;
     SubpathMis mis;
+    Wavelengths lambda;
 };
+// The wavelengths of subpath j of an iteration, light or camera: pixel j's light subpath and its
+// first camera subpath draw the same.
+Wavelengths subpath_wavelengths(uint64_t seed, uint64_t j, uint64_t iteration);
+// The wavelengths a connection of a camera and a light subpath at the same wavelengths counts:
+// the camera's, with the secondary ones terminated if either subpath terminated them.
+inline Wavelengths joined(const Wavelengths& camera, const Wavelengths& light) {
+    Wavelengths w = camera;
+    if (light.secondary_terminated()) w.terminate_secondary();
+    return w;
+}
 // How the MIS state takes a scattering at a vertex: the iteration's factors, whether merging at the
 // vertex is a strategy (scatter's `mergeable`), and the probability with which the caller chose to
 // go on from the vertex at all (a factor of the direction's density; the caller divides beta by
@@ -87,22 +103,25 @@ struct Direction {
     bool delta = false;
 };
 // The subpath goes on from v: samples a direction (the BSDF in `mode`, the phase function in a
-// medium), multiplies path.beta by its weight and updates path.mis (scatter or scatter_delta).
-// Nothing when nothing was sampled.
+// medium), multiplies path.beta by its weight and updates path.mis (scatter or scatter_delta); a
+// dispersive interface terminates path.lambda's secondary wavelengths. Nothing when nothing was
+// sampled.
 std::optional<Direction> continue_from(const Prepared& P, const Vertex& v, shading::TransportMode mode,
                                        const ScatterTerms& terms, Sampler& sampler, SubpathState& path);
 // The ray leaving v in direction wi; the walk follows the medium change at a surface.
 Ray leave_vertex(const Vertex& v, Vec3 wi, shading::SurfaceWalk& walk);
 
 // Transmittance between two vertices (0 if blocked): media crossed included.
-Rgb transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler);
+Spectrum transmittance_between(const Prepared& P, const Vertex& a, const Vertex& b, Sampler& sampler,
+                               const Wavelengths& lambda);
 // Transmittance from vertex `a` to a point `target` that is not on a surface a ray can hit (the
 // lens, a point light), or to a sampled light point (short of it).
-Rgb transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler);
+Spectrum transmittance_to(const Prepared& P, const Vertex& a, Vec3 target, Sampler& sampler,
+                          const Wavelengths& lambda);
 
 // Russian roulette on a subpath after three segments: survival in proportion to the throughput
 // relative to its start (`beta0`), at least 5 %; survivors are reweighted.
-bool survives(int length, Rgb& beta, Rgb beta0, Sampler& sampler);
+bool survives(int length, Spectrum& beta, const Spectrum& beta0, Sampler& sampler);
 
 // How light subpaths are traced: at most `max_segments` segments, the MIS `factors`; surface
 // vertices at least `merge_from` segments from the light are mergeable (0: none). With
@@ -115,10 +134,10 @@ struct LightSubpathRules {
     int merge_from = 0;
     bool merge_terms = false;
 };
-// The light subpath of one light sample: a light chosen by power, an emitted ray, a random walk.
-// Appends the vertices connections and merging can use (those with a non-delta lobe, and medium
-// vertices) to `out`. Returns false when no light emits.
+// The light subpath of one light sample at wavelengths `lambda`: a light chosen by power, an
+// emitted ray, a random walk. Appends the vertices connections and merging can use (those with a
+// non-delta lobe, and medium vertices) to `out`. Returns false when no light emits.
 bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler& sampler,
-                      std::vector<Vertex>& out, RayCounts& rays);
+                      const Wavelengths& lambda, std::vector<Vertex>& out, RayCounts& rays);
 
 }  // namespace phos::integrators::vcm

@@ -9,7 +9,9 @@
 
 #include "core/low_discrepancy.h"
 #include "dist/ranks.h"
+#include "render/path_recorder.h"
 #include "shading/surface_walk.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators::vcm {
 
@@ -93,7 +95,7 @@ float weight_roulette(const Iteration& it, float w, Sampler& sampler) {
 void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     CameraModel::Connection c;
     if (!C.P.camera.connect(v.p, sampler.next2(), c)) return;
-    const Scattering s = evaluate(C.P, v, c.wi, shading::TransportMode::Importance);
+    const Scattering s = evaluate(C.P, v, c.wi, shading::TransportMode::Importance, v.lambda);
     if (s.f.is_black()) return;
     const float camera_pdf_a = c.pdf_dir * s.cos / (c.distance * c.distance);
     // A light subpath's first vertex seen by the camera makes a path whose light-sampling strategy
@@ -111,28 +113,28 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     w *= weight_roulette(C.it, w, sampler);
     if (w == 0) return;
     ++C.rays.shadow;
-    const Rgb T = transmittance_to(C.P, v, c.lens, sampler);
+    const Spectrum T = transmittance_to(C.P, v, c.lens, sampler, v.lambda);
     if (T.is_black()) return;
-    const Rgb value = v.beta * s.f * T * (w * camera_pdf_a);
-    C.film.add(pixel, value, part_at_first_vertex(v));
+    const Spectrum value = v.beta * s.f * T * (w * camera_pdf_a);
+    C.film.add(pixel, spectrum::to_srgb(value, v.lambda), part_at_first_vertex(v));
 }
 
 // One light sample at camera vertex `v` (s = 1) from the random numbers (u_light, u), weighted
 // against the other strategies with the light sampling density scaled by `n`, the light samples
 // taken at this vertex (multi-sample MIS, Veach 1997 sec. 9.2.2: the n samples together are one
 // strategy of density n p).
-Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u, float n, float n_mis,
-                        float go_on, Sampler& sampler) {
+Spectrum direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u, float n, float n_mis,
+                             float go_on, Sampler& sampler, const Wavelengths& lambda) {
     const Prepared& P = C.P;
-    if (P.lights.size() == 0) return Rgb(0.0f);
+    if (P.lights.size() == 0) return Spectrum(0.0f);
     float pmf = 0;
     const size_t li = P.lights.choose(u_light, pmf);
-    if (!(pmf > 0)) return Rgb(0.0f);
+    if (!(pmf > 0)) return Spectrum(0.0f);
     const shading::Light& light = P.lights[li];
-    const shading::LightLiSample ls = light.sample_Li(v.p, u);
-    if (!(ls.pdf > 0) || ls.L.is_black()) return Rgb(0.0f);
-    const Scattering s = evaluate(P, v, ls.wi, shading::TransportMode::Radiance);
-    if (s.f.is_black()) return Rgb(0.0f);
+    const shading::LightLiSample ls = light.sample_Li(v.p, u, lambda);
+    if (!(ls.pdf > 0) || ls.L.is_black()) return Spectrum(0.0f);
+    const Scattering s = evaluate(P, v, ls.wi, shading::TransportMode::Radiance, lambda);
+    if (s.f.is_black()) return Spectrum(0.0f);
     const bool at_infinity = !(ls.distance < kInf);
     const bool area = P.scene.lights[li].kind == scene::Light::Kind::Area;
     float pdf_pos = 0, pdf_dir = 0;
@@ -146,10 +148,10 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
                                   direct_pdf_w, v.mergeable && C.it.strategies.merge_next_to_light(),
                                   s.cos / d2, C.merge_at.factors);
     w *= weight_roulette(C.it, w, sampler);
-    if (w == 0) return Rgb(0.0f);
+    if (w == 0) return Spectrum(0.0f);
     ++C.rays.shadow;
-    const Rgb T = transmittance_to(P, v, ls.p_light, sampler);
-    if (T.is_black()) return Rgb(0.0f);
+    const Spectrum T = transmittance_to(P, v, ls.p_light, sampler, lambda);
+    if (T.is_black()) return Spectrum(0.0f);
     return s.f * ls.L * T * (w * s.cos / (n * pmf * ls.pdf));
 }
 
@@ -158,30 +160,34 @@ Rgb direct_light_sample(const Context& C, const Vertex& v, float u_light, Vec2 u
 // samples from the pixel's stratified sequences, as SPPM's visible points take them (each estimate
 // also divided by the camera samples, which all take them); deeper, one independent sample.
 // `go_on`: the probability of the camera subpath going on from v (below 1 only when first).
-Rgb direct_light(const Context& C, const Vertex& v, bool first, float go_on, Sampler& sampler) {
+Spectrum direct_light(const Context& C, const Vertex& v, bool first, float go_on, Sampler& sampler,
+                      const Wavelengths& lambda) {
     if (!first) {
         const float u_light = sampler.next();
-        return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, 1.0f, sampler);
+        return direct_light_sample(C, v, u_light, sampler.next2(), 1.0f, 1.0f, 1.0f, sampler, lambda);
     }
     const int n = C.it.direct_samples;
     const float all = float(n * C.it.camera_samples);
     // A lone point-like light gives the same sample every time: one shadow ray stands for all n.
     if (C.P.lights.size() == 1 && C.P.lights[0].is_delta())
-        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, go_on, sampler) *
+        return direct_light_sample(C, v, 0.5f, Vec2(0.5f, 0.5f), all, C.it.direct_mis, go_on, sampler,
+                                   lambda) *
                float(n);
-    Rgb sum(0.0f);
+    Spectrum sum(0.0f);
     for (int k = 0; k < n; ++k) {
         const uint32_t i = C.sample * uint32_t(n) + uint32_t(k);
         sum += direct_light_sample(C, v, padded_point1(i, hash_combine(C.sequence_key, 3)),
                                    padded_point2(i, hash_combine(C.sequence_key, 4)), all, C.it.direct_mis,
-                                   go_on, sampler);
+                                   go_on, sampler, lambda);
     }
     return sum;
 }
 
 // Connections of camera vertex `v` (depth d) with every vertex of its light subpath (s, t >= 2);
 // `go_on`: the probability of the camera subpath going on from v.
-Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& sampler) {
+// The sum is a colour: each connection at the wavelengths both subpaths share (joined).
+Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& sampler, const Spectrum& beta,
+                       const Wavelengths& lambda) {
     Rgb sum(0.0f);
     for (const Vertex& l : C.light_path) {
         if (l.length + v.length > C.P.options.max_depth) continue;
@@ -190,8 +196,8 @@ Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& 
         if (!(dist2 > 0)) continue;
         const float dist = std::sqrt(dist2);
         d = d / dist;
-        const Scattering sc = evaluate(C.P, v, d, shading::TransportMode::Radiance);
-        const Scattering sl = evaluate(C.P, l, -d, shading::TransportMode::Importance);
+        const Scattering sc = evaluate(C.P, v, d, shading::TransportMode::Radiance, lambda);
+        const Scattering sl = evaluate(C.P, l, -d, shading::TransportMode::Importance, lambda);
         if (sc.f.is_black() || sl.f.is_black()) continue;
         const float camera_pdf_a = go_on * sc.pdf_dir * sl.cos / dist2;  // v's BSDF reaching l
         const float light_pdf_a = sl.pdf_dir * sc.cos / dist2;           // l's BSDF reaching v
@@ -201,9 +207,10 @@ Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& 
         w *= weight_roulette(C.it, w, sampler);
         if (w == 0) continue;
         ++C.rays.shadow;
-        const Rgb T = transmittance_between(C.P, v, l, sampler);
+        const Spectrum T = transmittance_between(C.P, v, l, sampler, lambda);
         if (T.is_black()) continue;
-        sum += sc.f * sl.f * l.beta * T * (w * sc.cos * sl.cos / dist2);
+        sum += spectrum::to_srgb(beta * sc.f * sl.f * l.beta * T * (w * sc.cos * sl.cos / dist2),
+                                 joined(lambda, l.lambda));
     }
     return sum;
 }
@@ -212,6 +219,7 @@ Rgb connect_light_path(const Context& C, const Vertex& v, float go_on, Sampler& 
 // per Part of the light vertex (meaningful when v is the camera's first vertex). `first`: v is the
 // camera subpath's first non-delta vertex; `go_on`: the probability of the camera subpath going on
 // from v (below 1 only when first).
+// Each light vertex's light meets v's BSDF at that vertex's wavelengths: the sums are colours.
 void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[kParts]) {
     const int max_length = C.P.options.max_depth + 1 - v.length;
     const std::vector<MergeVertex>& lights = C.merging->vertices;
@@ -219,7 +227,8 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
     // whose light-sampling strategy is at v, with its direct_samples samples when v is the first
     // non-delta vertex.
     const float direct_scale = first ? vcm::mis(C.it.direct_mis) : 1.0f;
-    const auto add = [&](const MergeVertex& l, Rgb f, float pdf_dir, float pdf_rev) {
+    const auto add = [&](const MergeVertex& l, const Wavelengths& lambda, const Spectrum& f, float pdf_dir,
+                         float pdf_rev) {
         float w = 1;
         if (!C.it.strategies.ppm) {
             SubpathMis lm = l.mis;
@@ -227,7 +236,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
             if (C.it.pixel_radius) lm.dVM *= C.merge_at.factors.vc;  // the pixel's 1 / eta^2
             w = merge_weight(v.mis, lm, pdf_dir * go_on, pdf_rev, C.merge_at.factors);
         }
-        sum[l.part] += f * l.beta * (w * C.merge_at.merge_norm);
+        sum[l.part] += spectrum::to_srgb(f * l.beta, lambda) * (w * C.merge_at.merge_norm);
     };
     const shading::Bsdf& b = *v.bsdf;
     if (b.is_lambertian()) {
@@ -237,20 +246,22 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
         const float side = dot(v.wo, ng) > 0 ? 1.0f : -1.0f;
         const float cos_o = dot(v.wo, ns) * side;
         const float pdf_rev = cos_o > 0 ? cos_o * kInvPi : 0.0f;
-        const Rgb f = b.diffuse_albedo() * kInvPi;
+        const spectrum::RgbSpectrum& kd = b.diffuse_spectrum();
         C.merging->grid.query(v.p, C.merge_at.radius2, [&](uint32_t i, float) {
             const MergeVertex& l = lights[i];
             const float cos_i = dot(l.wo, ns) * side;
             if (l.length > max_length || !(dot(l.wo, ng) * side > 0) || !(cos_i > 0)) return;
-            add(l, f, cos_i * kInvPi, pdf_rev);
+            const Wavelengths lambda = l.wavelengths();
+            add(l, lambda, kd.sample(lambda) * kInvPi, cos_i * kInvPi, pdf_rev);
         });
         return;
     }
     C.merging->grid.query(v.p, C.merge_at.radius2, [&](uint32_t i, float) {
         const MergeVertex& l = lights[i];
         if (l.length > max_length) return;
-        const Scattering s = evaluate(C.P, v, l.wo, shading::TransportMode::Radiance);
-        if (!s.f.is_black()) add(l, s.f, s.pdf_dir, s.pdf_rev);
+        const Wavelengths lambda = l.wavelengths();
+        const Scattering s = evaluate(C.P, v, l.wo, shading::TransportMode::Radiance, lambda);
+        if (!s.f.is_black()) add(l, lambda, s.f, s.pdf_dir, s.pdf_rev);
     });
 }
 
@@ -270,7 +281,7 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
 // A camera subpath between its vertices: its throughput and MIS state, where it left from, and
 // what --layers needs of its vertices so far.
 struct CameraWalk {
-    SubpathState path{Rgb(1.0f), {}};
+    SubpathState path{Spectrum(1.0f), {}, {}};
     Vec3 from;
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
     // The previous vertex was the first non-delta one (its light samples: direct_light's `first`).
@@ -297,15 +308,16 @@ struct CameraWalk {
 void escaped(const Context& C, const CameraWalk& w, const Ray& ray, int depth, float found_scale) {
     const Prepared& P = C.P;
     const Vec3 dir = normalize(ray.dir);
-    const Rgb& beta = w.path.beta;
+    const Spectrum& beta = w.path.beta;
+    const Wavelengths& lambda = w.path.lambda;
     if (w.specular_chain || P.options.background_light)
-        C.parts[w.found_part(depth)] += beta * P.scene.background * found_scale;
+        C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * P.background(lambda) * found_scale, lambda);
     if (C.it.strategies.ppm && !w.specular_chain) return;
     for (size_t i : P.lights.infinite_lights()) {
-        const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
+        const Spectrum Le = P.lights[i].Le(Vec3(0.0f), dir, lambda);
         if (Le.is_black()) continue;
         const float wt = depth == 1 ? 1.0f : emitter_weight(C, w.path.mis, i, {}, -dir, true, w.after_first);
-        C.parts[w.found_part(depth)] += beta * Le * (wt * found_scale);
+        C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * Le * (wt * found_scale), lambda);
     }
 }
 
@@ -314,21 +326,19 @@ void escaped(const Context& C, const CameraWalk& w, const Ray& ray, int depth, f
 void emission_at(const Context& C, const CameraWalk& w, const Vertex& v, const accel::SurfaceHit& hit,
                  int depth, float found_scale) {
     const Prepared& P = C.P;
-    const Rgb& beta = w.path.beta;
+    const Spectrum& beta = w.path.beta;
+    const Wavelengths& lambda = w.path.lambda;
     const bool ppm = C.it.strategies.ppm;
-    const Rgb Le = P.emitted(hit, v.wo);
+    const Spectrum Le = P.emitted(hit, v.wo, lambda);
     if (!Le.is_black() && (!ppm || w.specular_chain)) {
         const float wt = depth == 1 || ppm ? 1.0f
                                            : emitter_weight(C, w.path.mis, size_t(hit.area_light), hit.ng,
                                                             v.wo, false, w.after_first);
-        C.parts[w.found_part(depth)] += beta * Le * (wt * found_scale);
+        C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * Le * (wt * found_scale), lambda);
     }
-    if (w.specular_chain) {
-        const scene::Material& mat = P.scene.materials[size_t(hit.material)];
-        C.parts[w.found_part(depth)] += beta * mat.emission * found_scale;
-        if (P.options.ambient)
-            C.parts[w.found_part(depth)] += beta * mat.ambient * P.scene.ambient * found_scale;
-    }
+    if (w.specular_chain)
+        C.parts[w.found_part(depth)] +=
+            spectrum::colour_through(beta, lambda, P.glow(hit.material)) * found_scale;
 }
 
 // The strategies at a camera vertex `v` with a non-delta lobe (or in a medium): light samples,
@@ -336,16 +346,19 @@ void emission_at(const Context& C, const CameraWalk& w, const Vertex& v, const a
 // (ppm after its merge; an extra camera sample after its x_f).
 bool strategies_at(const Context& C, const CameraWalk& w, const Vertex& v, int depth, float go_on, bool full,
                    Sampler& sampler) {
-    const Rgb& beta = w.path.beta;
+    const Spectrum& beta = w.path.beta;
+    const Wavelengths& lambda = w.path.lambda;
     if (C.it.strategies.connect) {
-        C.parts[w.sampled_part(depth)] += beta * direct_light(C, v, w.specular_chain, go_on, sampler);
+        C.parts[w.sampled_part(depth)] +=
+            spectrum::to_srgb(beta * direct_light(C, v, w.specular_chain, go_on, sampler, lambda), lambda);
         if (full && !C.light_path.empty())
-            C.parts[w.connected_part()] += beta * connect_light_path(C, v, go_on, sampler);
+            C.parts[w.connected_part()] += connect_light_path(C, v, go_on, sampler, beta, lambda);
     }
     if (v.mergeable) {
         Rgb merged[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
         merge(C, v, w.specular_chain, go_on, merged);
-        for (int k = 0; k < kParts; ++k) C.parts[w.merged_part(depth, k)] += beta * merged[k];
+        for (int k = 0; k < kParts; ++k)
+            C.parts[w.merged_part(depth, k)] += spectrum::colour_through(beta, lambda, merged[k]);
         if (C.it.strategies.ppm) return false;  // ppm: the first non-delta camera vertex gathers everything
     }
     return full || !w.specular_chain;  // an extra camera sample: its x_f is done
@@ -369,7 +382,7 @@ bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, boo
     else
         w.delta_after_x1 = w.delta_after_x1 && d->delta;
     ++C.rays.bounce;
-    if (!survives(depth, w.path.beta, Rgb(1.0f), sampler)) return false;
+    if (!survives(depth, w.path.beta, Spectrum(1.0f), sampler)) return false;
     w.from = v.p;
     ray = leave_vertex(v, d->wi, walk);
     return true;
@@ -380,13 +393,16 @@ bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, boo
 // (the pixel's extra camera samples, Iteration::camera_samples) it ends after its first non-delta
 // vertex's light samples and merging, without connections. What the camera subpath finds up to
 // that vertex counts 1 / camera_samples (every camera sample finds it).
-void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, bool full) {
+void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, const Wavelengths& lambda,
+                 bool full) {
     const Prepared& P = C.P;
     const Ray first = P.camera.generate_ray(fx, fy, lens);
     ++C.rays.camera;
     Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
     CameraWalk w;
+    w.path.lambda = lambda;
+    if (auto* r = recorder()) r->wavelengths(lambda);
     w.path.mis = camera_pdf > 0 ? start_camera(camera_pdf) : SubpathMis{};
     w.from = first.origin;
     const float prefix_scale = 1 / float(C.it.camera_samples);
@@ -394,19 +410,20 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     for (int depth = 1;; ++depth) {
         accel::SurfaceHit hit;
-        Rgb emitted(0.0f);
-        const auto event = media ? walk.next(ray, hit, sampler, w.path.beta, emitted) : walk.next(ray, hit);
+        Spectrum emitted(0.0f);
+        const auto event =
+            media ? walk.next(ray, hit, sampler, w.path.lambda, w.path.beta, emitted) : walk.next(ray, hit);
         // Found up to the first non-delta vertex: by every camera sample of the pixel.
         const float found_scale = w.specular_chain ? prefix_scale : 1.0f;
         // Media's own emission: only camera subpaths find it.
-        C.parts[w.found_part(depth)] += emitted * found_scale;
+        C.parts[w.found_part(depth)] += spectrum::to_srgb(emitted * found_scale, w.path.lambda);
         if (event == shading::SurfaceWalk::Event::Escaped) {
             escaped(C, w, ray, depth, found_scale);
             return;
         }
         if (event != shading::SurfaceWalk::Event::Surface && event != shading::SurfaceWalk::Event::Medium)
             return;
-        Vertex v = reach_vertex(P, event, walk, ray, hit, depth, w.path.beta);
+        Vertex v = reach_vertex(P, event, walk, ray, hit, depth, w.path.beta, w.path.lambda);
         arrive(w.path.mis, length(v.p - w.from), cos_at(v, v.wo), true);
         v.mis = w.path.mis;
         if (!v.in_medium) emission_at(C, w, v, hit, depth, found_scale);
@@ -439,11 +456,15 @@ void render_pixel(const Prepared& P, const Iteration& it, const LightVertexGrid*
     Sampler sampler(ro.seed, 0x766370657965ULL, i, iteration);
     if (it.strategies.light_tracing())
         for (const Vertex& v : light) connect_to_camera(C, v, sampler);
+    // The first camera sample shares the pixel's light subpath's wavelengths (it connects to it);
+    // the others draw their own.
     const auto camera_sample = [&](int j, Sampler& s) {
         C.sample = first_sample + uint32_t(j);
         const Vec2 jitter = padded_point2(C.sample, hash_combine(key, 1));
         const Vec2 lens = padded_point2(C.sample, hash_combine(key, 2));
-        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, s, j == 0);
+        const Wavelengths lambda =
+            j == 0 ? subpath_wavelengths(ro.seed, i, iteration) : Wavelengths::visible(s.next());
+        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, s, lambda, j == 0);
     };
     camera_sample(0, sampler);
     for (int j = 1; j < it.camera_samples; ++j) {

@@ -51,11 +51,15 @@ constexpr Strategies kBdptStrategies{.connect = true};
 // Plain data, so that ranks can exchange them (under MPI each traces its own pixels' subpaths).
 struct MergeVertex {
     Vec3 p, wo;
-    Rgb beta;
+    Spectrum beta;  // at its subpath's wavelengths
     SubpathMis mis;
     int length;
     Part part;      // part_at_first_vertex
     uint32_t path;  // the light subpath it belongs to: the order every rank count agrees on
+    // Its subpath's wavelengths (SampledWavelengths::from_code).
+    uint16_t lambda_code = 0;
+    bool lambda_terminated = false;
+    Wavelengths wavelengths() const { return Wavelengths::from_code(lambda_code, lambda_terminated); }
 };
 
 // Light arriving at light vertex `l`, seen at the camera's first vertex x1 = l.

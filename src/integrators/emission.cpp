@@ -2,13 +2,14 @@
 #include "integrators/emission.h"
 
 #include "core/warp.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators {
 
-Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta, bool camera_chain,
-                  const BsdfSampledFrom* from) {
-    Rgb L(0.0f);
-    const Rgb Le = P.emitted(hit, wo);
+SeenEmission seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, const Spectrum& beta,
+                           const Wavelengths& lambda, bool camera_chain, const BsdfSampledFrom* from) {
+    SeenEmission seen{Spectrum(0.0f), Rgb(0.0f)};
+    const Spectrum Le = P.emitted(hit, wo, lambda);
     if (!Le.is_black()) {
         float w = 1;
         if (from) {
@@ -16,20 +17,18 @@ Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb 
             const float light_pdf = P.lights.pmf(li) * P.lights[li].pdf_Li(from->p, -wo, hit.p, hit.ng);
             w = warp::power_heuristic(from->pdf, light_pdf);
         }
-        L = beta * Le * w;
+        seen.light = beta * Le * w;
     }
-    if (!camera_chain) return L;
-    const scene::Material& mat = P.scene.materials[size_t(hit.material)];
-    L += beta * mat.emission;
-    if (P.options.ambient) L += beta * mat.ambient * P.scene.ambient;
-    return L;
+    if (camera_chain) seen.glow = spectrum::colour_through(beta, lambda, P.glow(hit.material));
+    return seen;
 }
 
-Rgb escaped_emission(const Prepared& P, Vec3 dir, Rgb beta, const BsdfSampledFrom* from) {
-    Rgb L(0.0f);
-    if (!from || P.options.background_light) L += beta * P.scene.background;
+Spectrum escaped_emission(const Prepared& P, Vec3 dir, const Spectrum& beta, const Wavelengths& lambda,
+                          const BsdfSampledFrom* from) {
+    Spectrum L(0.0f);
+    if (!from || P.options.background_light) L += beta * P.background(lambda);
     for (size_t i : P.lights.infinite_lights()) {
-        const Rgb Le = P.lights[i].Le(Vec3(0.0f), dir);
+        const Spectrum Le = P.lights[i].Le(Vec3(0.0f), dir, lambda);
         if (Le.is_black()) continue;
         float w = 1;
         if (from)

@@ -22,13 +22,21 @@ struct BsdfSampledFrom {
 //   terms that are "not a light" (docs/formats/scn.md): like a colour painted on the surface they
 //   are seen wherever the surface itself is seen, directly, in a mirror or through glass, but they
 //   light nothing, so a path that has been through a diffuse or glossy bounce never sees them.
-Rgb seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, Rgb beta,
-                  bool camera_chain = true, const BsdfSampledFrom* from = nullptr);
+//   Being paint, they are colours (the file's RGB), seen through beta as spectrum::colour_through
+//   says: exactly their colour through clear glass and grey mirrors.
+struct SeenEmission {
+    Spectrum light;  // the area light's, at the path's wavelengths
+    Rgb glow;        // the glow and ambient terms, as colour
+};
+SeenEmission seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3 wo, const Spectrum& beta,
+                           const Wavelengths& lambda, bool camera_chain = true,
+                           const BsdfSampledFrom* from = nullptr);
 
 // Radiance times `beta` that a ray leaving the scene in direction `dir` (unit) sees: the infinite
 // lights' emission, MIS-weighted against sampling them when `from` is given (the ray's last
 // bounce sampled a non-delta lobe), and the background, which only rays without such a bounce see
 // (mirror and glass chains from the camera) unless --background-light makes it light the scene.
-Rgb escaped_emission(const Prepared& P, Vec3 dir, Rgb beta, const BsdfSampledFrom* from = nullptr);
+Spectrum escaped_emission(const Prepared& P, Vec3 dir, const Spectrum& beta, const Wavelengths& lambda,
+                          const BsdfSampledFrom* from = nullptr);
 
 }  // namespace phos::integrators

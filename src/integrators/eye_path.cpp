@@ -9,8 +9,10 @@
 #include "core/low_discrepancy.h"
 #include "integrators/direct_light.h"
 #include "integrators/emission.h"
+#include "render/path_radiance.h"
 #include "render/path_recorder.h"
 #include "shading/surface_walk.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators {
 
@@ -18,12 +20,18 @@ using shading::Bsdf;
 
 namespace {
 
-// The average's sum of n light samples at a surface visible point (from the pixel's sequences
-// with `light_sequence`, else from `sampler`).
-Rgb direct_light_sum(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, int n,
-                     const LightSampleSequence* light_sequence, Sampler& sampler, RayCounts& rays,
-                     int medium) {
+// The average of n light samples at a surface visible point (from the pixel's sequences with
+// `light_sequence`, else from `sampler`), times the path's throughput `w`, as colour. A PPM hit
+// point keeps this value for the whole render, so its colour noise has to average out within it:
+// while `w` is the same at every wavelength, sample k takes the path's wavelengths shifted by
+// k / (4 n) in the sampling density's CDF (all 4 n stratified); otherwise (a coloured or
+// dispersive chain before the point) every sample takes the path's own.
+Rgb direct_light_colour(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, int n,
+                        const LightSampleSequence* light_sequence, Sampler& sampler,
+                        const Wavelengths& lambda, const Spectrum& w, RayCounts& rays, int medium) {
+    const bool own_wavelengths = w.is_flat() && !lambda.secondary_terminated();
     Rgb direct(0.0f);
+    Spectrum sum(0.0f);
     for (int k = 0; k < n; ++k) {
         float u_choose;
         Vec2 u;
@@ -35,50 +43,60 @@ Rgb direct_light_sum(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf
             u_choose = sampler.next();
             u = sampler.next2();
         }
-        direct += sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, rays, false, medium);
+        if (own_wavelengths) {
+            const int step = spectrum::kWavelengthCodes / (spectrum::kSpectrumSamples * n);
+            const Wavelengths lk = Wavelengths::from_code(uint16_t(int(lambda.code()) + k * step));
+            direct += spectrum::to_srgb(
+                sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, lk, rays, false, medium) * w[0], lk);
+        } else {
+            sum += sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, lambda, rays, false, medium);
+        }
     }
-    return direct;
+    if (!own_wavelengths) direct = spectrum::to_srgb(sum * w, lambda);
+    return direct * (1.0f / float(n));
 }
 
 // The volume visible point where the free flight stopped. beta holds the free flight's sigma_s
 // weight; the photon estimate's density already counts sigma_s (photons are stored at scattering
 // events), so it is divided out once.
-void stop_in_medium(const Prepared& P, const shading::SurfaceWalk& walk, Rgb beta, int depth,
-                    VisiblePoint& vp) {
+void stop_in_medium(const Prepared& P, const shading::SurfaceWalk& walk, const Spectrum& beta,
+                    const Wavelengths& lambda, int depth, VisiblePoint& vp) {
     const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
-    const Rgb sigma_s = P.media[walk.medium()].at(x).sigma_s;
-    Rgb w;
-    for (int c = 0; c < 3; ++c) w[c] = sigma_s[c] > 0 ? beta[c] / sigma_s[c] : 0.0f;
     vp.p = x;
     vp.wo = wo;
-    vp.beta = w;
+    vp.beta = beta.safe_div(P.media[walk.medium()].at(x, lambda).sigma_s);
+    vp.lambda = lambda;
     vp.depth = depth;
     vp.path_length = walk.distance();
     vp.medium = walk.medium();
 }
 
 // The surface visible point (throughput w, over the choice of the non-specular part).
-void stop_on_surface(const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, Rgb w, int depth,
-                     const shading::SurfaceWalk& walk, VisiblePoint& vp) {
+void stop_on_surface(const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, const Spectrum& w,
+                     const Wavelengths& lambda, int depth, const shading::SurfaceWalk& walk,
+                     VisiblePoint& vp) {
     vp.p = hit.p;
     vp.wo = wo;
     vp.beta = w;
+    vp.lambda = lambda;
     vp.depth = depth;
     vp.path_length = walk.distance();
     vp.bsdf.emplace(bsdf);
+    vp.material = hit.material;
 }
 
 // Follows the followed part of the BSDF (chosen with probability 1 - p_estimated): beta, the ray
 // and the walk go on; `from` is set when the sampled lobe is not a delta one (for MIS of the
 // emission the next vertex finds). False when nothing was sampled.
 bool follow_lobes(const Bsdf& followed, float p_estimated, const accel::SurfaceHit& hit, Vec3 wo,
-                  Sampler& sampler, Rgb& beta, Ray& ray, shading::SurfaceWalk& walk, BsdfSampledFrom& from,
-                  bool& delta) {
+                  Sampler& sampler, Wavelengths& lambda, Spectrum& beta, Ray& ray, shading::SurfaceWalk& walk,
+                  BsdfSampledFrom& from, bool& delta) {
     const float u_lobe = sampler.next();
-    const auto s = followed.sample(wo, u_lobe, sampler.next2());
+    const auto s = followed.sample(wo, u_lobe, sampler.next2(), lambda);
     if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
     if (auto* r = recorder()) r->scattered(*s);
     beta *= s->weight * (1 / (1 - p_estimated));
+    follow_dispersion(*s, lambda, beta);
     from = {hit.p, s->pdf};
     delta = s->is_specular();
     ray = accel::spawn_ray(hit, s->wi);
@@ -92,11 +110,17 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
                    RayCounts& rays, const LightSampleSequence* light_sequence) {
     vp.bsdf.reset();
     vp.medium = -1;
-    Rgb L(0.0f), beta(1.0f);
-    // Adds a contribution to the path's radiance (and to the trace as `term`).
-    const auto add = [&](Rgb c, TraceTerm term) {
+    Wavelengths lambda = camera_wavelengths(sampler);
+    Rgb L(0.0f);
+    Spectrum beta(1.0f);
+    // Adds a contribution (at the path's wavelengths) to the path's radiance (and to the trace as
+    // `term`), as colour.
+    const auto add_colour = [&](Rgb c, TraceTerm term) {
         L += c;
         if (auto* r = recorder()) r->add(term, c);
+    };
+    const auto add = [&](const Spectrum& s, TraceTerm term) {
+        add_colour(spectrum::to_srgb(s, lambda), term);
     };
     const shading::MediaSet* media = P.active_media();
     // Its distance() is the visible point's path length.
@@ -106,7 +130,7 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
     const BsdfSampledFrom* from = nullptr;
     for (int depth = 0;;) {
         accel::SurfaceHit hit;
-        Rgb emitted(0.0f);
+        Spectrum emitted(0.0f);
         // Single scattering is integrated over each whole stretch in a medium (equiangular
         // sampling finds the glow around point lights), as the average of `direct_samples`
         // estimates like direct light at a surface point: near an area light the estimate is
@@ -114,31 +138,41 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         // then decides whether the path stops in the medium (a volume visible point, for multiple
         // scattering) or goes on.
         const auto stretch = [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
+            // (Each estimate at its own shifted wavelengths while beta is flat, as direct_light_colour.)
             const int n = std::max(1, direct_samples);
+            const bool own_wavelengths = beta.is_flat() && !lambda.secondary_terminated();
+            const int step = spectrum::kWavelengthCodes / (spectrum::kSpectrumSamples * n);
             Rgb sum(0.0f);
-            for (int k = 0; k < n; ++k)
-                sum += single_scattering(P, walk.medium(), o, d, t_end, sampler, rays);
-            add(beta * sum * (1.0f / float(n)), TraceTerm::Light);
+            for (int k = 0; k < n; ++k) {
+                const Wavelengths lk = own_wavelengths
+                                           ? Wavelengths::from_code(uint16_t(int(lambda.code()) + k * step))
+                                           : lambda;
+                sum += spectrum::to_srgb(
+                    beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, lk, rays), lk);
+            }
+            add_colour(sum * (1.0f / float(n)), TraceTerm::Light);
         };
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, beta, emitted, stretch) : walk.next(ray, hit);
+            media ? walk.next(ray, hit, sampler, lambda, beta, emitted, stretch) : walk.next(ray, hit);
         add(emitted, TraceTerm::Emission);
         if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
             break;
         if (event == shading::SurfaceWalk::Event::Medium) {
             if (depth == P.options.max_depth) break;
-            stop_in_medium(P, walk, beta, depth, vp);
+            stop_in_medium(P, walk, beta, lambda, depth, vp);
             break;
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
             // Every vertex so far was followed (mirror, glass, sharp glossy): escaped light is seen
             // directly, weighted against light sampling after a glossy bounce.
-            add(escaped_emission(P, normalize(ray.dir), beta, from), TraceTerm::Emission);
+            add(escaped_emission(P, normalize(ray.dir), beta, lambda, from), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        add(seen_emission(P, hit, wo, beta, camera_chain, from), TraceTerm::Emission);
+        const SeenEmission seen = seen_emission(P, hit, wo, beta, lambda, camera_chain, from);
+        add(seen.light, TraceTerm::Emission);
+        add_colour(seen.glow, TraceTerm::Emission);
         if (depth == P.options.max_depth) break;
         const Bsdf bsdf = P.bsdf(hit);
 
@@ -149,12 +183,12 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         const float u = p_est > 0 && p_est < 1 ? sampler.next() : 0.5f;
         if (p_est >= 1 || (p_est > 0 && u < p_est)) {
             const Bsdf est = bsdf.only(split.estimated);
-            const Rgb w = beta * (1 / p_est);
+            const Spectrum w = beta * (1 / p_est);
             const int n = std::max(1, direct_samples);
-            const Rgb direct =
-                direct_light_sum(P, hit, est, wo, n, light_sequence, sampler, rays, walk.medium());
-            add(w * direct * (1.0f / float(n)), TraceTerm::Light);
-            stop_on_surface(hit, est, wo, w, depth, walk, vp);
+            add_colour(direct_light_colour(P, hit, est, wo, n, light_sequence, sampler, lambda, w, rays,
+                                           walk.medium()),
+                       TraceTerm::Light);
+            stop_on_surface(hit, est, wo, w, lambda, depth, walk, vp);
             break;
         }
         const Bsdf followed = bsdf.only(split.followed);
@@ -162,10 +196,10 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         // emission the continuation finds.
         if (followed.has_non_specular())
             add(beta * (1 / (1 - p_est)) *
-                    sample_one_light(P, hit, followed, wo, sampler, rays, true, walk.medium()),
+                    sample_one_light(P, hit, followed, wo, sampler, lambda, rays, true, walk.medium()),
                 TraceTerm::Light);
         bool delta = true;
-        if (!follow_lobes(followed, p_est, hit, wo, sampler, beta, ray, walk, last, delta)) break;
+        if (!follow_lobes(followed, p_est, hit, wo, sampler, lambda, beta, ray, walk, last, delta)) break;
         from = delta ? nullptr : &last;
         camera_chain = camera_chain && delta;
         ++rays.bounce;

@@ -21,10 +21,12 @@ using namespace render;  // the render support the algorithms are written over (
 struct VisiblePoint {
     Vec3 p;
     Vec3 wo;
-    Rgb beta;       // camera-path throughput (over the path's selection probabilities)
-    int depth = 0;  // specular bounces before it (limits photon bounces: total ≤ max_depth)
+    Spectrum beta;       // camera-path throughput (over the path's selection probabilities), at `lambda`
+    Wavelengths lambda;  // the camera path's wavelengths (as they were when it stopped)
+    int depth = 0;       // specular bounces before it (limits photon bounces: total ≤ max_depth)
     float path_length = 0;
     std::optional<shading::Bsdf> bsdf;  // a surface visible point
+    int material = -1;                  // its material (Bsdf::rebind)
     int medium = -1;                    // >= 0: a volume visible point in this medium
     bool present() const { return bsdf || medium >= 0; }
     bool volume() const { return medium >= 0; }
@@ -43,7 +45,8 @@ struct LightSampleSequence {
 // Traces a camera ray: adds emission seen along the specular chain, and at the first non-specular
 // hit stores `vp` and adds the average of `direct_samples` light samples. Mixed materials choose
 // between their non-specular part (visible point) and specular part (continue) at random, in
-// proportion to the lobes' albedos. Returns emission + direct light (throughput included).
+// proportion to the lobes' albedos. Returns emission + direct light (throughput included), as
+// colour: the path draws its wavelengths first from `sampler` (render::camera_wavelengths).
 // With `light_sequence`, the light samples come from stratified per-pixel sequences instead of
 // `sampler` (see LightSampleSequence).
 Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,

@@ -24,7 +24,7 @@ using namespace render;  // the render support the algorithms are written over (
 namespace {
 
 // Russian roulette once the path has some length; survivors are reweighted.
-bool survives_roulette(int depth, Rgb& beta, Sampler& sampler) {
+bool survives_roulette(int depth, Spectrum& beta, Sampler& sampler) {
     if (depth > 3) {
         const float q = std::max(0.05f, 1.0f - beta.max());
         if (sampler.next() < q) return false;
@@ -44,8 +44,9 @@ RenderDone PathIntegrator::render(const Prepared& prepared, film::Film& film, Pr
 
 Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays,
                              RadianceParts* parts) {
-    PathRadiance L(parts);  // the estimate, split into components for --layers (path_radiance.h)
-    Rgb beta(1.0f);
+    Wavelengths lambda = camera_wavelengths(sampler);
+    PathRadiance L(lambda, parts);  // the estimate, split into components for --layers (path_radiance.h)
+    Spectrum beta(1.0f);
     bool specular_bounce = true;  // the camera ray counts as specular: it sees emitters directly
     // Whether surfaces show the .scn glow and ambient terms (emission.h): on the camera ray and
     // after a delta first bounce.
@@ -60,9 +61,9 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
     shading::SurfaceWalk walk(P.accel, media, P.camera_medium());
     while (true) {
         accel::SurfaceHit hit;
-        Rgb emitted(0.0f);
+        Spectrum emitted(0.0f);
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
+            media ? walk.next(ray, hit, sampler, lambda, beta, emitted) : walk.next(ray, hit);
         if (!emitted.is_black()) L.emission(emitted);
         if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost || event == shading::SurfaceWalk::Event::Absorbed)
@@ -72,7 +73,7 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
             // against each other like a surface vertex (the phase function is its own pdf).
             if (depth++ == P.options.max_depth) break;
             const Vec3 p = walk.medium_point(), wo = walk.medium_wo();
-            L.light(beta * sample_one_light_in_medium(P, p, wo, walk.medium(), sampler, rays, true));
+            L.light(beta * sample_one_light_in_medium(P, p, wo, walk.medium(), sampler, lambda, rays, true));
             Vec3 wi;
             const float pdf = P.media[walk.medium()].phase().sample(wo, sampler.next2(), wi);
             if (auto* r = recorder()) r->scattered_in_medium(wi, pdf);
@@ -87,23 +88,28 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
             continue;
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            L.emission(escaped_emission(P, normalize(ray.dir), beta, specular_bounce ? nullptr : &from));
+            L.emission(
+                escaped_emission(P, normalize(ray.dir), beta, lambda, specular_bounce ? nullptr : &from));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        L.emission(seen_emission(P, hit, wo, beta, camera_chain, specular_bounce ? nullptr : &from));
+        const SeenEmission seen =
+            seen_emission(P, hit, wo, beta, lambda, camera_chain, specular_bounce ? nullptr : &from);
+        L.emission(seen.light);
+        L.emission(seen.glow);
 
         if (depth++ == P.options.max_depth) break;
         const shading::Bsdf bsdf = rough && widest > 0 ? P.bsdf(hit).regularized(widest) : P.bsdf(hit);
 
         if (bsdf.has_non_specular())
-            L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, rays, true, walk.medium()),
+            L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, lambda, rays, true, walk.medium()),
                     bsdf.only_widened());
 
-        const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2());
+        const auto bs = bsdf.sample(wo, sampler.next(), sampler.next2(), lambda);
         if (!bs || bs->weight.is_black() || !(bs->pdf > 0)) break;
         if (auto* r = recorder()) r->scattered(*bs);
         beta *= bs->weight;
+        follow_dispersion(*bs, lambda, beta);
         specular_bounce = bs->is_specular();
         rough = rough || !specular_bounce;
         if (depth == 1) camera_chain = specular_bounce;

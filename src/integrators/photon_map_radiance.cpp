@@ -32,6 +32,7 @@
 #include "render/pixel_loop.h"
 #include "shading/medium_tracking.h"
 #include "shading/surface_walk.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
@@ -47,7 +48,7 @@ namespace {
 // with the probability of its weight (at most 1) and reweighted. Chains of such vertices then
 // cost a geometric series instead of a gather at every one of max_depth bounces; chains of glass
 // and mirrors alone (weight ~1) are not played.
-bool survives_followed(const shading::BsdfSample& s, Sampler& sampler, Rgb& beta) {
+bool survives_followed(const shading::BsdfSample& s, Sampler& sampler, Spectrum& beta) {
     const float q = std::min(1.0f, s.weight.max());
     if (q >= 1) return true;
     if (!(sampler.next() < q)) return false;
@@ -93,15 +94,23 @@ Rgb PhotonMapRadiance::estimate(int m, const photon::SurfaceQuery& q, Vec3 wo,
 
 RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts& rays) const {
     RadianceParts out;
-    Rgb beta(1.0f);
+    Wavelengths lambda = camera_wavelengths(sampler);
+    Spectrum beta(1.0f);
     bool via_followed = false;  // the path went through a followed bounce: all it adds is "specular"
     bool camera_chain = true;   // only delta bounces so far: the .scn glow is seen (emission.h)
     BsdfSampledFrom last{};     // the last vertex, when its bounce sampled a followed glossy lobe
     const BsdfSampledFrom* from = nullptr;
-    // Adds c to component `part` (and to the trace as `term`).
+    // Adds colour c to component `part` (and to the trace as `term`); a spectrum at the path's
+    // wavelengths goes to colour first, a photon estimate (a colour) meets the throughput.
     const auto add = [](Rgb& part, Rgb c, TraceTerm term) {
         part += c;
         if (auto* r = recorder()) r->add(term, c);
+    };
+    const auto add_spectrum = [&](Rgb& part, const Spectrum& c, TraceTerm term) {
+        add(part, spectrum::to_srgb(c, lambda), term);
+    };
+    const auto add_estimate = [&](Rgb& part, Rgb estimate, TraceTerm term) {
+        add(part, spectrum::colour_through(beta, lambda, estimate), term);
     };
     // Its distance() scales the pixel footprint.
     shading::SurfaceWalk walk(P_.accel, P_.active_media(), P_.camera_medium());
@@ -110,49 +119,53 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
         accel::SurfaceHit hit;
         const shading::SurfaceWalk::Event event =
             walk.next_segments(ray, hit, [&](const shading::Medium& m, Vec3 o, Vec3 d, float t_end) {
-                const MediumStretch s = march(m, walk.medium(), o, d, t_end, sampler, rays);
+                const MediumStretch s = march(m, walk.medium(), o, d, t_end, lambda, sampler, rays);
                 if (auto* r = recorder()) {  // the volume maps' estimates over the stretch from o
                     r->lookup({"volume caustic (stretch)", o, 0, 0, s.caustic});
                     r->lookup({"volume (stretch)", o, 0, 0, s.multiple});
                 }
-                add(via_followed ? out.specular : out.direct, beta * s.single, TraceTerm::Light);
-                add(via_followed ? out.specular : out.caustic, beta * s.caustic, TraceTerm::Caustic);
-                add(via_followed ? out.specular : out.indirect, beta * s.multiple, TraceTerm::Indirect);
+                add_spectrum(via_followed ? out.specular : out.direct, beta * s.single, TraceTerm::Light);
+                add_estimate(via_followed ? out.specular : out.caustic, s.caustic, TraceTerm::Caustic);
+                add_estimate(via_followed ? out.specular : out.indirect, s.multiple, TraceTerm::Indirect);
                 beta *= s.T;
             });
         if (auto* r = recorder()) r->vertex(P_, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            add(seen, escaped_emission(P_, normalize(ray.dir), beta, from), TraceTerm::Emission);
+            add_spectrum(seen, escaped_emission(P_, normalize(ray.dir), beta, lambda, from),
+                         TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        add(seen, seen_emission(P_, hit, wo, beta, camera_chain, from), TraceTerm::Emission);
+        const SeenEmission emitted = seen_emission(P_, hit, wo, beta, lambda, camera_chain, from);
+        add_spectrum(seen, emitted.light, TraceTerm::Emission);
+        add(seen, emitted.glow, TraceTerm::Emission);
 
         const shading::Bsdf bsdf = P_.bsdf(hit);
         const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo, P_.options.sharp_glossy);
         Rgb& d = via_followed ? out.specular : out.direct;
         if (o_.photon_viz && bsdf.has_non_specular()) {
-            add(seen, beta * estimate(kGlobalMap, photon::make_query(hit.p, hit.ng, wo, bsdf), wo, bsdf),
-                TraceTerm::Indirect);
+            add_estimate(seen, estimate(kGlobalMap, photon::make_query(hit.p, hit.ng, wo, bsdf), wo, bsdf),
+                         TraceTerm::Indirect);
         } else if (split.estimated) {
             const shading::Bsdf est = bsdf.only(split.estimated);
             const photon::SurfaceQuery q = photon::make_query(hit.p, hit.ng, wo, est);
             Rgb& c = via_followed ? out.specular : out.caustic;
             Rgb& i = via_followed ? out.specular : out.indirect;
             if (o_.direct)
-                add(d, beta * sample_all_lights(P_, hit, est, wo, sampler, rays, walk.medium()),
-                    TraceTerm::Light);
+                add_spectrum(d,
+                             beta * sample_all_lights(P_, hit, est, wo, sampler, lambda, rays, walk.medium()),
+                             TraceTerm::Light);
             if (o_.caustics) {
                 photon::SurfaceQuery qc = q;
                 qc.min_radius = footprint_offset_ + footprint_slope_ * walk.distance();
-                add(c, beta * estimate(kCausticMap, qc, wo, est), TraceTerm::Caustic);
+                add_estimate(c, estimate(kCausticMap, qc, wo, est), TraceTerm::Caustic);
             }
             if (o_.indirect_light) {
                 if (o_.fast_global)
-                    add(i, beta * estimate(kIndirectMap, q, wo, est), TraceTerm::Indirect);
+                    add_estimate(i, estimate(kIndirectMap, q, wo, est), TraceTerm::Indirect);
                 else
-                    add(i, beta * final_gather(hit, est, wo, walk.medium(), sampler, rays),
+                    add(i, final_gather(hit, est, wo, walk.medium(), beta, lambda, sampler, rays),
                         TraceTerm::Indirect);
             }
         }
@@ -161,14 +174,16 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
         const shading::Bsdf followed = bsdf.only(split.followed);
         // Light through its glossy lobes: one light sample, MIS-weighted against the continuation.
         if (o_.direct && followed.has_non_specular())
-            add(d, beta * sample_one_light(P_, hit, followed, wo, sampler, rays, true, walk.medium()),
+            add_spectrum(
+                d, beta * sample_one_light(P_, hit, followed, wo, sampler, lambda, rays, true, walk.medium()),
                 TraceTerm::Light);
-        const auto s = followed.sample(wo, sampler.next(), sampler.next2());
+        const auto s = followed.sample(wo, sampler.next(), sampler.next2(), lambda);
         if (!s || s->weight.is_black()) break;
         if ((s->flags & shading::kTransmission) ? !o_.transmissive : !o_.specular) break;
         if (auto* r = recorder()) r->scattered(*s);
         if (split.estimated && !survives_followed(*s, sampler, beta)) break;
         beta *= s->weight;
+        follow_dispersion(*s, lambda, beta);
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         via_followed = true;
         camera_chain = camera_chain && s->is_specular();
@@ -183,7 +198,8 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
 }
 
 Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo,
-                                    int medium, Sampler& sampler, RayCounts& rays) const {
+                                    int medium, const Spectrum& beta, const Wavelengths& lambda,
+                                    Sampler& sampler, RayCounts& rays) const {
     // `bsdf` is the estimated part of the vertex's BSDF: every non-delta lobe of it is gathered.
     const uint32_t lobes = bsdf.split_lobes(wo).estimated;
     const int n = std::max(o_.gather_rays, 1);
@@ -193,31 +209,34 @@ Rgb PhotonMapRadiance::final_gather(const accel::SurfaceHit& hit, const shading:
         // Stratified over the hemisphere (sqrt(n) x sqrt(n) cells of the lobe's sample square).
         const Vec2 u = stratified_sample(i, n, sampler.next2());
         const float u_lobe = sampler.next();
-        const auto s = bsdf.sample_lobes(lobes, wo, u_lobe, u);
+        const auto s = bsdf.sample_lobes(lobes, wo, u_lobe, u, lambda);
         if (!s || s->is_specular() || s->weight.is_black()) continue;
         ++rays.bounce;
-        sum += s->weight * gather_ray(accel::spawn_ray(hit, s->wi),
-                                      shading::SurfaceWalk::medium_after(hit, s->wi, medium), sampler, rays);
+        sum +=
+            gather_ray(accel::spawn_ray(hit, s->wi), shading::SurfaceWalk::medium_after(hit, s->wi, medium),
+                       beta * s->weight, lambda, sampler, rays);
     }
     return sum * (1.0f / float(n));
 }
 
-Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCounts& rays) const {
-    Rgb L(0.0f), beta(1.0f);
+Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Spectrum beta, Wavelengths lambda, Sampler& sampler,
+                                  RayCounts& rays) const {
+    Rgb L(0.0f);
     const shading::MediaSet* media = P_.active_media();
     shading::SurfaceWalk walk(P_.accel, media, medium);
     for (int depth = 0; depth <= P_.options.max_depth;) {
         accel::SurfaceHit hit;
-        Rgb emitted(0.0f);
+        Spectrum emitted(0.0f);
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(ray, hit, sampler, beta, emitted) : walk.next(ray, hit);
-        L += emitted;
+            media ? walk.next(ray, hit, sampler, lambda, beta, emitted) : walk.next(ray, hit);
+        L += spectrum::to_srgb(emitted, lambda);
         if (event == shading::SurfaceWalk::Event::Medium) {
             // The free flight's weight carries sigma_s / sigma_maj...: what remains is the radiance
             // in-scattered at x, int p L_i = direct (light sampling) + volume estimates / sigma_s.
             const Vec3 x = walk.medium_point(), wo = walk.medium_wo();
             const shading::Medium& m = P_.media[walk.medium()];
-            Rgb Ls = sample_one_light_in_medium(P_, x, wo, walk.medium(), sampler, rays, false);
+            const Spectrum Ls =
+                sample_one_light_in_medium(P_, x, wo, walk.medium(), sampler, lambda, rays, false);
             // The volume cache's first-order estimate (photon/volume_cache.h) where it has a point
             // nearby, else the two maps' k-nearest estimates.
             Rgb est;
@@ -228,9 +247,9 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
                                                        m.phase());
             if (auto* r = recorder())
                 r->lookup({cached ? "volume cache" : "volume + volume caustic", x, 0, 0, est});
-            const Rgb sigma_s = m.at(x).sigma_s;
-            for (int c = 0; c < 3; ++c) Ls[c] += sigma_s[c] > 0 ? est[c] / sigma_s[c] : 0.0f;
-            L += beta * Ls;
+            // The estimates hold sigma_s, which the free flight's weight in beta holds too.
+            L += spectrum::to_srgb(beta * Ls, lambda) +
+                 spectrum::colour_through(beta.safe_div(m.at(x, lambda).sigma_s), lambda, est);
             break;
         }
         // Sky light arriving this way is direct light: an escaped ray adds nothing.
@@ -244,11 +263,12 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
             Rgb E;
             if (est.is_lambertian() && !maps_.cache.empty() &&
                 maps_.cache.lookup(q, est_[kGlobalMap].max_radius, o_.normal_cos, E)) {
-                L += beta * est.diffuse_albedo() * kInvPi * E;
-                if (auto* r = recorder())
-                    r->lookup({"irradiance cache", q.p, 0, 0, est.diffuse_albedo() * kInvPi * E});
+                // The cache holds irradiance colours: their product with the albedo's colour.
+                const Rgb Lo = est.diffuse_colour() * kInvPi * E;
+                L += spectrum::colour_through(beta, lambda, Lo);
+                if (auto* r = recorder()) r->lookup({"irradiance cache", q.p, 0, 0, Lo});
             } else {
-                L += beta * estimate(kGlobalMap, q, wo, est);
+                L += spectrum::colour_through(beta, lambda, estimate(kGlobalMap, q, wo, est));
             }
         }
         // Through the followed part (mirrors, glass, sharp glossy lobes) to the next vertex with an
@@ -256,10 +276,11 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
         // origin, counted there.
         if (!split.followed) break;
         const shading::Bsdf followed = bsdf.only(split.followed);
-        const auto s = followed.sample(wo, sampler.next(), sampler.next2());
+        const auto s = followed.sample(wo, sampler.next(), sampler.next2(), lambda);
         if (!s || s->weight.is_black()) break;
         if (split.estimated && !survives_followed(*s, sampler, beta)) break;
         beta *= s->weight;
+        if (s->dispersive) spectrum::terminate_secondary(lambda, beta);
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         ray = accel::spawn_ray(hit, s->wi);
         walk.leave(hit, s->wi);
@@ -269,52 +290,77 @@ Rgb PhotonMapRadiance::gather_ray(Ray ray, int medium, Sampler& sampler, RayCoun
     return L;
 }
 
+namespace {
+
+// A stretch's transmittance T and emission int_0^t_end T sigma_a Le dt at `lambda`: in closed form in
+// homogeneous media; in grids with sigma_t and the emission taken constant over steps of at most
+// `step`, at a jittered point in each (as photon::StretchTransmittance does), each step integrated
+// exactly.
+void stretch_spectra(const shading::Medium& medium, Vec3 o, Vec3 d, float t_end, float step, float jitter,
+                     const Wavelengths& lambda, Spectrum& T, Spectrum& emitted) {
+    // int_0^L exp(-sigma t) dt per wavelength (L where sigma = 0).
+    const auto chord = [](const Spectrum& sigma, float L) {
+        Spectrum c;
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+            c[i] = sigma[i] * L > 1e-4f ? -std::expm1(-sigma[i] * L) / sigma[i] : L;
+        return c;
+    };
+    emitted = Spectrum(0.0f);
+    if (medium.homogeneous()) {
+        const shading::MediumCoefficients c = medium.at(o, lambda);
+        T = spectrum::exp(c.sigma_t() * -t_end);
+        if (medium.emissive()) emitted = c.sigma_a * c.Le * chord(c.sigma_t(), t_end);
+        return;
+    }
+    const int n = std::clamp(int(std::ceil(t_end / step)), 1, 4096);
+    const float dt = t_end / float(n);
+    T = Spectrum(1.0f);
+    for (int k = 0; k < n; ++k) {
+        const shading::MediumCoefficients c = medium.at(o + d * ((float(k) + jitter) * dt), lambda);
+        if (medium.emissive()) emitted += T * c.sigma_a * c.Le * chord(c.sigma_t(), dt);
+        T *= spectrum::exp(c.sigma_t() * -dt);
+        if (T.max() < 1e-4f) break;
+    }
+}
+
+}  // namespace
+
 PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium& medium, int medium_index,
-                                                          Vec3 o, Vec3 d, float t_end, Sampler& sampler,
+                                                          Vec3 o, Vec3 d, float t_end,
+                                                          const Wavelengths& lambda, Sampler& sampler,
                                                           RayCounts& rays) const {
     MediumStretch s;
-    if (o_.direct) s.single = single_scattering(P_, medium_index, o, d, t_end, sampler, rays);
+    if (o_.direct) s.single = single_scattering(P_, medium_index, o, d, t_end, sampler, lambda, rays);
     t_end = finite_stretch(P_, o, d, t_end);
     if (!(t_end > 0)) return s;
+    // The stretch's transmittance at the path's wavelengths, and the medium's emission along it.
+    const float jitter = sampler.next();
+    Spectrum emitted;
+    stretch_spectra(medium, o, d, t_end, o_.volume_step, jitter, lambda, s.T, emitted);
+    s.single += emitted;
     if (o_.volume_estimate == VolumeEstimate::Beam) {
         // The beam radiance estimate (photon/beam_estimate.h): one query of each volume map's photon
         // spheres for the whole stretch, each photon weighted by T integrated over its chord (exact
         // in homogeneous media, a table over the --volume-step steps in grids).
-        const photon::StretchTransmittance T(medium, o, d, t_end, o_.volume_step, sampler.next());
+        const photon::StretchTransmittance T(medium, o, d, t_end, o_.volume_step, jitter);
         if (o_.caustics)
             s.caustic += photon::beam_radiance_estimate(maps_.volume_caustic_beams, o, d, T, medium.phase());
         if (o_.indirect_light)
             s.multiple += photon::beam_radiance_estimate(maps_.volume_beams, o, d, T, medium.phase());
-        // Emission, int T sigma_a Le dt: in closed form in homogeneous media, by jittered steps of
-        // --volume-step in grids.
-        if (medium.emissive() && medium.homogeneous()) {
-            const shading::MediumCoefficients c = medium.at(o);
-            s.single += c.sigma_a * c.Le * T.integral(0.0f, T.end());
-        } else if (medium.emissive()) {
-            const int n = std::clamp(int(std::ceil(T.end() / o_.volume_step)), 1, 4096);
-            const float dt = T.end() / float(n), jitter = sampler.next();
-            for (int k = 0; k < n; ++k) {
-                const float t = (float(k) + jitter) * dt;
-                const shading::MediumCoefficients c = medium.at(o + d * t);
-                s.single += c.sigma_a * c.Le * T.at(t) * dt;
-            }
-        }
-        s.T = T.total();
         return s;
     }
-    // Ray marching with a jittered start: every step adds T(t) dt times the volume estimates (and
-    // the medium's emission); T is exact in homogeneous media and marched in grids.
+    // Ray marching with a jittered start: every step adds T(t) dt times the volume estimates; T
+    // (the colour of sigma_t's) is exact in homogeneous media and marched in grids.
     const int n = std::clamp(int(std::ceil(t_end / o_.volume_step)), 1, 4096);
     const float dt = t_end / float(n);
-    const float jitter = sampler.next();
     const Vec3 wo = -d;
     Rgb T(1.0f);
     float t_prev = 0;
     for (int k = 0; k < n; ++k) {
         const float t = (float(k) + jitter) * dt;
         const Vec3 x = o + d * t;
-        const shading::MediumCoefficients c = medium.at(x);
-        T = medium.homogeneous() ? exp(medium.sigma_t() * -t) : T * exp(c.sigma_t() * -(t - t_prev));
+        T = medium.homogeneous() ? exp(medium.sigma_t_rgb() * -t)
+                                 : T * exp(medium.sigma_t_rgb(x) * -(t - t_prev));
         t_prev = t;
         if (T.max() < 1e-4f) break;
         const Rgb w = T * dt;
@@ -324,10 +370,7 @@ PhotonMapRadiance::MediumStretch PhotonMapRadiance::march(const shading::Medium&
         if (o_.indirect_light)
             s.multiple +=
                 w * photon::volume_radiance_estimate(maps_.volume(), volume_est_, x, wo, medium.phase());
-        if (!c.Le.is_black()) s.single += w * c.sigma_a * c.Le;
     }
-    s.T = medium.homogeneous() ? exp(medium.sigma_t() * -t_end)
-                               : T * exp(medium.at(o + d * t_end).sigma_t() * -(t_end - t_prev));
     return s;
 }
 

@@ -17,25 +17,35 @@ using namespace render;  // the render support the algorithms are written over (
 class PhotonMapRadiance {
 public:
     PhotonMapRadiance(const Prepared& P, const PhotonMapOptions& o, const PhotonMaps& maps);
+    // Spectra: a camera ray draws its wavelengths (render::camera_wavelengths) and carries its
+    // throughput at them; light sampling and emission are evaluated there, while a photon estimate
+    // is a colour (each photon at its own wavelengths), which meets the throughput as
+    // spectrum::colour_through says. The image's colour is returned.
     RadianceParts camera_ray(Ray ray, Sampler& sampler, RayCounts& rays) const;
 
-    // Indirect radiance reflected at a non-specular hit towards wo by final gathering.
+    // Indirect radiance reflected at a non-specular hit towards wo by final gathering, times the
+    // path's throughput `beta` at `lambda`, as colour.
     Rgb final_gather(const accel::SurfaceHit& hit, const shading::Bsdf& bsdf, Vec3 wo, int medium,
-                     Sampler& sampler, RayCounts& rays) const;
-    // Radiance along `ray` (starting in `medium`) as the global map sees it: follows delta
-    // bounces, then takes the global estimate (or the irradiance cache) at each non-specular hit;
-    // emitters give nothing. In media it samples a free flight and, where the ray scatters, takes
-    // the light in-scattered there (light sampling plus the volume maps).
-    Rgb gather_ray(Ray ray, int medium, Sampler& sampler, RayCounts& rays) const;
+                     const Spectrum& beta, const Wavelengths& lambda, Sampler& sampler,
+                     RayCounts& rays) const;
+    // Radiance along `ray` (starting in `medium`) as the global map sees it, times `beta`, as
+    // colour: follows delta bounces, then takes the global estimate (or the irradiance cache) at
+    // each non-specular hit; emitters give nothing. In media it samples a free flight and, where
+    // the ray scatters, takes the light in-scattered there (light sampling plus the volume maps).
+    Rgb gather_ray(Ray ray, int medium, Spectrum beta, Wavelengths lambda, Sampler& sampler,
+                   RayCounts& rays) const;
 
     // Light scattered towards the camera along one stretch of a camera ray in a medium (Jensen &
     // Christensen 1998, eq. 12: by the beam radiance estimate or by ray marching, as
-    // --volume-estimate says), split as the surface radiance is, and the stretch's transmittance.
+    // --volume-estimate says), split as the surface radiance is, and the stretch's transmittance:
+    // single scattering (with the medium's emission) and T at the path's wavelengths, the volume
+    // maps' estimates as colours (attenuated along the stretch by the colour of sigma_t).
     struct MediumStretch {
-        Rgb single, caustic, multiple, T{1.0f};
+        Spectrum single, T{1.0f};
+        Rgb caustic, multiple;
     };
     MediumStretch march(const shading::Medium& medium, int medium_index, Vec3 o, Vec3 d, float t_end,
-                        Sampler& sampler, RayCounts& rays) const;
+                        const Wavelengths& lambda, Sampler& sampler, RayCounts& rays) const;
 
     const photon::EstimateOptions& estimate_options(int map) const { return est_[map]; }
     // Map m's density estimate at q (global, caustic or indirect), a lookup --trace-pixel records.

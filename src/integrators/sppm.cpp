@@ -128,7 +128,7 @@ RenderDone SppmIntegrator::render(const Prepared& P, film::Film& film, Progress&
     while (budget.next()) {
         const uint64_t it = state.iterations;
         eye_pass(P, tiles, it, direct_samples, per_pixel, initial, vps, state.slots);
-        exchange.share(tiles, ro.width, per_pixel, vps, state.slots);
+        exchange.share(P.scene, tiles, ro.width, per_pixel, vps, state.slots);
         const bool is_pilot = it == 0 && pilot.k > 0;
         if (is_pilot)  // the pilot counts photons in the largest allowed disc (see PilotRadius)
             for (size_t i = 0; i < vps.size(); ++i)

@@ -25,6 +25,7 @@
 #include "photon/photon_path.h"
 #include "render/progressive_budget.h"
 #include "shading/phase.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
@@ -57,7 +58,7 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
     if (vp.volume()) {
         g.kind = GatherPoint::kVolume;
         g.max_bounces = max_depth - 1 - vp.depth;
-        g.kd_pi.r = P.media[vp.medium].phase().g;
+        g.g = P.media[vp.medium].phase().g;
         return g;
     }
     if (!vp.bsdf) return g;
@@ -67,25 +68,30 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
     g.ns = b.frame().n * s;
     g.max_bounces = max_depth - 1 - vp.depth;
     g.kind = b.is_lambertian() ? GatherPoint::kLambert : GatherPoint::kSurface;
-    g.kd_pi = b.diffuse_albedo() * float(1 / M_PI);
+    g.kd = b.diffuse_spectrum();
     return g;
 }
 
 // contribution() at a volume point or a surface point that is not Lambert-only.
-Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi, const Rgb& power) {
-    if (g.kind == GatherPoint::kVolume) return power * shading::henyey_greenstein(dot(-vp.wo, wi), g.kd_pi.r);
-    return vp.bsdf->eval(vp.wo, wi) * power;
+Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi, const Spectrum& power,
+                           const Wavelengths& lambda) {
+    if (g.kind == GatherPoint::kVolume)
+        return spectrum::to_srgb(power, lambda) * shading::henyey_greenstein(dot(-vp.wo, wi), g.g);
+    return spectrum::to_srgb(vp.bsdf->eval(vp.wo, wi, lambda) * power, lambda);
 }
 
-// What a photon arriving along wi with `power` after `bounces` adds to point i's sums (f(wo, wi)
-// × power; phase(wo, wi) × power for a volume point), or black when it adds nothing. Small, so
-// the gather's loop inlines it: most points are Lambert-only.
+// What a photon arriving along wi with `power` at its wavelengths `lambda` after `bounces` adds to
+// point i's sums, as colour (f(wo, wi) × power; phase(wo, wi) × power for a volume point: the BSDF
+// at the photon's own wavelengths), or black when it adds nothing. Small, so the gather's loop
+// inlines it: most points are Lambert-only.
 inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi,
-                        const Rgb& power, int bounces) {
+                        const Spectrum& power, const Wavelengths& lambda, int bounces) {
     if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
     if (g.kind == GatherPoint::kLambert)  // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side
-        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? g.kd_pi * power : Rgb(0.0f);
-    return contribution_evaluated(g, vp, wi, power);
+        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0
+                   ? spectrum::to_srgb(g.kd.sample(lambda) * power, lambda) * float(1 / M_PI)
+                   : Rgb(0.0f);
+    return contribution_evaluated(g, vp, wi, power, lambda);
 }
 }  // namespace
 
@@ -155,13 +161,15 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
     const double scale = scale_;
     // --trace-pixel: what the traced slots gather is recorded as the photon arrives (in the
     // photon's own order of hits), by a search of its own (path_recorder.h).
-    const auto record = [&](uint64_t idx, Vec3 p, int volume_medium, Vec3 wi, const Rgb& power, int bounces) {
+    const auto record = [&](uint64_t idx, Vec3 p, int volume_medium, Vec3 wi, const Spectrum& power,
+                            const Wavelengths& lambda, int bounces) {
         const bool volume = volume_medium >= 0;
         grid.query(p, [&](uint32_t i) {
             if (size_t(i) - trace_first_ >= trace_count_ || (volume && vps[i].medium != volume_medium))
                 return;
-            const Rgb c = contribution(gather_[i], vps[i], volume, wi, power, bounces);
-            if (!c.is_black() && c.is_finite()) trace_->photon(i, {idx, p, power, wi, c});
+            const Rgb c = contribution(gather_[i], vps[i], volume, wi, power, lambda, bounces);
+            if (!c.is_black() && c.is_finite())
+                trace_->photon(i, {idx, p, spectrum::to_srgb(power, lambda), wi, c});
         });
     };
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
@@ -180,17 +188,17 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
                 if (!local) local = local_slots();
                 grid.query(h.p, [&](uint32_t i) {
                     if (vps[i].medium != h.medium) return;
-                    const Rgb c = contribution(gather_[i], vps[i], true, h.wi, h.power, h.bounces);
+                    const Rgb c = contribution(gather_[i], vps[i], true, h.wi, h.power, h.lambda, h.bounces);
                     int64_t q[3];
                     if (quantize(c, scale, q)) add(local, i, q, 1);
                 });
-                if (trace_count_) record(idx, h.p, h.medium, h.wi, h.power, h.bounces);
+                if (trace_count_) record(idx, h.p, h.medium, h.wi, h.power, h.lambda, h.bounces);
             };
             // Surface photons wait for the binned gather.
             const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
-                hits.push_back({h.hit.p, h.wi, h.power, h.bounces});
-                if (trace_count_) record(idx, h.hit.p, -1, h.wi, h.power, h.bounces);
+                hits.push_back({h.hit.p, h.wi, h.power, h.lambda, h.bounces});
+                if (trace_count_) record(idx, h.hit.p, -1, h.wi, h.power, h.lambda, h.bounces);
             };
             return photon::Visitor{on_surface, on_volume};
         };
@@ -226,7 +234,7 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                 if (h.bucket == photon::HitPointGrid::kNoBucket) continue;
                 const uint32_t to = fill[h.bucket]++;
                 bin_x_[to] = h.p.x, bin_y_[to] = h.p.y, bin_z_[to] = h.p.z;
-                binned_[to] = {h.wi, h.power, h.bounces};
+                binned_[to] = {h.wi, h.power, h.lambda, h.bounces};
             }
     }
     // Each bucket's entries against its hits: a point's sums are added up in registers and
@@ -247,7 +255,8 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                     uint64_t m = 0;
                     const auto match = [&](uint32_t h) {
                         const BinnedHit& bh = binned_[h];
-                        const Rgb c = contribution(g, vps[en->index], false, bh.wi, bh.power, bh.bounces);
+                        const Rgb c =
+                            contribution(g, vps[en->index], false, bh.wi, bh.power, bh.lambda, bh.bounces);
                         int64_t q[3];
                         if (!quantize(c, scale, q)) return;
                         for (int k = 0; k < 3; ++k) sum[k] += q[k];
@@ -317,10 +326,12 @@ void PhotonAccumulator::drain(F&& f) {
     tbb::parallel_for(size_t(0), count_, [&](size_t i) { f(i, uint64_t(all[4 * i + 3]), &all[4 * i]); });
 }
 
-void EyePassExchange::share(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
-                            std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots) {
+void EyePassExchange::share(const scene::Scene& scene, const std::vector<film::Tile>& tiles, int width,
+                            size_t per_pixel, std::vector<VisiblePoint>& vps,
+                            std::vector<PixelStats>& slots) {
     if (!dist::distributed()) return;
-    // Plain data (the Bsdf holds its parameters, no pointers): copied as bytes.
+    // Plain data (the Bsdf holds its parameters, and pointers to its material's spectra that
+    // rebind() sets again in this process): copied as bytes.
     static_assert(std::is_trivially_copyable_v<VisiblePoint> && std::is_trivially_copyable_v<PixelStats>);
     constexpr size_t kPoint = sizeof(VisiblePoint) + sizeof(PixelStats);
     // One tile's points and statistics, row by row, appended to / read from `bytes`.
@@ -350,6 +361,7 @@ void EyePassExchange::share(const std::vector<film::Tile>& tiles, int width, siz
                     throw std::runtime_error("sppm: the ranks' eye passes disagree in size");
                 std::memcpy(static_cast<void*>(&v), all.data() + at, sizeof v);
                 std::memcpy(static_cast<void*>(&st), all.data() + at + sizeof v, sizeof st);
+                if (v.bsdf && v.material >= 0) v.bsdf->rebind(scene.materials[size_t(v.material)]);
                 at += kPoint;
             });
 }
@@ -368,9 +380,19 @@ void PhotonAccumulator::update(std::vector<PixelStats>& stats, const std::vector
                                float alpha, const std::vector<float>& open_fraction) {
     drain([&](size_t i, uint64_t m, const int64_t* sum) {
         if (m == 0 || !vps[i].present()) return;
-        const Rgb& beta = vps[i].beta;
-        double phi[3];  // β Φ_i: the flux the camera path carries to the pixel
-        for (int k = 0; k < 3; ++k) phi[k] = double(beta[k]) * (double(sum[k]) / scale_);
+        // β Φ_i: the flux the camera path carries to the pixel (Φ_i a colour, the camera path's
+        // throughput at its wavelengths: spectrum::colour_through).
+        double phi[3];
+        const VisiblePoint& vp = vps[i];
+        if (vp.beta.is_flat() && !vp.lambda.secondary_terminated()) {
+            for (int k = 0; k < 3; ++k) phi[k] = double(vp.beta[0]) * (double(sum[k]) / scale_);
+        } else {
+            const Rgb c =
+                spectrum::colour_through(vp.beta, vp.lambda,
+                                         Rgb(float(double(sum[0]) / scale_), float(double(sum[1]) / scale_),
+                                             float(double(sum[2]) / scale_)));
+            for (int k = 0; k < 3; ++k) phi[k] = double(c[k]);
+        }
         if (vps[i].volume()) {
             if (!open_fraction.empty())
                 for (double& v : phi) v /= double(open_fraction[i]);

@@ -57,11 +57,12 @@ struct InitialRadius {
 // What the photon pass reads of a visible point, compact (44 bytes) so the per-photon loop touches
 // one cache line per matched point instead of a whole VisiblePoint with its Bsdf.
 struct GatherPoint {
-    Vec3 ng;               // geometric normal turned to wo's side (zero: no visible point)
-    int max_bounces = -1;  // photons that bounced more often would make the path exceed max_depth
-    Vec3 ns;               // shading normal turned like ng
-    uint32_t kind = 0;     // kSurface, kLambert (one Lambert lobe: f = kd_pi above ng and ns), kVolume
-    Rgb kd_pi;             // kd / π of a Lambert-only point; kd_pi.r = the phase g of a volume point
+    Vec3 ng;                   // geometric normal turned to wo's side (zero: no visible point)
+    int max_bounces = -1;      // photons that bounced more often would make the path exceed max_depth
+    Vec3 ns;                   // shading normal turned like ng
+    uint32_t kind = 0;         // kSurface, kLambert (one Lambert lobe: f = kd / π above ng and ns), kVolume
+    spectrum::RgbSpectrum kd;  // kd of a Lambert-only point
+    float g = 0;               // the phase function's g of a volume point
     static constexpr uint32_t kSurface = 0, kLambert = 1, kVolume = 2;
 };
 
@@ -119,7 +120,8 @@ private:
     struct PendingHit {
         Vec3 p;
         Vec3 wi;
-        Rgb power;
+        Spectrum power;
+        Wavelengths lambda;  // the photon's
         int bounces;
         uint32_t bucket = 0;  // in the grid level being gathered
     };
@@ -135,16 +137,19 @@ private:
     LocalSlot* local_slots();  // this thread's sums, or null (atomics)
     void add(LocalSlot* local, uint32_t i, const int64_t q[3], uint64_t m);
     // c in fixed point (what one photon adds); false when c is black or not finite.
+    // (A photon's colour can have a negative component: a spectrum outside the sRGB gamut.)
     static bool quantize(const Rgb& c, double scale, int64_t q[3]) {
         if (c.is_black() || !c.is_finite()) return false;
-        for (int k = 0; k < 3; ++k) q[k] = int64_t(std::min(double(c[k]) * scale, 0x1p52) + 0.5);
+        for (int k = 0; k < 3; ++k)
+            q[k] = int64_t(std::floor(std::clamp(double(c[k]) * scale, -0x1p52, 0x1p52) + 0.5));
         return true;
     }
     std::vector<std::vector<PendingHit>> pending_;  // per block of the chunk
     size_t pending_blocks_ = 0;
     struct BinnedHit {
         Vec3 wi;
-        Rgb power;
+        Spectrum power;
+        Wavelengths lambda;
         int bounces;
     };
     // The chunk's hits in bucket order: positions (one array per axis) and the rest.
@@ -175,7 +180,7 @@ void record_eye_path(PathRecorder& trace, uint64_t sample, int64_t iteration, si
 // as long as the render: allocating them each iteration cost each rank 5 % in page faults.
 class EyePassExchange {
 public:
-    void share(const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
+    void share(const scene::Scene& scene, const std::vector<film::Tile>& tiles, int width, size_t per_pixel,
                std::vector<VisiblePoint>& vps, std::vector<PixelStats>& slots);
 
 private:

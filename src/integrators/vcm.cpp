@@ -74,12 +74,14 @@ public:
                 if (owned_pixel_[i % pixels_]) {
                     Sampler sampler(P.options.seed, kLightSubpathStream, i, iteration);
                     traced.clear();
-                    trace_light_path(P, rules, sampler, traced, rays);
+                    trace_light_path(P, rules, sampler, subpath_wavelengths(P.options.seed, i, iteration),
+                                     traced, rays);
                     for (const Vertex& v : traced) {
                         if (i < pixels_) kept.push_back(v);  // without the BSDF
                         if (v.mergeable)
-                            mergeable.push_back(
-                                {v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v), uint32_t(i)});
+                            mergeable.push_back({v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v),
+                                                 uint32_t(i), v.lambda.code(),
+                                                 v.lambda.secondary_terminated()});
                     }
                 }
                 if (i < pixels_) end_[i] = uint32_t(kept.size());

@@ -36,8 +36,8 @@ void pilot_light_vertices(const Prepared& P, size_t first, size_t end, int merge
         for (size_t i = first + b * kBatch; i < std::min(end, first + (b + 1) * kBatch); ++i) {
             Sampler sampler(ro.seed, 0x7663706c6f74ULL, i);
             traced.clear();
-            trace_light_path(P, {std::max(1, ro.max_depth), MisFactors{}, merge_from, false}, sampler, traced,
-                             rays);
+            trace_light_path(P, {std::max(1, ro.max_depth), MisFactors{}, merge_from, false}, sampler,
+                             Wavelengths::visible(sampler.next()), traced, rays);
             for (const Vertex& v : traced)
                 if (v.mergeable) batches[b].push_back(v.p);
         }

@@ -25,8 +25,9 @@ RenderDone WhittedIntegrator::render(const Prepared& prepared, film::Film& film,
 
 Rgb WhittedIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays,
                                 RadianceParts* parts) {
-    PathRadiance L(parts);  // the estimate, split into components for --layers (path_radiance.h)
-    Rgb beta(1.0f);
+    Wavelengths lambda = camera_wavelengths(sampler);
+    PathRadiance L(lambda, parts);  // the estimate, split into components for --layers (path_radiance.h)
+    Spectrum beta(1.0f);
     shading::SurfaceWalk walk(P.accel);
     for (int depth = 0;; ++depth) {
         accel::SurfaceHit hit;
@@ -34,23 +35,27 @@ Rgb WhittedIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, Ra
         if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            L.emission(beta * (P.scene.background + P.escaped(normalize(ray.dir))));
+            L.emission(beta * (P.background(lambda) + P.escaped(normalize(ray.dir), lambda)));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
-        L.emission(seen_emission(P, hit, wo, beta));
+        const SeenEmission seen = seen_emission(P, hit, wo, beta, lambda);
+        L.emission(seen.light);
+        L.emission(seen.glow);
 
         const shading::Bsdf bsdf = P.bsdf(hit);
-        if (bsdf.has_non_specular()) L.light(beta * sample_all_lights(P, hit, bsdf, wo, sampler, rays));
+        if (bsdf.has_non_specular())
+            L.light(beta * sample_all_lights(P, hit, bsdf, wo, sampler, lambda, rays));
         // Recurse through mirrors and glass (sample_lobes selects by kind: kSpecular = mirror,
         // kTransmission = dielectric).
         constexpr uint32_t kRecurse = shading::kSpecular | shading::kTransmission;
         if (depth >= P.options.max_depth || !(bsdf.flags() & kRecurse)) break;
 
-        const auto bs = bsdf.sample_lobes(kRecurse, wo, sampler.next(), sampler.next2());
+        const auto bs = bsdf.sample_lobes(kRecurse, wo, sampler.next(), sampler.next2(), lambda);
         if (!bs || bs->weight.is_black()) break;
         if (auto* r = recorder()) r->scattered(*bs);
         beta *= bs->weight;
+        follow_dispersion(*bs, lambda, beta);
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         L.bounce(true);  // the recursion counts as delta: all it finds is specular
         ray = accel::spawn_ray(hit, bs->wi);

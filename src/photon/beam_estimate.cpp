@@ -23,7 +23,7 @@ std::vector<PhotonSphere> photon_spheres(const PhotonKdTree& map, uint32_t k, fl
                 const KnnResult kr = map.knn(p.position, k, max_radius * max_radius, nb.data());
                 const float radius = std::max(kr.count < k ? max_radius : std::sqrt(kr.max_dist2), r_min);
                 const float open = surfaces ? open_ball_fraction(*surfaces, p.position, radius) : 1.0f;
-                out[i] = {p.position, radius, p.power() * (1 / open), p.wi()};
+                out[i] = {p.position, radius, p.colour() * (1 / open), p.wi()};
             }
         });
     return out;

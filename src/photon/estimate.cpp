@@ -5,6 +5,8 @@
 #include <cmath>
 #include <vector>
 
+#include "spectrum/color.h"
+
 namespace phos::photon {
 namespace {
 
@@ -86,13 +88,21 @@ Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const S
     Rgb sum(0.0f);
     uint32_t n;
     float r2;
+    // Each photon's power meets the BSDF at the photon's own wavelengths, and the product goes to
+    // colour there.
     if (bsdf.is_lambertian()) {
         // Lambert only: f = kd / pi for every photon on wo's side, which the normal test ensures.
-        n = gather(map, o, q, r2, [&](const Photon& ph, float w) { sum += ph.power() * w; });
-        sum *= bsdf.diffuse_albedo() * kInvPi;
+        const spectrum::RgbSpectrum& kd = bsdf.diffuse_spectrum();
+        n = gather(map, o, q, r2, [&](const Photon& ph, float w) {
+            const Wavelengths lambda = ph.wavelengths();
+            sum += spectrum::to_srgb(kd.sample(lambda) * ph.power(), lambda) * w;
+        });
+        sum *= kInvPi;
     } else {
-        n = gather(map, o, q, r2,
-                   [&](const Photon& ph, float w) { sum += bsdf.eval(wo, ph.wi()) * ph.power() * w; });
+        n = gather(map, o, q, r2, [&](const Photon& ph, float w) {
+            const Wavelengths lambda = ph.wavelengths();
+            sum += spectrum::to_srgb(bsdf.eval(wo, ph.wi(), lambda) * ph.power(), lambda) * w;
+        });
     }
     if (n_used) *n_used = n;
     if (radius_used) *radius_used = std::sqrt(r2);
@@ -103,7 +113,7 @@ Rgb irradiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const
                         uint32_t* n_used) {
     Rgb sum(0.0f);
     float r2;
-    const uint32_t n = gather(map, o, q, r2, [&](const Photon& ph, float w) { sum += ph.power() * w; });
+    const uint32_t n = gather(map, o, q, r2, [&](const Photon& ph, float w) { sum += ph.colour() * w; });
     if (n_used) *n_used = n;
     return sum;
 }

@@ -43,14 +43,15 @@ SurfaceQuery make_query(Vec3 p, Vec3 ng, Vec3 wo, const shading::Bsdf& bsdf);
 // True if photon `ph` passes the surface test of `q` (normal agreement, near the tangent plane).
 bool accept_photon(const Photon& ph, const SurfaceQuery& q, const EstimateOptions& o);
 
-// Reflected radiance towards wo: sum f(wo, wi_p) Phi_p w_p / (mean_w pi r^2) over the accepted
-// neighbours, f = the non-delta BSDF lobes. Lambertian-only BSDFs take a fast path (kd / pi times
-// the irradiance, with no per-photon BSDF evaluation). `n_used` (optional) receives the photon count,
+// Reflected radiance towards wo, as linear sRGB: sum f(wo, wi_p) Phi_p w_p / (mean_w pi r^2) over
+// the accepted neighbours, f = the non-delta BSDF lobes, each photon's term evaluated at its own
+// wavelengths and taken to colour there. Lambertian-only BSDFs take a fast path (kd / pi at the
+// photon's wavelengths, no per-photon BSDF evaluation). `n_used` (optional) receives the photon count,
 // `radius_used` (optional) the disc's radius (the search radius when no photon was found).
 Rgb radiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q, Vec3 wo,
                       const shading::Bsdf& bsdf, uint32_t* n_used = nullptr, float* radius_used = nullptr);
 
-// Irradiance sum Phi_p w_p / (mean_w pi r^2) (W/m^2 per channel) at q.
+// Irradiance sum Phi_p w_p / (mean_w pi r^2) at q, as linear sRGB.
 Rgb irradiance_estimate(const PhotonKdTree& map, const EstimateOptions& o, const SurfaceQuery& q,
                         uint32_t* n_used = nullptr);
 

@@ -29,7 +29,8 @@ void IrradianceCache::build(const PhotonKdTree& map, const EstimateOptions& o, u
             q.p = ph.position;
             q.n = ph.normal();
             const Rgb E = ph.has_normal() ? irradiance_estimate(map, o, q) : Rgb(0.0f);
-            pts[i] = Photon(ph.position, E, q.n, q.n);
+            pts[i] = Photon(ph.position, Spectrum(0.0f), Wavelengths(), q.n, q.n);
+            set_stored_colour(pts[i], E);
         }
     });
     if (dist::distributed()) {
@@ -45,7 +46,7 @@ bool IrradianceCache::lookup(const SurfaceQuery& q, float max_radius, float norm
     const KnnResult r = points_.knn_if(q.p, 1, max_radius * max_radius, &nb,
                                        [&](const Photon& ph) { return dot(ph.normal(), q.n) >= normal_cos; });
     if (r.count == 0) return false;
-    irradiance = points_.photon(nb.index).power();
+    irradiance = stored_colour(points_.photon(nb.index));
     return true;
 }
 

@@ -1,6 +1,7 @@
-// The compact 20-byte photon record stored in photon maps, and the encodings it is built from:
-// shared-exponent RGB power (RGBE with rounding) and octahedral unit vectors (16-bit incident
-// direction, 14-bit surface normal), plus the 2-bit k-d tree split axis.
+// The compact 24-byte photon record stored in photon maps, and the encodings it is built from:
+// shared-exponent power at the photon's four wavelengths (RGBE with rounding, over four channels),
+// the wavelengths' 16-bit code, octahedral unit vectors (16-bit incident direction, 14-bit surface
+// normal), plus the 2-bit k-d tree split axis.
 #pragma once
 
 #include <immintrin.h>
@@ -12,43 +13,58 @@
 
 #include "core/vec.h"
 #include "photon/octahedral_lanes.h"
+#include "spectrum/color.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::photon {
 
-// ---- Shared-exponent RGB (Ward's RGBE layout: r, g, b mantissa bytes, then a biased exponent) ----
+// ---- Shared-exponent spectral power (Ward's RGBE generalised to the photon's four wavelengths:
+// four mantissa bytes, then a biased exponent byte) ----
 //
-// We round instead of truncating, so for power c with max channel m every channel has
+// We round instead of truncating, so for power c with largest channel m every channel has
 //   |decoded_i - c_i| <= half a mantissa step <= m / 255.5
 // (2^-9 * 2^e with m >= 2^(e-1); m / 255.5 when rounding carried m into the next exponent): the
 // largest channel has relative error <= 0.39 % and the smaller ones an absolute error of at most
 // 0.39 % of the largest, without bias (Ward's truncating encoder: 0.78 %, always darker).
 // Negative and NaN channels encode as 0; +inf and values beyond ~2^127 saturate; maxima below
-// 2^-127 encode as black. The all-zero word is black.
-inline constexpr float kRgbeMaxRelativeError = 1.0f / 255.0f;
+// 2^-127 encode as black. Exponent byte 0 is black.
+inline constexpr float kPowerMaxRelativeError = 1.0f / 255.0f;
 
-inline uint32_t encode_rgbe_reference(Rgb c) {
-    // NaN fails every comparison, so `!(x > 0)` maps NaN and negatives to 0.
-    const float r = c.r > 0 ? std::fmin(c.r, 3e38f) : 0.0f;
-    const float g = c.g > 0 ? std::fmin(c.g, 3e38f) : 0.0f;
-    const float b = c.b > 0 ? std::fmin(c.b, 3e38f) : 0.0f;
-    const float m = std::fmax(r, std::fmax(g, b));
-    if (!(m > 0)) return 0;
+struct PowerCode {
+    uint32_t mantissas = 0;  // channel i in byte i
+    uint8_t exponent = 0;    // e + 128; 0 = black
+    bool operator==(const PowerCode&) const = default;
+};
+
+inline PowerCode encode_power_reference(const Spectrum& c) {
+    float v[4];
+    float m = 0;
+    for (int i = 0; i < 4; ++i) {
+        // NaN fails every comparison, so `!(x > 0)` maps NaN and negatives to 0.
+        v[i] = c[i] > 0 ? std::fmin(c[i], 3e38f) : 0.0f;
+        m = std::fmax(m, v[i]);
+    }
+    if (!(m > 0)) return {};
     int e;
     std::frexp(m, &e);  // m = f * 2^e, f in [0.5, 1)
-    if (e < -127) return 0;
+    if (e < -127) return {};
     // Mantissas are c * 2^(8-e); the largest lands in [128, 256). Rounding may carry it to 256, in
-    // which case the exponent grows by one (the rounded value 128 * 2^(e+1-8) is then exact).
-    float scale = std::ldexp(1.0f, 8 - e);
-    if (std::nearbyint(m * scale) >= 256.0f) {
+    // which case the exponent grows by one (the rounded value 128 * 2^(e+1-8) is then exact). The
+    // scale is a double: 2^(8-e) overflows a float for the smallest exponents.
+    double scale = std::ldexp(1.0, 8 - e);
+    if (std::nearbyint(double(m) * scale) >= 256.0) {
         ++e;
-        scale *= 0.5f;
+        scale *= 0.5;
     }
     if (e > 127) {  // saturate rather than wrap around
         e = 127;
-        scale = std::ldexp(1.0f, 8 - e);
+        scale = std::ldexp(1.0, 8 - e);
     }
-    auto q = [&](float v) { return uint32_t(std::fmin(std::nearbyint(v * scale), 255.0f)); };
-    return q(r) | (q(g) << 8) | (q(b) << 16) | (uint32_t(e + 128) << 24);
+    PowerCode code;
+    for (int i = 0; i < 4; ++i)
+        code.mantissas |= uint32_t(std::fmin(std::nearbyint(double(v[i]) * scale), 255.0)) << (8 * i);
+    code.exponent = uint8_t(e + 128);
+    return code;
 }
 
 // Rounds each lane to the nearest whole number, ties to even, by adding and subtracting 2^23 (exact
@@ -58,22 +74,22 @@ inline __m128 round_even_lanes(__m128 x) {
     return _mm_sub_ps(_mm_add_ps(x, two23), two23);
 }
 
-// The same words as encode_rgbe_reference (photon_record_test.cpp compares them), without its
-// libm calls where the maximum channel is a normal float well inside the exponent range (every
+// The same codes as encode_power_reference (photon_record_test.cpp compares them), without its
+// libm calls where the largest channel is a normal float well inside the exponent range (every
 // photon in practice): the exponent from the bits, powers of two built from bits, and round to
 // nearest even by adding and subtracting 2^23 (exact for 0 <= x < 2^23 in the default rounding
-// mode, which nearbyint also uses). The photon tracer encodes every stored photon twice.
-// The three channels travel in the lanes of one SSE register (r, g, b, 0): each lane's clamp,
-// product and rounding are the scalar operations, and the maximum of three non-negative,
-// non-NaN values is the same whichever way it is taken.
-inline uint32_t encode_rgbe(Rgb c) {
-    const __m128 raw = _mm_setr_ps(c.r, c.g, c.b, 0.0f);
+// mode, which nearbyint also uses). The four channels travel in the lanes of one SSE register:
+// each lane's clamp, product and rounding are the scalar operations, and the maximum of four
+// non-negative, non-NaN values is the same whichever way it is taken.
+inline PowerCode encode_power(const Spectrum& c) {
+    static_assert(spectrum::kSpectrumSamples == 4);
+    const __m128 raw = _mm_loadu_ps(c.v.data());
     // c > 0 ? min(c, 3e38) : 0 per channel (NaN fails the comparison).
     const __m128 v = _mm_and_ps(_mm_cmpgt_ps(raw, _mm_setzero_ps()), _mm_min_ps(raw, _mm_set1_ps(3e38f)));
     const __m128 m2 = _mm_max_ps(v, _mm_shuffle_ps(v, v, _MM_SHUFFLE(2, 3, 0, 1)));
     const float m = _mm_cvtss_f32(_mm_max_ps(m2, _mm_shuffle_ps(m2, m2, _MM_SHUFFLE(1, 0, 3, 2))));
     const int biased = int(std::bit_cast<uint32_t>(m) >> 23);  // m >= 0: no sign bit
-    if (!(m > 0) || biased < 16 || biased > 240) return encode_rgbe_reference(c);
+    if (!(m > 0) || biased < 16 || biased > 240) return encode_power_reference(c);
     int e = biased - 126;  // frexp's exponent for a normal float
     const auto pow2 = [](int k) { return std::bit_cast<float>(uint32_t(k + 127) << 23); };
     // (IEEE semantics, no -ffast-math: the compiler may not fold the sum and difference away.)
@@ -84,60 +100,21 @@ inline uint32_t encode_rgbe(Rgb c) {
         scale *= 0.5f;
     }
     const __m128 x = round_even_lanes(_mm_mul_ps(v, _mm_set1_ps(scale)));
-    // min(x, 255) as whole numbers, then the low bytes of the four lanes (the fourth is 0).
+    // min(x, 255) as whole numbers, then the low bytes of the four lanes.
     const __m128i q = _mm_cvttps_epi32(_mm_min_ps(x, _mm_set1_ps(255.0f)));
     const __m128i bytes = _mm_packus_epi16(_mm_packs_epi32(q, q), _mm_setzero_si128());
-    return uint32_t(_mm_cvtsi128_si32(bytes)) | (uint32_t(e + 128) << 24);
+    return {uint32_t(_mm_cvtsi128_si32(bytes)), uint8_t(e + 128)};
 }
 
-inline Rgb decode_rgbe(uint32_t w) {
-    const int eb = int(w >> 24);
-    if (eb == 0) return Rgb(0.0f);
-    // 2^(e-8) with e = eb - 128, built from its bit pattern (normal floats need e-8 >= -126); the
-    // few tinier exponents take ldexp.
-    const int e2 = eb - 128 - 8;
+inline Spectrum decode_power(PowerCode code) {
+    Spectrum s;
+    if (code.exponent == 0) return s;
+    // 2^(e-8) with e = exponent - 128, built from its bit pattern (normal floats need e-8 >= -126);
+    // the few tinier exponents take ldexp.
+    const int e2 = int(code.exponent) - 128 - 8;
     const float scale = e2 >= -126 ? std::bit_cast<float>(uint32_t(e2 + 127) << 23) : std::ldexp(1.0f, e2);
-    return {float(w & 0xff) * scale, float((w >> 8) & 0xff) * scale, float((w >> 16) & 0xff) * scale};
-}
-
-// encode_rgbe(decode_rgbe(w[k]) * s) for four words at once, one per SSE lane, each lane doing the
-// two scalar functions' IEEE operations in their order (photon_record_test.cpp compares them). A
-// group with a word outside their fast paths (black, or an exponent near either end of the range)
-// takes the scalar functions. The photon tracer rescales every stored photon's power by 1 / N so.
-inline void scale_rgbe4(uint32_t w[4], float s) {
-    const __m128i word = _mm_loadu_si128(reinterpret_cast<const __m128i*>(w));
-    const __m128i eb = _mm_srli_epi32(word, 24), byte = _mm_set1_epi32(0xff);
-    // decode_rgbe: 2^(eb - 136) from its bits (eb >= 10 keeps it a normal float), times the mantissas.
-    const __m128 dscale = _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(eb, _mm_set1_epi32(9)), 23));
-    const __m128 sv = _mm_set1_ps(s), zero = _mm_setzero_ps(), big = _mm_set1_ps(3e38f);
-    __m128 c[3];
-    for (int k = 0; k < 3; ++k) {
-        const __m128 m = _mm_cvtepi32_ps(_mm_and_si128(_mm_srli_epi32(word, 8 * k), byte));
-        const __m128 v = _mm_mul_ps(_mm_mul_ps(m, dscale), sv);
-        c[k] = _mm_and_ps(_mm_cmpgt_ps(v, zero), _mm_min_ps(v, big));  // encode_rgbe's clamp
-    }
-    const __m128 m = _mm_max_ps(c[0], _mm_max_ps(c[1], c[2]));
-    const __m128i biased = _mm_srli_epi32(_mm_castps_si128(m), 23);
-    // The fast paths: decoded exponent normal, and the maximum a normal float in [2^-111, 2^113].
-    const __m128i out = _mm_or_si128(_mm_cmplt_epi32(eb, _mm_set1_epi32(10)),
-                                     _mm_or_si128(_mm_cmplt_epi32(biased, _mm_set1_epi32(16)),
-                                                  _mm_cmpgt_epi32(biased, _mm_set1_epi32(240))));
-    if (_mm_movemask_epi8(out) != 0 || _mm_movemask_ps(_mm_cmpgt_ps(m, zero)) != 0xf) {
-        for (int k = 0; k < 4; ++k) w[k] = encode_rgbe(decode_rgbe(w[k]) * s);
-        return;
-    }
-    // e = biased - 126 and scale = 2^(8 - e); a maximum rounding up to 256 moves both one step.
-    __m128i e = _mm_sub_epi32(biased, _mm_set1_epi32(126));
-    __m128 scale = _mm_castsi128_ps(_mm_slli_epi32(_mm_sub_epi32(_mm_set1_epi32(261), biased), 23));
-    const __m128 carry = _mm_cmpge_ps(round_even_lanes(_mm_mul_ps(m, scale)), _mm_set1_ps(256.0f));
-    e = _mm_sub_epi32(e, _mm_castps_si128(carry));  // carry lanes are all ones: -(-1)
-    scale = _mm_or_ps(_mm_and_ps(carry, _mm_mul_ps(scale, _mm_set1_ps(0.5f))), _mm_andnot_ps(carry, scale));
-    __m128i result = _mm_slli_epi32(_mm_add_epi32(e, _mm_set1_epi32(128)), 24);
-    for (int k = 0; k < 3; ++k) {
-        const __m128 q = _mm_min_ps(round_even_lanes(_mm_mul_ps(c[k], scale)), _mm_set1_ps(255.0f));
-        result = _mm_or_si128(result, _mm_slli_epi32(_mm_cvttps_epi32(q), 8 * k));
-    }
-    _mm_storeu_si128(reinterpret_cast<__m128i*>(w), result);
+    for (int i = 0; i < 4; ++i) s[i] = float((code.mantissas >> (8 * i)) & 0xff) * scale;
+    return s;
 }
 
 // ---- Octahedral unit vectors (Meyer et al. 2010; "precise" variant of Cigolle et al. 2014) ----
@@ -306,38 +283,63 @@ inline constexpr float kNormalMaxErrorDegrees = 1.3f;
 // ---- The photon record ----
 //
 //   bytes  0..11  position (3 x float)
-//   bytes 12..15  power, RGBE
-//   bytes 16..17  wi: direction towards where the photon came from, octahedral 8+8 bits
-//   bytes 18..19  bits 0-1: k-d split axis (0/1/2, 3 = not a split node, set by the tree);
+//   bytes 12..15  power: the four wavelengths' mantissas (PowerCode)
+//   byte  16      power: the shared exponent
+//   byte  17      bit 0: the photon's secondary wavelengths were terminated (it crossed a
+//                 dispersive interface; only the hero carries power)
+//   bytes 18..19  the photon's wavelengths: the 16-bit code of its hero (SampledWavelengths::from_code)
+//   bytes 20..21  wi: direction towards where the photon came from, octahedral 8+8 bits
+//   bytes 22..23  bits 0-1: k-d split axis (0/1/2, 3 = not a split node, set by the tree);
 //                 bits 2-15: surface normal, octahedral 7+7 bits (u code 127 = no normal, for
 //                 photons stored off surfaces, e.g. in media)
 // The normal lets a density estimate reject photons from a differently oriented surface (thin
-// walls, corners) as Mitsuba's 28-byte photon does, in Jensen's 20 bytes.
+// walls, corners) as Mitsuba's 28-byte photon does; the wavelengths let an estimate evaluate the
+// BSDF where the photon's power is, at the cost of 4 bytes over Jensen's 20.
 struct Photon {
     Vec3 position;
-    uint32_t power_rgbe = 0;
+    uint32_t power_mantissas = 0;
+    uint8_t power_exponent = 0;
+    uint8_t flags = 0;
+    uint16_t lambda_code = 0;
     uint16_t wi_code = 0;
     uint16_t normal_axis = kNoNormalCode << 2 | 3;
 
     static constexpr uint16_t kNoNormalCode = 127;  // u = 127, v = 0 (never produced by the encoder)
+    static constexpr uint8_t kSecondaryTerminated = 1;
 
     Photon() = default;
-    // `power` is the photon's flux (W, per channel); `wi` points away from the surface towards the
-    // photon's origin; `normal` is the surface normal (a zero vector stores "no normal"). Both
-    // directions need not be normalised.
-    Photon(Vec3 position_, Rgb power, Vec3 wi, Vec3 normal)
-        : position(position_), power_rgbe(encode_rgbe(power)), wi_code(uint16_t(encode_octahedral<8>(wi))) {
+    // `power` is the photon's flux (W) at its wavelengths `lambda`; `wi` points away from the
+    // surface towards the photon's origin; `normal` is the surface normal (a zero vector stores "no
+    // normal"). Both directions need not be normalised.
+    Photon(Vec3 position_, const Spectrum& power, const Wavelengths& lambda, Vec3 wi, Vec3 normal)
+        : position(position_), wi_code(uint16_t(encode_octahedral<8>(wi))) {
+        set_power(power);
+        set_wavelengths(lambda);
         set_normal(normal);
     }
 
-    Rgb power() const { return decode_rgbe(power_rgbe); }
+    Spectrum power() const { return decode_power({power_mantissas, power_exponent}); }
+    Wavelengths wavelengths() const {
+        return Wavelengths::from_code(lambda_code, (flags & kSecondaryTerminated) != 0);
+    }
+    // The power's linear sRGB (what estimates add when nothing at the photon depends on wavelength).
+    Rgb colour() const { return spectrum::to_srgb(power(), wavelengths()); }
     Vec3 wi() const { return decode_octahedral<8>(wi_code); }
     bool has_normal() const { return (normal_axis >> 2) != kNoNormalCode; }
     // Decoded normal; (0,0,0) when none was stored.
     Vec3 normal() const { return has_normal() ? decode_octahedral<7>(normal_axis >> 2) : Vec3(0.0f); }
     int split_axis() const { return normal_axis & 3; }
 
-    void set_power(Rgb p) { power_rgbe = encode_rgbe(p); }
+    void set_power(const Spectrum& p) {
+        const PowerCode c = encode_power(p);
+        power_mantissas = c.mantissas;
+        power_exponent = c.exponent;
+    }
+    void set_wavelengths(const Wavelengths& lambda) {
+        lambda_code = lambda.code();
+        flags = uint8_t((flags & ~kSecondaryTerminated) |
+                        (lambda.secondary_terminated() ? kSecondaryTerminated : 0));
+    }
     void set_normal(Vec3 n) {
         const uint32_t code = length_squared(n) > 0 ? encode_octahedral<7>(n) : kNoNormalCode;
         normal_axis = uint16_t((code << 2) | (normal_axis & 3u));
@@ -345,7 +347,27 @@ struct Photon {
     void set_split_axis(int axis) { normal_axis = uint16_t((normal_axis & ~3u) | (uint32_t(axis) & 3u)); }
 };
 
-static_assert(sizeof(Photon) == 20, "the photon record must stay at 20 bytes");
+static_assert(sizeof(Photon) == 24, "the photon record must stay at 24 bytes");
+
+// Caches that keep a colour per point in photon records (the irradiance cache) hold its linear
+// sRGB in the first three power channels, and the channels' signs in flags bits 1-3 (a colour
+// estimated from few wavelengths may have a negative channel).
+inline void set_stored_colour(Photon& ph, Rgb c) {
+    Spectrum s;
+    uint8_t signs = 0;
+    for (int k = 0; k < 3; ++k) {
+        s[k] = std::fabs(c[k]);
+        if (c[k] < 0) signs = uint8_t(signs | (2u << k));
+    }
+    ph.set_power(s);
+    ph.flags = uint8_t((ph.flags & ~0x0eu) | signs);
+}
+inline Rgb stored_colour(const Photon& ph) {
+    const Spectrum s = ph.power();
+    Rgb c;
+    for (int k = 0; k < 3; ++k) c[k] = (ph.flags & (2u << k)) ? -s[k] : s[k];
+    return c;
+}
 static_assert(alignof(Photon) == 4);
 
 }  // namespace phos::photon

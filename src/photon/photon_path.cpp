@@ -17,14 +17,15 @@ bool packets_possible(const PhotonScene& ps) {
 
 namespace phos::photon::detail {
 
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium) {
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, const Wavelengths& lambda, Ray& ray,
+                 Spectrum& power, int& medium) {
     if (ps.lights.size() == 0) return false;
     float pmf = 0;
     const size_t li = ps.lights.choose(sampler.next(), pmf);
     if (!(pmf > 0)) return false;
     const Vec2 u_pos = sampler.next2();
     const Vec2 u_dir = sampler.next2();
-    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
+    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir, lambda);
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (1.0f / pmf);
@@ -35,8 +36,9 @@ bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, 
 // One Lambert lobe: the code of the general case below with its three absent kinds left out (their
 // probabilities are 0, so they neither change the total nor catch u), and sample_lobes(kDiffuse)
 // of such a BSDF.
-bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out) {
-    Rgb albedo(0.0f);
+bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, const Wavelengths& lambda,
+                    Spectrum& power, Vec3& wi_out) {
+    Rgb albedo(0.0f);  // the selection reads the colour
     albedo += lobe.kd;
     float p = std::max(albedo.average(), 0.0f);
     if (!(p > 0)) return false;
@@ -45,15 +47,15 @@ bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler,
     sampler.next();  // u_lobe: one lobe, nothing to choose
     const Vec2 u_dir = sampler.next2();
     if (u >= p) return false;  // absorbed
-    const auto s = lobe.sample(wo, u_dir);
+    const auto s = lobe.sample(wo, u_dir, lambda);
     if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
     power = power * s->weight * (1.0f / p);
     wi_out = s->wi;
     return true;
 }
 
-bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
-                    bool& specular, float sharp_exponent) {
+bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Wavelengths& lambda,
+                    Spectrum& power, Vec3& wi_out, bool& specular, float sharp_exponent) {
     using namespace shading;
     // (surface_step gives a lone Lambert lobe to the overload above instead; this code would draw
     // the same sample for it.)
@@ -77,9 +79,10 @@ bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& p
             u -= p[k];
             continue;
         }
-        const auto s = bsdf.sample_lobes(masks[k], wo, u_lobe, u_dir, TransportMode::Importance);
+        const auto s = bsdf.sample_lobes(masks[k], wo, u_lobe, u_dir, lambda, TransportMode::Importance);
         if (!s || s->weight.is_black() || !s->weight.is_finite()) return false;
         power = power * s->weight * (1.0f / p[k]);
+        if (s->dispersive) spectrum::terminate_secondary(lambda, power);
         wi_out = s->wi;
         specular = s->is_specular() || (masks[k] & bsdf.sharp_lobes(sharp_exponent));
         return true;

@@ -4,7 +4,10 @@
 // splat it. In participating media (Jensen & Christensen 1998) the photon takes free flights
 // (delta tracking, shading/medium_tracking.h), and at every real scattering event the visitor sees
 // a volume hit; the photon then survives with probability = the albedo (Russian roulette) and
-// scatters by the phase function. Shared by the photon-map, PPM and SPPM integrators.
+// scatters by the phase function. Each photon carries its own four wavelengths (hero-wavelength
+// sampling, drawn first from its sampler) and its power at them; a photon that crosses a smooth
+// dispersive interface keeps its hero wavelength alone. Shared by the photon-map, PPM and SPPM
+// integrators.
 #pragma once
 
 #include <cstdint>
@@ -36,19 +39,21 @@ struct PhotonScene {
 // lobes not as sharp as PhotonScene::sharp_exponent).
 struct PhotonHit {
     const accel::SurfaceHit& hit;
-    bool followed_lobes;  // the BSDF also has delta or sharp glossy lobes (a caustic path goes on)
-    Vec3 wi;              // unit direction towards where the photon came from
-    Rgb power;            // flux in W times the number of photons emitted (divide by N emitted)
-    int bounces;          // scattering events before this hit (0 = straight from the light)
-    bool after_diffuse;   // some earlier bounce was non-specular (path L{S|D}*D D...)
-    bool after_specular;  // the bounces so far were all specular and there was at least one (L S+ D)
+    bool followed_lobes;        // the BSDF also has delta or sharp glossy lobes (a caustic path goes on)
+    Vec3 wi;                    // unit direction towards where the photon came from
+    Spectrum power;             // flux in W times the number of photons emitted (divide by N emitted)
+    const Wavelengths& lambda;  // the wavelengths `power` is at
+    int bounces;                // scattering events before this hit (0 = straight from the light)
+    bool after_diffuse;         // some earlier bounce was non-specular (path L{S|D}*D D...)
+    bool after_specular;        // the bounces so far were all specular and there was at least one (L S+ D)
 };
 
 // A photon scattering in a participating medium (a real collision chosen by delta tracking).
 struct PhotonVolumeHit {
     Vec3 p;
-    Vec3 wi;     // unit direction towards where the photon came from
-    Rgb power;   // as PhotonHit::power, already weighted by the scattering albedo at p
+    Vec3 wi;         // unit direction towards where the photon came from
+    Spectrum power;  // as PhotonHit::power, already weighted by the scattering albedo at p
+    const Wavelengths& lambda;
     int medium;  // index into the scene's media
     int bounces;
     bool after_diffuse;   // some earlier scattering was non-specular (surface or medium)
@@ -100,10 +105,11 @@ namespace detail {
 // Emits the photon: picks a light by power and samples a ray from it. Returns false when the
 // scene has no light with power. `power` is the sample weight divided by the light's pmf;
 // `medium` is the light's medium.
-bool emit_photon(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium);
+bool emit_photon(const PhotonScene& ps, Sampler& sampler, const Wavelengths& lambda, Ray& ray,
+                 Spectrum& power, int& medium);
 // The same through a projection map (defined in projection_map.cpp).
-bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power,
-                    int& medium);
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler,
+                    const Wavelengths& lambda, Ray& ray, Spectrum& power, int& medium);
 // Calls the visitor and tells whether the path goes on (visitors returning void always go on).
 template <class Visitor, class Hit>
 bool visit_hit(Visitor& visit, const Hit& h) {
@@ -117,19 +123,22 @@ bool visit_hit(Visitor& visit, const Hit& h) {
 // Russian roulette on the lobe kinds at a hit, then sampling of the chosen kind in Importance
 // mode. Returns false when the photon is absorbed; otherwise updates `power` (per-channel exact
 // expectation) and sets `wi_out` and whether the chosen lobe was specular: a delta lobe, or a
-// glossy lobe at least as sharp as `sharp_exponent` (Bsdf::sharp_lobes).
-bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out,
-                    bool& specular, float sharp_exponent = kInf);
+// glossy lobe at least as sharp as `sharp_exponent` (Bsdf::sharp_lobes). Crossing a smooth
+// dispersive interface terminates the secondary wavelengths of `lambda` (and their power).
+bool scatter_photon(const shading::Bsdf& bsdf, Vec3 wo, Sampler& sampler, Wavelengths& lambda,
+                    Spectrum& power, Vec3& wi_out, bool& specular, float sharp_exponent = kInf);
 // The same for a BSDF made of `lobe` alone (what scatter_photon does for it, to the bit); the
 // scattering is diffuse.
-bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, Rgb& power, Vec3& wi_out);
+bool scatter_photon(const shading::LambertLobe& lobe, Vec3 wo, Sampler& sampler, const Wavelengths& lambda,
+                    Spectrum& power, Vec3& wi_out);
 
 // A photon between events: what trace_photon carries from one bounce to the next (also the
 // state of each lane of the photon tracer's wavefront, tracer.cpp).
 struct PhotonState {
     Sampler sampler;
     Ray ray;
-    Rgb power;
+    Wavelengths lambda;
+    Spectrum power;
     int medium = -1;
     int bounces = 0;
     bool after_diffuse = false, after_specular = false;
@@ -143,9 +152,10 @@ inline bool start_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, ui
     st.medium = -1;
     st.bounces = 0;
     st.after_diffuse = st.after_specular = false;
+    st.lambda = Wavelengths::visible(st.sampler.next());
     return options.projection
-               ? emit_projected(*options.projection, ps, st.sampler, st.ray, st.power, st.medium)
-               : emit_photon(ps, st.sampler, st.ray, st.power, st.medium);
+               ? emit_projected(*options.projection, ps, st.sampler, st.lambda, st.ray, st.power, st.medium)
+               : emit_photon(ps, st.sampler, st.lambda, st.ray, st.power, st.medium);
 }
 // The photon has reached scattering surface `hit` along st.ray: the visitor sees it (if it has a
 // non-specular component), then Russian roulette and BSDF sampling. Returns false when the path
@@ -158,7 +168,8 @@ bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const
     // the path ends there, scatter() does the Russian roulette and samples the BSDF.
     const auto visit_and_scatter = [&](bool stores, bool followed, auto&& scatter) {
         if (stores) {
-            const PhotonHit ph{hit, followed, wo, st.power, st.bounces, st.after_diffuse, st.after_specular};
+            const PhotonHit ph{
+                hit, followed, wo, st.power, st.lambda, st.bounces, st.after_diffuse, st.after_specular};
             // A visitor returning bool may end the path (false): e.g. once no map it fills can
             // take this photon any more.
             if (!visit_hit(visit, ph)) return false;
@@ -169,15 +180,17 @@ bool surface_step(const PhotonScene& ps, const PhotonPathOptions& options, const
     // A lone Lambert lobe (most surfaces) scatters without a copy of the whole BSDF.
     shading::LambertLobe lambert;
     if (ps.bsdfs.lambert_at(hit, lambert)) {
-        if (!visit_and_scatter(true, false,
-                               [&] { return scatter_photon(lambert, wo, st.sampler, st.power, wi); }))
+        if (!visit_and_scatter(true, false, [&] {
+                return scatter_photon(lambert, wo, st.sampler, st.lambda, st.power, wi);
+            }))
             return false;
     } else {
         const shading::Bsdf bsdf = ps.bsdfs.at(hit);
-        if (!visit_and_scatter(
-                bsdf.has_estimated(ps.sharp_exponent), bsdf.has_followed(ps.sharp_exponent), [&] {
-                    return scatter_photon(bsdf, wo, st.sampler, st.power, wi, specular, ps.sharp_exponent);
-                }))
+        if (!visit_and_scatter(bsdf.has_estimated(ps.sharp_exponent), bsdf.has_followed(ps.sharp_exponent),
+                               [&] {
+                                   return scatter_photon(bsdf, wo, st.sampler, st.lambda, st.power, wi,
+                                                         specular, ps.sharp_exponent);
+                               }))
             return false;
     }
     if (specular) {
@@ -207,13 +220,14 @@ uint32_t trace_photon(const PhotonScene& ps, uint64_t seed, uint64_t pass, uint6
     shading::SurfaceWalk walk(ps.accel, media, st.medium);
     while (true) {
         accel::SurfaceHit hit;
-        const Rgb power_before = st.power;
-        Rgb emitted;  // media emission is not traced from the camera side only; photons ignore it
+        const Spectrum power_before = st.power;
+        Spectrum emitted;  // media emission is not traced from the camera side only; photons ignore it
         const shading::SurfaceWalk::Event event =
-            media ? walk.next(st.ray, hit, st.sampler, st.power, emitted) : walk.next(st.ray, hit);
+            media ? walk.next(st.ray, hit, st.sampler, st.lambda, st.power, emitted) : walk.next(st.ray, hit);
         if (event == shading::SurfaceWalk::Event::Medium) {
-            const PhotonVolumeHit vh{walk.medium_point(), walk.medium_wo(), st.power,         walk.medium(),
-                                     st.bounces,          st.after_diffuse, st.after_specular};
+            const PhotonVolumeHit vh{walk.medium_point(), walk.medium_wo(), st.power,
+                                     st.lambda,           walk.medium(),    st.bounces,
+                                     st.after_diffuse,    st.after_specular};
             if constexpr (std::is_invocable_v<Visitor&, const PhotonVolumeHit&>) {
                 if (!detail::visit_hit(visit, vh)) break;
             }

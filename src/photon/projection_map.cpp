@@ -120,6 +120,8 @@ std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, flo
 ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::max(resolution, 1)) {
     const std::vector<BoundingSphere> casters = caustic_caster_bounds(ps.scene, ps.sharp_exponent);
     const int R = res_;
+    // Where a light's rays go does not depend on wavelength: the probes take any wavelengths.
+    const Wavelengths probe_wavelengths = Wavelengths::visible(0.5f);
     const uint32_t n_cells = uint32_t(R) * uint32_t(R);
     const float below_one = std::nextafter(1.0f, 0.0f);
     std::vector<float> weights;
@@ -136,13 +138,14 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
             Bounds origins;
             bool separable = !L.is_infinite();
             Vec3 ref_dir[3];
-            for (int k = 0; k < 3; ++k) ref_dir[k] = L.sample_Le({0.5f, 0.5f}, dir_probes[k]).ray.dir;
+            for (int k = 0; k < 3; ++k)
+                ref_dir[k] = L.sample_Le({0.5f, 0.5f}, dir_probes[k], probe_wavelengths).ray.dir;
             for (int y = 0; y < P && separable; ++y)
                 for (int x = 0; x < P && separable; ++x) {
                     const Vec2 up(std::min(float(x) / (P - 1), below_one),
                                   std::min(float(y) / (P - 1), below_one));
                     for (int k = 0; k < 3; ++k) {
-                        const shading::LightLeSample s = L.sample_Le(up, dir_probes[k]);
+                        const shading::LightLeSample s = L.sample_Le(up, dir_probes[k], probe_wavelengths);
                         if (!same(s.ray.dir, ref_dir[k], 1e-4f)) separable = false;
                         origins.extend(s.ray.origin);
                     }
@@ -163,7 +166,7 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
                         for (int i = 0; i < M; ++i) {
                             const Vec2 ud(std::min(x0 + span * float(i) / (M - 1), below_one),
                                           std::min(y0 + span * float(j) / (M - 1), below_one));
-                            d[j * M + i] = normalize(L.sample_Le(up_ref, ud).ray.dir);
+                            d[j * M + i] = normalize(L.sample_Le(up_ref, ud, probe_wavelengths).ray.dir);
                             axis += d[j * M + i];
                         }
                     if (!(length_squared(axis) > 0)) {
@@ -211,7 +214,8 @@ ProjectionMap::ProjectionMap(const PhotonScene& ps, int resolution) : res_(std::
     if (fraction_ > 0) choose_ = shading::Distribution1D(weights);
 }
 
-bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium) const {
+bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, const Wavelengths& lambda, Ray& ray,
+                         Spectrum& power, int& medium) const {
     if (empty()) return false;
     float pmf = 0;
     const size_t li = choose_.sample_discrete(sampler.next(), &pmf);
@@ -223,7 +227,7 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb&
     const float below_one = std::nextafter(1.0f, 0.0f);
     const Vec2 u_dir(std::min((float(c % uint32_t(res_)) + j.x) / float(res_), below_one),
                      std::min((float(c / uint32_t(res_)) + j.y) / float(res_), below_one));
-    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir);
+    const shading::LightLeSample s = ps.lights[li].sample_Le(u_pos, u_dir, lambda);
     if (s.weight.is_black() || !s.weight.is_finite()) return false;
     ray = s.ray;
     power = s.weight * (lc.fraction / pmf);
@@ -232,9 +236,9 @@ bool ProjectionMap::emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb&
 }
 
 namespace detail {
-bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power,
-                    int& medium) {
-    return map.emit(ps, sampler, ray, power, medium);
+bool emit_projected(const ProjectionMap& map, const PhotonScene& ps, Sampler& sampler,
+                    const Wavelengths& lambda, Ray& ray, Spectrum& power, int& medium) {
+    return map.emit(ps, sampler, lambda, ray, power, medium);
 }
 }  // namespace detail
 

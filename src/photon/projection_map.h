@@ -51,7 +51,8 @@ public:
     // Emits one photon through a marked cell: light chosen by power x fraction, a marked cell
     // uniformly, a uniform point in it. `power` = sample weight x fraction / pmf(light), so the
     // emitted photons' powers still average to the power reaching the marked directions.
-    bool emit(const PhotonScene& ps, Sampler& sampler, Ray& ray, Rgb& power, int& medium) const;
+    bool emit(const PhotonScene& ps, Sampler& sampler, const Wavelengths& lambda, Ray& ray, Spectrum& power,
+              int& medium) const;
 
 private:
     struct LightCells {

@@ -45,7 +45,7 @@ Rgb mid_chord(Rgb sigma, float L) {
 StretchTransmittance::StretchTransmittance(const shading::Medium& medium, Vec3 o, Vec3 d, float t_end,
                                            float step, float jitter) {
     if (medium.homogeneous()) {
-        const Rgb sigma = medium.sigma_t();
+        const Rgb sigma = medium.sigma_t_rgb();
         pieces_.push_back({0.0f, Rgb(1.0f), Rgb(0.0f), sigma});
         dt_ = kInf;
         const float thinnest = std::min(sigma.r, std::min(sigma.g, sigma.b));
@@ -60,7 +60,7 @@ StretchTransmittance::StretchTransmittance(const shading::Medium& medium, Vec3 o
     end_ = t_end;
     for (int k = 0; k < n; ++k) {
         const float t = float(k) * dt_;
-        const Rgb sigma = medium.at(o + d * (t + jitter * dt_)).sigma_t();
+        const Rgb sigma = medium.sigma_t_rgb(o + d * (t + jitter * dt_));
         pieces_.push_back({t, T, C, sigma});
         C += T * chord(sigma, dt_);
         T *= decay(sigma, dt_);

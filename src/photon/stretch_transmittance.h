@@ -1,6 +1,8 @@
 // The transmittance along one stretch of a camera ray in a medium, T(t) = exp(-int_0^t sigma_t),
 // and its integral over sub-intervals: what the beam radiance estimate (beam_estimate.h) weights
-// each photon's chord with.
+// each photon's chord with. It is computed from the medium's RGB coefficients (the colour of
+// sigma_t), as the estimate multiplies it with each photon's colour: exact for grey media, the RGB
+// product's approximation for coloured ones.
 //   homogeneous media  exact: T(t) = exp(-sigma_t t), one piece.
 //   grid media         a table over the ray-marching steps (length <= `step`): sigma_t is taken
 //                      constant over each step, at a jittered point in it (as the ray march

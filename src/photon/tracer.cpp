@@ -207,6 +207,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             Photon ph;
             ph.position = h.hit.p;
             ph.set_power(h.power);
+            ph.set_wavelengths(h.lambda);
             ph.normal_axis = normals.get(n);  // = set_normal(n), split axis bits as constructed
             store(kGlobalMap, ph, h.wi, j, h.bounces);
             if (h.after_specular) store(kCausticMap, ph, h.wi, j, h.bounces);
@@ -224,6 +225,7 @@ void trace_batch(const PhotonScene& ps, const TraceOptions& o, const bool active
             Photon ph;  // no normal
             ph.position = h.p;
             ph.set_power(h.power);
+            ph.set_wavelengths(h.lambda);
             if (h.after_diffuse) store(kVolumeMap, ph, h.wi, j, h.bounces);
             if (h.after_specular) store(kVolumeCausticMap, ph, h.wi, j, h.bounces);
             // After a scattering in a medium the path can only feed the non-caustic maps.
@@ -365,9 +367,8 @@ public:
 
     // The stream has ended: maps still active ran to the emission cap (their N is everything
     // emitted), and the photons, which carry their raw power (flux x N), are divided by N. The
-    // power is rounded to RGBE twice (raw, then scaled), each rounding within half a mantissa
-    // step. Four photons at a time (scale_rgbe4, the scalar functions' bits): one at a time this
-    // pass would take 2.6 % of the tracing time.
+    // power is rounded to its shared exponent twice (raw, then scaled), each rounding within half
+    // a mantissa step.
     void finish(const bool wanted[kMapCount]) {
         out_.total_emitted += end_;
         for (int m = 0; m < kMapCount; ++m)
@@ -378,14 +379,8 @@ public:
             const float inv = 1.0f / float(out_.emitted[m]);
             tbb::parallel_for(tbb::blocked_range<size_t>(0, P.size(), size_t(1) << 14),
                               [&](const tbb::blocked_range<size_t>& r) {
-                                  size_t i = r.begin();
-                                  for (; i + 4 <= r.end(); i += 4) {
-                                      uint32_t w[4] = {P[i].power_rgbe, P[i + 1].power_rgbe,
-                                                       P[i + 2].power_rgbe, P[i + 3].power_rgbe};
-                                      scale_rgbe4(w, inv);
-                                      for (size_t k = 0; k < 4; ++k) P[i + k].power_rgbe = w[k];
-                                  }
-                                  for (; i < r.end(); ++i) P[i].set_power(P[i].power() * inv);
+                                  for (size_t i = r.begin(); i < r.end(); ++i)
+                                      P[i].set_power(P[i].power() * inv);
                               });
         }
     }

@@ -18,7 +18,7 @@ Rgb VolumeMoments::estimate(Vec3 wo, float g) const {
 VolumeMoments volume_moments(const PhotonKdTree& map, const VolumeEstimateOptions& o, Vec3 x) {
     VolumeMoments m;
     const float inv_volume = volume_estimate_photons(map, o, x, [&](const Photon& ph) {
-        const Rgb phi = ph.power();
+        const Rgb phi = ph.colour();
         const Vec3 wi = ph.wi();
         m.f0 += phi;
         for (int c = 0; c < 3; ++c) m.f1[size_t(c)] += wi * phi[c];
@@ -47,7 +47,7 @@ void VolumeCache::build(const PhotonKdTree& volume, const VolumeEstimateOptions&
     std::vector<Photon> pts(n);
     for (size_t i = 0; i < n; ++i) {
         const Photon& ph = volume.photon(uint32_t(i * stride));
-        pts[i] = Photon(ph.position, Rgb(0.0f), Vec3(0, 0, 1), Vec3(0, 0, 1));
+        pts[i] = Photon(ph.position, Spectrum(0.0f), Wavelengths(), Vec3(0, 0, 1), Vec3(0, 0, 1));
     }
     points_.build(std::move(pts));  // in place: no second copy of the points
     moments_.assign(points_.size(), VolumeMoments{});

@@ -10,7 +10,7 @@ Rgb volume_radiance_estimate(const PhotonKdTree& map, const VolumeEstimateOption
                              const shading::PhaseFunction& phase, uint32_t* n_used) {
     Rgb sum(0.0f);
     const float inv_volume = volume_estimate_photons(
-        map, o, x, [&](const Photon& ph) { sum += ph.power() * phase.eval(wo, ph.wi()); }, n_used);
+        map, o, x, [&](const Photon& ph) { sum += ph.colour() * phase.eval(wo, ph.wi()); }, n_used);
     return sum * inv_volume;
 }
 

@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "render/pixel_loop.h"
 #include "shading/surface_walk.h"
+#include "spectrum/color.h"
 
 namespace phos::render {
 namespace {
@@ -29,16 +30,20 @@ Rgb albedo_of(const shading::Bsdf::LobeAlbedos& a, uint32_t mask) {
 
 AovSample trace(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays, bool albedo) {
     AovSample out;
-    Rgb beta(1.0f);
+    // Colours seen through mirrors and glass: the throughput at a set of wavelengths, which meets
+    // each albedo (a colour) as spectrum/color.h's colour_through says.
+    Wavelengths lambda = Wavelengths::visible(sampler.next());
+    Spectrum beta(1.0f);
     shading::SurfaceWalk walk(P.accel);
     for (int depth = 0;; ++depth) {
         accel::SurfaceHit hit;
         const shading::SurfaceWalk::Event event = walk.next(ray, hit);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            const Rgb L = P.scene.background + P.escaped(normalize(ray.dir));
-            out.albedo += beta * Rgb(std::clamp(L.r, 0.0f, 1.0f), std::clamp(L.g, 0.0f, 1.0f),
-                                     std::clamp(L.b, 0.0f, 1.0f));
+            const Rgb L = P.scene.background + P.escaped_colour(normalize(ray.dir));
+            out.albedo += spectrum::colour_through(
+                beta, lambda,
+                Rgb(std::clamp(L.r, 0.0f, 1.0f), std::clamp(L.g, 0.0f, 1.0f), std::clamp(L.b, 0.0f, 1.0f)));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);
@@ -50,11 +55,14 @@ AovSample trace(const Prepared& P, Ray ray, Sampler& sampler, RayCounts& rays, b
             if (!albedo) break;
         }
         const shading::Bsdf::LobeSplit split = bsdf.split_lobes(wo);
-        if (split.estimated) out.albedo += beta * albedo_of(bsdf.lobe_albedos(wo), split.estimated);
+        if (split.estimated)
+            out.albedo +=
+                spectrum::colour_through(beta, lambda, albedo_of(bsdf.lobe_albedos(wo), split.estimated));
         if (!split.followed || depth >= P.options.max_depth) break;
-        const auto s = bsdf.sample_lobes(split.followed, wo, sampler.next(), sampler.next2());
+        const auto s = bsdf.sample_lobes(split.followed, wo, sampler.next(), sampler.next2(), lambda);
         if (!s || s->weight.is_black()) break;
         beta *= s->weight;
+        if (s->dispersive) spectrum::terminate_secondary(lambda, beta);
         if (!beta.is_finite() || beta.max() < 1e-6f) break;
         ray = accel::spawn_ray(hit, s->wi);
         ++rays.bounce;

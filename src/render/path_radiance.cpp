@@ -2,6 +2,7 @@
 #include "render/path_radiance.h"
 
 #include "render/path_recorder.h"
+#include "spectrum/color.h"
 
 namespace phos::render {
 
@@ -45,6 +46,8 @@ void PathRadiance::add(Rgb c, Component part, bool emitted) {
     if (auto* r = recorder()) r->add(emitted ? TraceTerm::Emission : TraceTerm::Light, c);
 }
 
+void PathRadiance::emission(const Spectrum& s) { emission(spectrum::to_srgb(s, lambda_)); }
+
 void PathRadiance::emission(Rgb c) {
     switch (stage_) {
         case Stage::Camera:
@@ -60,12 +63,25 @@ void PathRadiance::emission(Rgb c) {
     add(c, Component::Indirect, true);
 }
 
-void PathRadiance::light(Rgb c, bool widened) {
+void PathRadiance::light(const Spectrum& s, bool widened) {
+    const Rgb c = spectrum::to_srgb(s, lambda_);
     if (stage_ == Stage::Camera) return add(c, Component::Direct, false);
     if (stage_ == Stage::SpecularChain) return add(c, Component::Specular, false);
     if (widened && (stage_ == Stage::FromX || stage_ == Stage::CausticChain))
         return add(c, Component::Caustic, false);
     add(c, Component::Indirect, false);
+}
+
+Wavelengths camera_wavelengths(Sampler& sampler) {
+    const Wavelengths lambda = Wavelengths::visible(sampler.next());
+    if (auto* r = recorder()) r->wavelengths(lambda);
+    return lambda;
+}
+
+void follow_dispersion(const shading::BsdfSample& s, Wavelengths& lambda, Spectrum& beta) {
+    if (!s.dispersive || lambda.secondary_terminated()) return;
+    spectrum::terminate_secondary(lambda, beta);
+    if (auto* r = recorder()) r->wavelengths(lambda);
 }
 
 void PathRadiance::bounce(bool delta) {

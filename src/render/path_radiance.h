@@ -6,7 +6,10 @@
 
 #include <vector>
 
+#include "core/rng.h"
 #include "core/vec.h"
+#include "shading/bsdf.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::render {
 
@@ -28,18 +31,23 @@ struct RadianceParts {
     Rgb& operator[](Component c);
 };
 
-// One camera path's radiance L, with `parts` (optional) its split into components and, while a
-// pixel is traced, each contribution recorded with its term (path_recorder.h).
+// One camera path's radiance L, as colour, with `parts` (optional) its split into components and,
+// while a pixel is traced, each contribution recorded with its term (path_recorder.h). The
+// contributions are spectra at the path's wavelengths `lambda`, taken to colour as they are added
+// (with `lambda` as it is then: after a dispersive interface the hero alone counts).
 class PathRadiance {
 public:
-    explicit PathRadiance(RadianceParts* parts = nullptr) : parts_(parts) {}
+    explicit PathRadiance(const Wavelengths& lambda, RadianceParts* parts = nullptr)
+        : lambda_(lambda), parts_(parts) {}
     // Emission the path found (an emitter it hit, emission in a medium, light escaping the scene),
     // the path's throughput included.
+    void emission(const Spectrum& c);
+    // The same for emission that is a colour already (the .scn glow: emission.h).
     void emission(Rgb c);
     // Light sampled at the path's current vertex (next-event estimation), throughput included.
     // `widened`: the vertex is a mirror or glass widened by path regularisation, so the light
     // counts as if it had come through the delta lobe (a caustic of x rather than indirect light).
-    void light(Rgb c, bool widened = false);
+    void light(const Spectrum& c, bool widened = false);
     // The path went on from its current vertex: through a delta lobe (mirror, glass) or not
     // (a diffuse or glossy lobe, a medium's phase function).
     void bounce(bool delta);
@@ -57,8 +65,16 @@ private:
     void add(Rgb c, Component part, bool emitted);
 
     Rgb L_{0.0f};
+    const Wavelengths& lambda_;
     RadianceParts* parts_;
     Stage stage_ = Stage::Camera;
 };
+
+// The wavelengths of a camera path, drawn first from its sampler (hero wavelength, the others
+// stratified from it: sampled_spectrum.h) and recorded for --trace-pixel.
+Wavelengths camera_wavelengths(Sampler& sampler);
+// After BSDF sample `s` at a vertex of a camera path: a sample through a dispersive interface
+// terminates the path's secondary wavelengths, and its throughput `beta` there.
+void follow_dispersion(const shading::BsdfSample& s, Wavelengths& lambda, Spectrum& beta);
 
 }  // namespace phos::render

@@ -87,7 +87,8 @@ TracedVertex& PathRecorder::current() {
 }
 
 void PathRecorder::vertex(const Prepared& P, shading::SurfaceWalk::Event event, const Ray& ray,
-                          const accel::SurfaceHit& hit, const shading::SurfaceWalk& walk, Rgb throughput) {
+                          const accel::SurfaceHit& hit, const shading::SurfaceWalk& walk,
+                          const Spectrum& throughput) {
     using Event = shading::SurfaceWalk::Event;
     if (event == Event::Lost || event == Event::Absorbed) return;
     TracedVertex v;
@@ -126,6 +127,15 @@ void PathRecorder::scattered(const shading::BsdfSample& s) {
     v.direction = s.wi;
     v.pdf = s.pdf;
     v.weight = s.weight;
+    v.dispersed = s.dispersive;
+}
+
+void PathRecorder::wavelengths(const Wavelengths& lambda) {
+    TracedPath& p = paths_.back();
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+        p.lambda[size_t(i)] = lambda[i];
+        p.lambda_pdf[size_t(i)] = lambda.pdf(i);
+    }
 }
 
 void PathRecorder::scattered_in_medium(Vec3 wi, float pdf) {
@@ -133,12 +143,12 @@ void PathRecorder::scattered_in_medium(Vec3 wi, float pdf) {
     v.sampled = true;
     v.direction = wi;
     v.pdf = pdf;
-    v.weight = Rgb(1.0f);
+    v.weight = Spectrum(1.0f);
 }
 
 void PathRecorder::add(TraceTerm term, Rgb c) { current().terms[int(term)] += c; }
 
-void PathRecorder::visible_point(size_t slot, Vec3 p, int medium, Rgb throughput) {
+void PathRecorder::visible_point(size_t slot, Vec3 p, int medium, const Spectrum& throughput) {
     TracedPath& path = paths_.back();
     TracedVisiblePoint& vp = path.visible_point.emplace();
     vp.slot = slot;

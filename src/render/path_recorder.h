@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <mutex>
@@ -38,17 +39,18 @@ const char* trace_term_name(TraceTerm t);
 
 // One light sample (one shadow ray).
 struct TracedLight {
-    int light = -1;           // index in Scene::lights
-    Vec3 from;                // the point it lights
-    Vec3 direction;           // unit, towards the light
-    float distance = kInf;    // to the sampled point on the light (kInf: a direction only)
-    float pdf = 0;            // solid-angle density (1 for delta lights) times the light's selection pmf
-    float mis_weight = 1;     // power-heuristic weight against BSDF / phase sampling
-    int visible = -1;         // 1 unoccluded, 0 blocked, -1 no shadow ray (nothing to send)
-    Rgb transmittance{1.0f};  // through media along the shadow ray (1 without media)
+    int light = -1;         // index in Scene::lights
+    Vec3 from;              // the point it lights
+    Vec3 direction;         // unit, towards the light
+    float distance = kInf;  // to the sampled point on the light (kInf: a direction only)
+    float pdf = 0;          // solid-angle density (1 for delta lights) times the light's selection pmf
+    float mis_weight = 1;   // power-heuristic weight against BSDF / phase sampling
+    int visible = -1;       // 1 unoccluded, 0 blocked, -1 no shadow ray (nothing to send)
+    Spectrum transmittance{
+        1.0f};  // through media along the shadow ray (1 without media), at the path's wavelengths
     // What it adds at its point: f L |cos| T w / pdf (phase instead of f |cos| in media), the path's
-    // throughput not included; 0 when blocked.
-    Rgb contribution{0.0f};
+    // throughput not included; 0 when blocked. At the path's wavelengths.
+    Spectrum contribution{0.0f};
 };
 
 // One photon density estimate.
@@ -68,12 +70,14 @@ struct TracedVertex {
     int shape = -1, instance = -1, material = -1, medium = -1, area_light = -1;
     std::string shape_name;  // the instanced object's name, else where the shape is defined
     std::string material_name;
-    Rgb throughput{1.0f};         // the path's weight arriving here, which multiplies what the vertex adds
-    bool sampled = false;         // a direction was sampled here to continue the path
-    Vec3 direction;               // the sampled direction (escaped: the ray's)
-    float pdf = 0;                // its solid-angle density (delta lobes: the lobe's selection probability)
-    Rgb weight{0.0f};             // f |cos| / pdf of the sampled direction (media: 1)
-    Rgb terms[kTraceTerms] = {};  // what the vertex added to the sample's radiance, by TraceTerm
+    // The path's weight arriving here, which multiplies what the vertex adds (at the path's wavelengths).
+    Spectrum throughput{1.0f};
+    bool sampled = false;    // a direction was sampled here to continue the path
+    Vec3 direction;          // the sampled direction (escaped: the ray's)
+    float pdf = 0;           // its solid-angle density (delta lobes: the lobe's selection probability)
+    Spectrum weight{0.0f};   // f |cos| / pdf of the sampled direction (media: 1)
+    bool dispersed = false;  // the sample crossed a dispersive interface: the path kept its hero wavelength
+    Rgb terms[kTraceTerms] = {};  // what the vertex added to the sample's radiance (colour), by TraceTerm
     std::vector<TracedLight> lights;
     std::vector<TracedLookup> lookups;
     bool empty() const;  // nothing added, no lights, no lookups
@@ -104,7 +108,7 @@ struct TracedVisiblePoint {
     Vec3 position;
     int material = -1, medium = -1;
     std::string material_name;
-    Rgb throughput{0.0f};
+    Spectrum throughput{0.0f};
     std::vector<TracedPass> passes;
 };
 
@@ -115,6 +119,9 @@ struct TracedPath {
     TracedVertex camera;     // what the camera ray added before its first vertex (in media)
     std::vector<TracedVertex> vertices;
     Rgb contribution{0.0f};  // the sample's radiance (PPM / SPPM: emission and direct light)
+    // The path's wavelengths (nm) and their densities as the path ended (0 for a secondary
+    // wavelength a dispersive interface terminated).
+    std::array<float, spectrum::kSpectrumSamples> lambda{}, lambda_pdf{};
     std::optional<TracedVisiblePoint> visible_point;
 };
 
@@ -126,12 +133,14 @@ public:
     const std::vector<TracedPath>& paths() const { return paths_; }
 
     void begin_path(uint64_t sample, int64_t iteration = -1);
+    // The path's wavelengths (as they are now: call again after a termination).
+    void wavelengths(const Wavelengths& lambda);
     void end_path(Rgb contribution) { paths_.back().contribution = contribution; }
 
     // The path's next event from SurfaceWalk::next: a surface, a scattering point in a medium, or
     // the ray leaving the scene (Lost and Absorbed record nothing). `throughput` arrives there.
     void vertex(const Prepared& P, shading::SurfaceWalk::Event event, const Ray& ray,
-                const accel::SurfaceHit& hit, const shading::SurfaceWalk& walk, Rgb throughput);
+                const accel::SurfaceHit& hit, const shading::SurfaceWalk& walk, const Spectrum& throughput);
     // The path goes on from the last vertex by BSDF sample `s` / by phase sampling.
     void scattered(const shading::BsdfSample& s);
     void scattered_in_medium(Vec3 wi, float pdf);
@@ -142,7 +151,7 @@ public:
 
     // PPM / SPPM. The last path ended at a visible point (in medium `medium`, or on the surface of
     // the path's last vertex when -1) stored in slot `slot`.
-    void visible_point(size_t slot, Vec3 p, int medium, Rgb throughput);
+    void visible_point(size_t slot, Vec3 p, int medium, const Spectrum& throughput);
     // Starts a photon pass of `iteration` at every visible point still gathering, those of the
     // paths of the last path's iteration (SPPM: that iteration's eye path; PPM, whose paths have no
     // iteration: all), with the slot's current squared radius `r2(slot)`.

@@ -2,6 +2,7 @@
 // and the camera (framing the bounds when the scene has none).
 #include "render/prepared.h"
 
+#include "shading/infinite_light.h"
 #include "shading/light_media.h"
 
 namespace phos::render {
@@ -29,11 +30,23 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
       stats(stats_) {
     if (media.active())
         lights.set_media(shading::place_lights_in_media(accel, lights, camera.eye(), camera_medium()));
+    using spectrum::RgbSpectrum;
+    background_ = RgbSpectrum(scene.background, RgbSpectrum::Use::Illuminant);
+    glow_.reserve(scene.materials.size());
+    for (const scene::Material& m : scene.materials)
+        glow_.push_back(m.emission + (options.ambient ? m.ambient * scene.ambient : Rgb(0.0f)));
 }
 
-Rgb Prepared::escaped(Vec3 dir) const {
+Spectrum Prepared::escaped(Vec3 dir, const Wavelengths& lambda) const {
+    Spectrum L(0.0f);
+    for (size_t i : lights.infinite_lights()) L += lights[i].Le(Vec3(0.0f), dir, lambda);
+    return L;
+}
+
+Rgb Prepared::escaped_colour(Vec3 dir) const {
     Rgb L(0.0f);
-    for (size_t i : lights.infinite_lights()) L += lights[i].Le(Vec3(0.0f), dir);
+    for (size_t i : lights.infinite_lights())
+        L += static_cast<const shading::InfiniteLight&>(lights[i]).Le_rgb(dir);
     return L;
 }
 

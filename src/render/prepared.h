@@ -4,6 +4,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "accel/embree_scene.h"
 #include "core/stats.h"
@@ -14,6 +15,8 @@
 #include "shading/lights.h"
 #include "shading/material_bsdfs.h"
 #include "shading/medium.h"
+#include "spectrum/rgb_spectrum.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::render {
 
@@ -45,18 +48,27 @@ public:
 
     // The BSDF at a hit (material looked up and textured).
     shading::Bsdf bsdf(const accel::SurfaceHit& hit) const { return bsdfs.at(hit); }
-    // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit).
-    Rgb emitted(const accel::SurfaceHit& hit, Vec3 wo) const {
-        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo) : Rgb(0.0f);
+    // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit), at `lambda`.
+    Spectrum emitted(const accel::SurfaceHit& hit, Vec3 wo, const Wavelengths& lambda) const {
+        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo, lambda) : Spectrum(0.0f);
     }
-    // Radiance arriving along an escaped ray with direction `dir` from infinite lights.
-    Rgb escaped(Vec3 dir) const;
+    // Radiance arriving along an escaped ray with direction `dir` from infinite lights, at `lambda`,
+    // and its colour.
+    Spectrum escaped(Vec3 dir, const Wavelengths& lambda) const;
+    Rgb escaped_colour(Vec3 dir) const;
+    // The scene's background radiance (Scene::background) at `lambda`.
+    Spectrum background(const Wavelengths& lambda) const { return background_.sample(lambda); }
+    // The glow material `m` shows camera and specular rays (Material::emission, and with --ambient
+    // its ambient term): a colour.
+    Rgb glow(int m) const { return glow_[size_t(m)]; }
     // The media walks and shadow rays use (null when no ray can travel in a medium).
     const shading::MediaSet* active_media() const { return media.active() ? &media : nullptr; }
     // The medium camera rays start in.
     int camera_medium() const { return media.active() ? scene.camera_medium : -1; }
 
 private:
+    spectrum::RgbSpectrum background_;
+    std::vector<Rgb> glow_;  // per material
     static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
                                     const PrepareOptions& prepare);
 };

@@ -2,10 +2,12 @@
 // shape (the emitting surface, which is also visible geometry) by index.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/transform.h"
 #include "core/vec.h"
+#include "spectrum/distribution.h"
 
 namespace phos::scene {
 
@@ -19,6 +21,9 @@ struct Light {
     };
     Kind kind = Kind::Point;
     Rgb color{1.0f};  // I, E or L as stated above (already multiplied by any scale)
+    // The emission's spectrum (blackbody, a named illuminant, a table), scale included, when the
+    // file gives one; `color` then holds its linear sRGB. Unset: `color` read as an illuminant RGB.
+    std::optional<spectrum::Distribution> spectrum;
     Vec3 position{0.0f};
     Vec3 direction{0, -1, 0};
     float cutoff = 0.5f;

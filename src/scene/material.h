@@ -3,9 +3,11 @@
 // shading/ turns a Material into a BSDF.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/vec.h"
+#include "spectrum/distribution.h"
 
 namespace phos::scene {
 
@@ -25,11 +27,18 @@ struct Material {
     bool conductor = false;
     Rgb conductor_eta{1.0f};
     Rgb conductor_k{0.0f};
+    // Measured η and k over wavelength (pbrt's named metals, spectra): used instead of the RGB values
+    // above (which then hold their colour) when set.
+    std::optional<spectrum::Distribution> conductor_eta_spectrum, conductor_k_spectrum;
 
     // Dielectric boundary: Fresnel reflection + refraction scaled by `transmission`, index `ior`.
     // Sharp when transmission_shininess >= kMirrorShininess, "frosted" (rough) below.
     Rgb transmission{0.0f};
     float ior = 1.0f;
+    // A dispersive dielectric: the index over wavelength (Sellmeier, Cauchy, a named glass, a table);
+    // `ior` then holds its value at the d line (587.6 nm). Paths that refract or reflect at it go
+    // on with their hero wavelength alone.
+    std::optional<spectrum::Distribution> ior_spectrum;
     float transmission_shininess = 1e6f;
     bool thin = false;  // thin dielectric sheet (pbrt thindielectric): no bending
 

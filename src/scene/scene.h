@@ -12,6 +12,7 @@
 #include "scene/medium.h"
 #include "scene/shape.h"
 #include "scene/texture.h"
+#include "spectrum/distribution.h"
 
 namespace phos::scene {
 
@@ -41,6 +42,16 @@ struct RenderSettings {
     std::vector<IntegratorParameter> integrator_parameters;
 };
 
+// How the film turns the light reaching it into the image, from pbrt-v4's film and camera
+// settings: the image is multiplied by `exposure` (pbrt-v4's imaging ratio, exposure time × ISO /
+// 100), and with `white_balance_kelvin` > 0 its linear sRGB is adapted from the white of an
+// illuminant of that temperature to the sRGB white (spectrum::white_balance). The defaults leave
+// the image as rendered.
+struct FilmResponse {
+    float white_balance_kelvin = 0;  // 0: no white balance
+    float exposure = 1;
+};
+
 struct Scene {
     std::optional<Camera> camera;  // absent: the renderer frames the bounding box
     std::vector<Shape> shapes;
@@ -54,19 +65,23 @@ struct Scene {
     Rgb background{0.0f};  // radiance of escaping camera / specular rays
     Rgb ambient{0.0f};     // .scn `ambient`, used only with --ambient
     RenderSettings settings;
+    FilmResponse film_response;
     std::string source;  // the file it was loaded from
 
     // Adds an area light emitting radiance `L` from `shape` (appended); returns the light index.
-    int add_area_light(Shape shape, Rgb L, bool two_sided = false) {
+    // `spectrum`: the radiance's spectrum when the file gives one (Light::spectrum), L its sRGB.
+    int add_area_light(Shape shape, Rgb L, bool two_sided = false,
+                       std::optional<spectrum::Distribution> spectrum = std::nullopt) {
         Light light;
         light.kind = Light::Kind::Area;
         light.color = L;
+        light.spectrum = std::move(spectrum);
         light.two_sided = two_sided;
         light.shape = int(shapes.size());
         const int index = int(lights.size());
         shape.area_light = index;
         shapes.push_back(std::move(shape));
-        lights.push_back(light);
+        lights.push_back(std::move(light));
         return index;
     }
 };

@@ -11,13 +11,15 @@
 namespace phos::shading {
 
 AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape)
-    : sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {}
+    : Light(light), sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {}
 
-Rgb AreaLight::Le(Vec3 n, Vec3 wo) const { return (two_sided_ || dot(n, wo) > 0) ? radiance_ : Rgb(0.0f); }
+Spectrum AreaLight::Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const {
+    return (two_sided_ || dot(n, wo) > 0) ? emission(lambda) : Spectrum(0.0f);
+}
 
 Rgb AreaLight::power() const { return radiance_ * (kPi * sampler_.area() * (two_sided_ ? 2.0f : 1.0f)); }
 
-LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u) const {
+LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const {
     LightLiSample s;
     const ShapeSample ss = sampler_.sample(ref, u);
     if (!(ss.pdf > 0)) return s;
@@ -29,7 +31,7 @@ LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u) const {
     s.p_light = ss.p;
     s.n_light = ss.n;
     s.pdf = ss.pdf;
-    s.L = Le(ss.n, -s.wi);
+    s.L = Le(ss.n, -s.wi, lambda);
     return s;
 }
 
@@ -43,7 +45,7 @@ void AreaLight::pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const {
     pdf_dir = two_sided_ ? 0.5f * std::fabs(c) / kPi : std::max(c, 0.0f) / kPi;
 }
 
-LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
+LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const {
     LightLeSample s;
     const ShapeSample ss = sampler_.sample_area(u_pos);
     if (!(ss.pdf > 0)) return s;
@@ -67,13 +69,13 @@ LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
     const float extent = std::max(std::fabs(ss.p.x), std::max(std::fabs(ss.p.y), std::fabs(ss.p.z)));
     s.ray = {ss.p, w, 1e-5f * (1 + extent)};
     s.n = n;
-    s.Le = radiance_;
+    s.Le = emission(lambda);
     s.pdf_pos = ss.pdf;
     s.pdf_dir = warp::cosine_hemisphere_pdf(local.z) * side_pdf;
     // L |cos| / (pdf_pos pdf_dir), which is L pi A / side_pdf; a grazing direction (cos = 0) takes
     // that limit instead of 0/0.
-    s.weight = s.pdf_dir > 0 ? radiance_ * (local.z / (s.pdf_pos * s.pdf_dir))
-                             : radiance_ * (kPi * sampler_.area() / side_pdf);
+    s.weight = s.pdf_dir > 0 ? s.Le * (local.z / (s.pdf_pos * s.pdf_dir))
+                             : s.Le * (kPi * sampler_.area() / side_pdf);
     return s;
 }
 

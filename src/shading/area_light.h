@@ -10,12 +10,12 @@ namespace phos::shading {
 class AreaLight final : public Light {
 public:
     AreaLight(const scene::Light& light, const scene::Shape& shape);
-    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    LightLiSample sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const override;
     float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const override;
-    Rgb Le(Vec3 n, Vec3 wo) const override;
+    Spectrum Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const override;
     // Uniform by area, then cosine-weighted on the emitting side (a random side when two-sided):
     // weight = L pi A (x2 when two-sided) for every sample.
-    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const override;
     void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return false; }

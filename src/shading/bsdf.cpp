@@ -37,15 +37,23 @@ void frame_at(const accel::SurfaceHit& hit, Frame& frame, Vec3& ng) {
 
 // The diffuse reflectance kd of material m at `hit`, its texture applied (Bsdf::apply_textures).
 void texture_diffuse(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
-                     Rgb& kd) {
-    if (m.diffuse_texture >= 0) kd *= eval_texture(scene, m.diffuse_texture, hit.uv);
+                     Rgb& kd, spectrum::RgbSpectrum& kd_spectrum) {
+    if (m.diffuse_texture < 0) return;
+    kd *= eval_texture(scene, m.diffuse_texture, hit.uv);
+    kd_spectrum =
+        spectrum::RgbSpectrum(kd, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
 }
+
+spectrum::RgbSpectrum albedo_spectrum(Rgb c) { return {c, spectrum::RgbSpectrum::Use::Albedo}; }
+spectrum::RgbSpectrum unbounded_spectrum(Rgb c) { return {c, spectrum::RgbSpectrum::Use::Unbounded}; }
 
 // sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
 // on a diffuse wall), wo on side s of ng (s != 0), without the lobe selection and with wi taken to
 // the local frame once: each operation that the general code does on this path, in its order, so
 // the sample is the same to the bit (bsdf_test.cpp compares the two).
-std::optional<BsdfSample> sample_lambert(const Frame& frame, Vec3 ng, const Rgb& kd, float s, Vec2 u) {
+std::optional<BsdfSample> sample_lambert(const Frame& frame, Vec3 ng, const Rgb& kd,
+                                         const spectrum::RgbSpectrum& kd_spectrum, float s, Vec2 u,
+                                         const Wavelengths& lambda) {
     const float w = std::max(kd.average(), 0.0f);  // the selection weight, and the total
     if (!(w > 0)) return std::nullopt;
     BsdfSample bs;
@@ -62,8 +70,8 @@ std::optional<BsdfSample> sample_lambert(const Frame& frame, Vec3 ng, const Rgb&
     Vec3 wi_back = frame.to_local(bs.wi);
     wi_back.z *= s;
     if (!(wi_back.z > 0)) return std::nullopt;  // f = 0
-    Rgb f(0.0f);
-    f += kd * kInvPi;
+    Spectrum f(0.0f);
+    f += kd_spectrum.sample(lambda) * kInvPi;
     const float pdf = (0.0f + w * warp::cosine_hemisphere_pdf(wi_back.z)) / w;
     if (!(pdf > 0) || f.is_black()) return std::nullopt;
     bs.f = f;
@@ -103,7 +111,8 @@ void Bsdf::place_lambert(const scene::Material& m, const accel::SurfaceHit& hit,
                          LambertLobe& lobe) const {
     frame_at(hit, lobe.frame, lobe.ng);
     lobe.kd = kd_;
-    texture_diffuse(m, hit, scene, lobe.kd);
+    lobe.kd_spectrum = kd_s_;
+    texture_diffuse(m, hit, scene, lobe.kd, lobe.kd_spectrum);
 }
 
 void Bsdf::place(const accel::SurfaceHit& hit) { frame_at(hit, frame_, ng_); }
@@ -122,6 +131,15 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     conductor_ = m.conductor;
     cond_eta_ = m.conductor_eta;
     cond_k_ = m.conductor_k;
+    kd_s_ = albedo_spectrum(kd_);
+    ks_s_ = albedo_spectrum(ks_);
+    kt_s_ = albedo_spectrum(kt_);
+    kdt_s_ = albedo_spectrum(kdt_);
+    if (conductor_) {
+        cond_eta_s_ = unbounded_spectrum(cond_eta_);
+        cond_k_s_ = unbounded_spectrum(cond_k_);
+    }
+    rebind(m);
     schlick_ = options.schlick;
     microfacet_ = options.microfacet;
     // Only the frosted dielectric reads the microfacet distribution.
@@ -183,11 +201,28 @@ Bsdf Bsdf::only(uint32_t lobe_mask) const {
 }
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
-    texture_diffuse(m, hit, scene, kd_);
+    texture_diffuse(m, hit, scene, kd_, kd_s_);
 }
+
+void Bsdf::rebind(const scene::Material& m) {
+    cond_eta_spectrum_ = conductor_ && m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr;
+    cond_k_spectrum_ = conductor_ && m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr;
+    ior_spectrum_ = m.ior_spectrum && !m.ior_spectrum->is_constant() ? &*m.ior_spectrum : nullptr;
+}
+
+bool Bsdf::dispersive() const { return ior_spectrum_ != nullptr && (lobes_ & (1u << kDielectric)); }
 
 Rgb Bsdf::specular_reflectance(float cos_o) const {
     return conductor_ ? ks_ * fresnel_conductor(cos_o, cond_eta_, cond_k_) : ks_;
+}
+
+Spectrum Bsdf::specular_reflectance(float cos_o, const Wavelengths& lambda) const {
+    Spectrum r = ks_s_.sample(lambda);
+    if (!conductor_) return r;
+    const Spectrum eta = cond_eta_spectrum_ ? cond_eta_spectrum_->sample(lambda) : cond_eta_s_.sample(lambda);
+    const Spectrum k = cond_k_spectrum_ ? cond_k_spectrum_->sample(lambda) : cond_k_s_.sample(lambda);
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) r[i] *= fresnel_conductor(cos_o, eta[i], k[i]);
+    return r;
 }
 
 void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) const {
@@ -271,33 +306,37 @@ Bsdf::LobeSplit Bsdf::split_lobes(Vec3 wo, float sharp_exponent) const {
     return s;
 }
 
-Rgb Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const {
+Spectrum Bsdf::eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, const Wavelengths& lambda,
+                           TransportMode mode) const {
     const float s = side_of(wo, ng_);
-    if (s == 0 || lobes_ == 0) return Rgb(0.0f);
+    if (s == 0 || lobes_ == 0) return Spectrum(0.0f);
     Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
-    return eval_local(wo_l, wi, s, mask, mode);
+    return eval_local(wo_l, wi, s, mask, lambda, mode);
 }
 
 // eval_masked after its side test, with wo already in the (side-flipped) local frame.
-Rgb Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, TransportMode mode) const {
+Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wavelengths& lambda,
+                          TransportMode mode) const {
     Vec3 wi_l = frame_.to_local(wi);
     wi_l.z *= s;
     const float gi = dot(wi, ng_) * s;
     const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
-    if (!refl && !trans) return Rgb(0.0f);
+    if (!refl && !trans) return Spectrum(0.0f);
     const auto has = [&](int lobe) { return (lobes_ & (1u << lobe)) && (mask & kKind[lobe]); };
 
-    Rgb f(0.0f);
-    if (refl && has(kLambert)) f += kd_ * kInvPi;
+    Spectrum f(0.0f);
+    if (refl && has(kLambert)) f += kd_s_.sample(lambda) * kInvPi;
     if (refl && has(kPhong)) {
         const float ca = phong_cos_alpha(wo_l, wi_l);
         if (ca > 0) {
-            Rgb spec = ks_;
+            Spectrum spec;
             if (conductor_) {
                 const Vec3 h = wo_l + wi_l;
                 const float cos_h = length_squared(h) > 0 ? dot(wo_l, normalize(h)) : 1.0f;
-                spec = specular_reflectance(cos_h);
+                spec = specular_reflectance(cos_h, lambda);
+            } else {
+                spec = ks_s_.sample(lambda);
             }
             // A mirror widened by regularized(): its lobe is the sampling density over cos theta_i,
             // so that it reflects ks at every incidence as the mirror does (the modified Phong
@@ -308,10 +347,18 @@ Rgb Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, TransportMode m
                 f += spec * ((shininess_ + 2) * (0.5f * kInvPi) * std::pow(ca, shininess_));
         }
     }
-    if (trans && has(kDiffTrans)) f += kdt_ * kInvPi;
+    if (trans && has(kDiffTrans)) f += kdt_s_.sample(lambda) * kInvPi;
     if (has(kDielectric) && !sharp_glass_) {
-        const float eta = s > 0 ? ior_ : 1 / ior_;
-        f += kt_ * dielectric::rough_eval(dist_, wo_l, wi_l, eta, schlick_, mode);
+        const Spectrum kt = kt_s_.sample(lambda);
+        if (ior_spectrum_) {  // each wavelength with its own index
+            for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+                const float n = (*ior_spectrum_)(lambda[i]);
+                f[i] += kt[i] * dielectric::rough_eval(dist_, wo_l, wi_l, s > 0 ? n : 1 / n, schlick_, mode);
+            }
+        } else {
+            const float eta = s > 0 ? ior_ : 1 / ior_;
+            f += kt * dielectric::rough_eval(dist_, wo_l, wi_l, eta, schlick_, mode);
+        }
     }
     return f;
 }
@@ -350,12 +397,14 @@ float Bsdf::pdf_local(Vec3 wo_l, Vec3 wi, float s, const float w[]) const {
     return pdf / total;
 }
 
-Rgb Bsdf::eval(Vec3 wo, Vec3 wi, TransportMode mode) const { return eval_masked(wo, wi, ~0u, mode); }
+Spectrum Bsdf::eval(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode) const {
+    return eval_masked(wo, wi, ~0u, lambda, mode);
+}
 
 float Bsdf::pdf(Vec3 wo, Vec3 wi) const { return pdf_masked(wo, wi, ~0u); }
 
-Bsdf::Evaluation Bsdf::evaluate(Vec3 wo, Vec3 wi, TransportMode mode) const {
-    if (lobes_ != 1u << kLambert) return {eval(wo, wi, mode), pdf(wo, wi), pdf(wi, wo)};
+Bsdf::Evaluation Bsdf::evaluate(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode) const {
+    if (lobes_ != 1u << kLambert) return {eval(wo, wi, lambda, mode), pdf(wo, wi), pdf(wi, wo)};
     // A lone Lambert lobe: eval_local's and pdf_local's operations for it (reflection only: b on
     // a's side of ng and of the shading normal; the pdf divides by the selection weight's total).
     const float w = std::max(kd_.average(), 0.0f);
@@ -364,26 +413,28 @@ Bsdf::Evaluation Bsdf::evaluate(Vec3 wo, Vec3 wi, TransportMode mode) const {
         cos_b = dot(b, frame_.n) * s;
         return s != 0 && dot(b, ng_) * s > 0 && cos_b > 0;
     };
-    Evaluation e{Rgb(0.0f), 0, 0};
+    Evaluation e{Spectrum(0.0f), 0, 0};
     float cos_i = 0, cos_o = 0;
     if (reflects(wo, wi, cos_i)) {
-        e.f = kd_ * kInvPi;
+        e.f = kd_s_.sample(lambda) * kInvPi;
         if (w > 0) e.pdf = w * warp::cosine_hemisphere_pdf(cos_i) / w;
     }
     if (reflects(wi, wo, cos_o) && w > 0) e.pdf_rev = w * warp::cosine_hemisphere_pdf(cos_o) / w;
     return e;
 }
 
-std::optional<BsdfSample> Bsdf::sample(Vec3 wo, float u_lobe, Vec2 u, TransportMode mode) const {
-    return sample_lobes(~0u, wo, u_lobe, u, mode);
+std::optional<BsdfSample> Bsdf::sample(Vec3 wo, float u_lobe, Vec2 u, const Wavelengths& lambda,
+                                       TransportMode mode) const {
+    return sample_lobes(~0u, wo, u_lobe, u, lambda, mode);
 }
 
 std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
-                                             TransportMode mode) const {
+                                             const Wavelengths& lambda, TransportMode mode) const {
     const float s = side_of(wo, ng_);
     if (s == 0 || lobes_ == 0) return std::nullopt;
     if (lobes_ == 1u << kLambert)
-        return lobe_mask & kKind[kLambert] ? sample_lambert(frame_, ng_, kd_, s, u) : std::nullopt;
+        return lobe_mask & kKind[kLambert] ? sample_lambert(frame_, ng_, kd_, kd_s_, s, u, lambda)
+                                           : std::nullopt;
     Vec3 wo_l = frame_.to_local(wo);
     wo_l.z *= s;
     float w[kNumLobes];
@@ -407,7 +458,7 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     BsdfSample bs;
     Vec3 wi_l;
     bool delta = false, transmitted = false;
-    Rgb coefficient_over_prob;  // delta lobes: coefficient / branch probability
+    Spectrum coefficient_over_prob;  // delta lobes: coefficient / branch probability
     float branch_prob = 1;
     switch (lobe) {
         case kLambert:
@@ -429,25 +480,29 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
         }
         case kMirror:
             wi_l = Vec3(-wo_l.x, -wo_l.y, wo_l.z);
-            coefficient_over_prob = specular_reflectance(std::fabs(wo_l.z));
+            coefficient_over_prob = specular_reflectance(std::fabs(wo_l.z), lambda);
             delta = true;
             bs.flags = kSpecular | kReflection;
             break;
         case kDielectric: {
             // A thin sheet has the same medium on both faces: its reflectance is the same from
             // either side.
-            const float eta = s > 0 || thin_ ? ior_ : 1 / ior_;
             if (sharp_glass_) {
+                // A dispersive index bends each wavelength its own way: the hero's decides.
+                const float n = ior_spectrum_ && !thin_ ? (*ior_spectrum_)(lambda[0]) : ior_;
+                const float eta = s > 0 || thin_ ? n : 1 / n;
                 const auto ds = dielectric::sample_smooth(wo_l, eta, thin_, schlick_, u_re, mode);
                 if (!ds) return std::nullopt;
                 wi_l = ds->wi;
                 transmitted = ds->transmitted;
                 branch_prob = ds->prob;
-                coefficient_over_prob = kt_ * (ds->coefficient / ds->prob);
+                coefficient_over_prob = kt_s_.sample(lambda) * (ds->coefficient / ds->prob);
+                bs.dispersive = ior_spectrum_ && !thin_;
                 bs.eta = ds->eta;
                 delta = true;
                 bs.flags = kSpecular | (transmitted ? kTransmission : kReflection);
             } else {
+                const float eta = s > 0 ? ior_ : 1 / ior_;
                 const auto wi = dielectric::rough_sample(dist_, wo_l, eta, schlick_, u_re, u);
                 if (!wi) return std::nullopt;
                 wi_l = *wi;
@@ -479,16 +534,16 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
         return bs;
     }
     // eval_masked and pdf_masked of wi (their wo terms are the ones computed above).
-    bs.f = eval_local(wo_l, bs.wi, s, lobe_mask, mode);
+    bs.f = eval_local(wo_l, bs.wi, s, lobe_mask, lambda, mode);
     bs.pdf = pdf_local(wo_l, bs.wi, s, w);
     if (!(bs.pdf > 0) || bs.f.is_black()) return std::nullopt;
     bs.weight = bs.f * (abs_cos / bs.pdf);
     return bs;
 }
 
-std::optional<BsdfSample> LambertLobe::sample(Vec3 wo, Vec2 u) const {
+std::optional<BsdfSample> LambertLobe::sample(Vec3 wo, Vec2 u, const Wavelengths& lambda) const {
     const float s = side_of(wo, ng);
-    return s == 0 ? std::nullopt : sample_lambert(frame, ng, kd, s, u);
+    return s == 0 ? std::nullopt : sample_lambert(frame, ng, kd, kd_spectrum, s, u, lambda);
 }
 
 }  // namespace phos::shading

@@ -30,6 +30,9 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 #include "shading/microfacet.h"
+#include "spectrum/distribution.h"
+#include "spectrum/rgb_spectrum.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::shading {
 
@@ -44,18 +47,30 @@ enum LobeFlags : uint32_t {
     kWidened = 1u << 5,
 };
 
+// Spectra. A BSDF's values are spectral: eval and sample take the path's wavelengths and return its
+// values there (the material's RGB colours upsampled, rgb_spectrum.h; measured conductor η, k and
+// dispersive indices where the material gives them). Everything that chooses (lobe selection,
+// pdfs, the albedos for Russian roulette and lobe splits) reads the RGB colours and does not
+// depend on the wavelengths, so pdf() has no wavelength argument. A smooth dispersive dielectric
+// bends each wavelength its own way: sample() refracts and reflects with the hero wavelength's
+// index and marks the sample `dispersive` (the caller terminates the secondary wavelengths); a
+// frosted one samples with the index at the d line and evaluates each wavelength with its own.
+//
 // Radiance transport (camera paths) scales refracted radiance by 1/eta^2; importance / photon
 // transport does not (photons carry flux).
 enum class TransportMode { Radiance, Importance };
 
 struct BsdfSample {
     Vec3 wi;
-    Rgb f;               // BSDF value (for delta lobes: the delta's coefficient divided by |cos|)
+    Spectrum f;          // BSDF value (for delta lobes: the delta's coefficient divided by |cos|)
     float pdf = 0;       // solid-angle pdf of choosing wi, including the lobe-selection probability
     uint32_t flags = 0;  // the sampled lobe's LobeFlags
     float eta = 1;       // relative index of refraction crossed (1 unless refracted)
     // Throughput multiplier f * |cos(wi, ns)| / pdf (for delta lobes: coefficient / pdf).
-    Rgb weight;
+    Spectrum weight;
+    // Drawn from a smooth dispersive dielectric with the hero wavelength's index: only the hero's
+    // values are meaningful, and the path must terminate its secondary wavelengths.
+    bool dispersive = false;
     bool is_specular() const { return flags & kSpecular; }
 };
 
@@ -73,10 +88,11 @@ struct BsdfOptions {
 struct LambertLobe {
     Frame frame;  // shading frame
     Vec3 ng;
-    Rgb kd;
-    // Bsdf::sample_lobes(kDiffuse, wo, u_lobe, u, mode) of a BSDF of this lobe alone (which
-    // reads neither u_lobe nor mode).
-    std::optional<BsdfSample> sample(Vec3 wo, Vec2 u) const;
+    Rgb kd;  // its colour (what selection reads)
+    spectrum::RgbSpectrum kd_spectrum;
+    // Bsdf::sample_lobes(kDiffuse, wo, u_lobe, u, lambda, mode) of a BSDF of this lobe alone
+    // (which reads neither u_lobe nor mode).
+    std::optional<BsdfSample> sample(Vec3 wo, Vec2 u, const Wavelengths& lambda) const;
 };
 
 class Bsdf {
@@ -100,18 +116,24 @@ public:
     // scene) would hold.
     void place_lambert(const scene::Material& material, const accel::SurfaceHit& hit,
                        const scene::Scene& scene, LambertLobe& lobe) const;
+    // A BSDF refers to its material's measured spectra (conductor η, k; a dispersive index) by
+    // pointer; a copy made in another process (an MPI rank's visible points, copied as bytes)
+    // points at them again with rebind(its material).
+    void rebind(const scene::Material& material);
 
-    Rgb eval(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
+    Spectrum eval(Vec3 wo, Vec3 wi, const Wavelengths& lambda,
+                  TransportMode mode = TransportMode::Radiance) const;
     float pdf(Vec3 wo, Vec3 wi) const;
     // eval(wo, wi, mode), pdf(wo, wi) and pdf(wi, wo) at once, as bidirectional methods need them:
     // the same values as the three calls, with a short path for a lone Lambert lobe.
     struct Evaluation {
-        Rgb f;
+        Spectrum f;
         float pdf = 0, pdf_rev = 0;
     };
-    Evaluation evaluate(Vec3 wo, Vec3 wi, TransportMode mode = TransportMode::Radiance) const;
+    Evaluation evaluate(Vec3 wo, Vec3 wi, const Wavelengths& lambda,
+                        TransportMode mode = TransportMode::Radiance) const;
     // `u_lobe` picks the lobe, `u` the direction within it.
-    std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u,
+    std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, const Wavelengths& lambda,
                                      TransportMode mode = TransportMode::Radiance) const;
 
     // Union of the LobeFlags of all lobes present. Lambert: kDiffuse|kReflection; Phong: kGlossy|
@@ -125,8 +147,13 @@ public:
     // True if the BSDF is a single Lambert reflection lobe (f = kd / pi on wo's side): estimates and
     // gathering take fast paths that skip per-direction BSDF evaluation.
     bool is_lambertian() const { return flags_ == (kDiffuse | kReflection); }
-    // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses.
-    Rgb diffuse_albedo() const { return kd_; }
+    // Lambertian reflectance at this point (texture applied): what the photon map's estimate uses,
+    // at `lambda`, and its colour.
+    Spectrum diffuse_albedo(const Wavelengths& lambda) const { return kd_s_.sample(lambda); }
+    const spectrum::RgbSpectrum& diffuse_spectrum() const { return kd_s_; }
+    Rgb diffuse_colour() const { return kd_; }
+    // True when a smooth or frosted dielectric lobe has a wavelength-dependent index.
+    bool dispersive() const;
     // Directional albedo of each lobe kind for wo (probabilities for the photon tracer's Russian
     // roulette): diffuse = kd + kdt (Lambert reflection and transmission), glossy = Phong ks
     // (x conductor Fresnel at wo), specular = mirror reflectance at wo (ks, x conductor Fresnel),
@@ -147,6 +174,7 @@ public:
     // lobe's own f |cos| / pdf (e.g. kd for Lambert, kt for exact-Fresnel glass), which the
     // photon tracer divides by its Russian-roulette probability.
     std::optional<BsdfSample> sample_lobes(uint32_t lobe_mask, Vec3 wo, float u_lobe, Vec2 u,
+                                           const Wavelengths& lambda,
                                            TransportMode mode = TransportMode::Radiance) const;
     // The lobes split into those camera paths follow by ray tracing and those the photon estimates,
     // visible points and final gathering handle (Jensen 2001, sec. 9.1: f_r = f_r,S + f_r,D), both
@@ -196,12 +224,18 @@ private:
     Frame frame_;  // shading frame (n = shading normal)
     Vec3 ng_;
     uint32_t flags_ = 0;
-    Rgb kd_, ks_, kt_, kdt_;
+    Rgb kd_, ks_, kt_, kdt_;                            // the colours (selection, albedos)
+    spectrum::RgbSpectrum kd_s_, ks_s_, kt_s_, kdt_s_;  // and their spectra
     float shininess_ = 0, t_shininess_ = 0;
     bool mirror_ = false, sharp_glass_ = false, thin_ = false, conductor_ = false;
     bool widened_mirror_ = false, widened_glass_ = false;  // regularized(): from delta lobes
     Rgb cond_eta_, cond_k_;
-    float ior_ = 1;
+    spectrum::RgbSpectrum cond_eta_s_, cond_k_s_;  // RGB-given η, k as spectra
+    // Measured η, k and a dispersive index: the material's (which outlives its BSDFs); null when
+    // not given.
+    const spectrum::Distribution *cond_eta_spectrum_ = nullptr, *cond_k_spectrum_ = nullptr;
+    const spectrum::Distribution* ior_spectrum_ = nullptr;
+    float ior_ = 1;  // the index (at the d line when dispersive)
     bool schlick_ = false;
     MicrofacetModel microfacet_ = MicrofacetModel::GGX;  // BsdfOptions::microfacet
     uint32_t lobes_ = 0;  // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
@@ -216,10 +250,13 @@ private:
     void part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estimated) const;
     void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
+    Spectrum specular_reflectance(float cos_o, const Wavelengths& lambda) const;
     void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
-    Rgb eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, TransportMode mode) const;
+    Spectrum eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, const Wavelengths& lambda,
+                         TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;
-    Rgb eval_local(Vec3 wo_l, Vec3 wi, float side, uint32_t mask, TransportMode mode) const;
+    Spectrum eval_local(Vec3 wo_l, Vec3 wi, float side, uint32_t mask, const Wavelengths& lambda,
+                        TransportMode mode) const;
     float pdf_local(Vec3 wo_l, Vec3 wi, float side, const float w[]) const;
 };
 

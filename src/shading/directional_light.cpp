@@ -7,12 +7,12 @@
 namespace phos::shading {
 
 DirectionalLight::DirectionalLight(const scene::Light& light, const SceneSphere& sphere)
-    : frame_(normalize(light.direction)), irradiance_(light.color), sphere_(sphere) {}
+    : Light(light), frame_(normalize(light.direction)), irradiance_(light.color), sphere_(sphere) {}
 
-LightLiSample DirectionalLight::sample_Li(Vec3 ref, Vec2) const {
+LightLiSample DirectionalLight::sample_Li(Vec3 ref, Vec2, const Wavelengths& lambda) const {
     LightLiSample s;
     s.wi = -frame_.n;
-    s.L = irradiance_;
+    s.L = emission(lambda);
     s.pdf = 1;
     s.delta = true;
     s.distance = kInf;
@@ -22,16 +22,16 @@ LightLiSample DirectionalLight::sample_Li(Vec3 ref, Vec2) const {
     return s;
 }
 
-LightLeSample DirectionalLight::sample_Le(Vec2 u_pos, Vec2) const {
+LightLeSample DirectionalLight::sample_Le(Vec2 u_pos, Vec2, const Wavelengths& lambda) const {
     LightLeSample s;
     const float R = sphere_.radius;
     const Vec2 d = warp::concentric_disk(u_pos);
     s.ray = {sphere_.center + (frame_.s * d.x + frame_.t * d.y - frame_.n) * R, frame_.n};
     s.n = frame_.n;
-    s.Le = irradiance_;
+    s.Le = emission(lambda);
     s.pdf_pos = R > 0 ? 1 / (kPi * R * R) : 0;
     s.pdf_dir = 1;
-    s.weight = irradiance_ * (kPi * R * R);
+    s.weight = s.Le * (kPi * R * R);
     return s;
 }
 

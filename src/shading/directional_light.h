@@ -11,10 +11,10 @@ namespace phos::shading {
 class DirectionalLight final : public Light {
 public:
     DirectionalLight(const scene::Light& light, const SceneSphere& sphere);
-    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    LightLiSample sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const override;
     float pdf_Li(Vec3, Vec3, Vec3, Vec3) const override { return 0; }
-    Rgb Le(Vec3, Vec3) const override { return Rgb(0.0f); }
-    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    Spectrum Le(Vec3, Vec3, const Wavelengths&) const override { return Spectrum(0.0f); }
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const override;
     void pdf_Le(Vec3, Vec3, float& pdf_pos, float& pdf_dir) const override {
         pdf_pos = sphere_.radius > 0 ? 1 / (kPi * sphere_.radius * sphere_.radius) : 0;
         pdf_dir = 1;

@@ -26,7 +26,7 @@ Frame orientation(const Transform& t) {
 
 InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
                              const SceneSphere& sphere)
-    : frame_(orientation(light.to_world)), scale_(light.color), sphere_(sphere) {
+    : Light(light), frame_(orientation(light.to_world)), scale_(light.color), sphere_(sphere) {
     if (light.texture >= 0) {
         if (size_t(light.texture) >= textures.size())
             throw InputError("infinite light: texture index " + std::to_string(light.texture) +
@@ -49,6 +49,9 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
     }
     if (width_ == 0) {
         integral_ = scale_ * (4 * kPi);
+        constant_ = light.spectrum
+                        ? light.spectrum->scaled(light.color.max() > 0 ? scale_.max() / light.color.max() : 0)
+                        : spectrum::Distribution::rgb(scale_, spectrum::RgbSpectrum::Use::Illuminant);
         return;
     }
     cos_edge_.resize(size_t(height_) + 1);
@@ -83,7 +86,14 @@ void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
     row = std::min(int(uv.y * float(height_)), height_ - 1);
 }
 
-Rgb InfiniteLight::Le(Vec3, Vec3 w) const {
+Spectrum InfiniteLight::Le(Vec3, Vec3 w, const Wavelengths& lambda) const {
+    if (width_ == 0) return constant_.sample(lambda);
+    return spectrum::RgbSpectrum(Le_rgb(w), spectrum::RgbSpectrum::Use::Illuminant,
+                                 spectrum::RgbSpectrum::Fit::Table)
+        .sample(lambda);
+}
+
+Rgb InfiniteLight::Le_rgb(Vec3 w) const {
     if (width_ == 0) return scale_;
     int i, j;
     Vec2 uv;
@@ -114,14 +124,14 @@ Vec3 InfiniteLight::sample_direction(Vec2 u) const {
     return frame_.to_world({r * std::cos(phi), r * std::sin(phi), z});
 }
 
-LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u) const {
+LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const {
     LightLiSample s;
     const Vec3 w = normalize(sample_direction(u));
     // Density and radiance are looked up from the final direction, exactly as pdf_Li and Le do.
     s.pdf = pdf_direction(w);
     if (!(s.pdf > 0)) return {};
     s.wi = w;
-    s.L = Le({}, w);
+    s.L = Le({}, w, lambda);
     s.distance = kInf;
     s.p_light = ref + w * (2 * (sphere_.radius + length(ref - sphere_.center)) + 1);
     s.n_light = -w;
@@ -136,7 +146,7 @@ void InfiniteLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
     pdf_dir = pdf_direction(-w);  // light travelling along w comes from the sky direction -w
 }
 
-LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
+LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const {
     LightLeSample s;
     const Vec3 w = normalize(sample_direction(u_dir));
     const float pdf_dir = pdf_direction(w);
@@ -146,7 +156,7 @@ LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir) const {
     const Vec2 d = warp::concentric_disk(u_pos);
     s.ray = {sphere_.center + (w + f.s * d.x + f.t * d.y) * R, -w};
     s.n = -w;
-    s.Le = Le({}, w);
+    s.Le = Le({}, w, lambda);
     s.pdf_pos = 1 / (kPi * R * R);
     s.pdf_dir = pdf_dir;
     s.weight = s.Le / (s.pdf_pos * s.pdf_dir);

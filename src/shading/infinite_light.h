@@ -23,13 +23,15 @@ public:
     // multiplies the map. Throws InputError on a bad texture reference.
     InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
                   const SceneSphere& sphere);
-    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    LightLiSample sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const override;
     float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const override;
     // Radiance arriving from direction `w` (pointing from the scene towards the sky); `n` unused.
-    Rgb Le(Vec3 n, Vec3 w) const override;
+    Spectrum Le(Vec3 n, Vec3 w, const Wavelengths& lambda) const override;
+    // The radiance's colour from direction `w` (what the map holds, times the scale).
+    Rgb Le_rgb(Vec3 w) const;
     // Direction as for sample_Li, origin uniform on a disk of the scene radius R perpendicular to it
     // outside the scene; power = pi R^2 * integral of L over the sphere.
-    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const override;
     void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return false; }
@@ -45,9 +47,10 @@ private:
     // Texel (column, row) of a light-space unit direction.
     void cell(Vec3 local, int& column, int& row, Vec2& uv) const;
 
-    Frame frame_;                 // light space -> world
-    Rgb scale_;                   // constant radiance, or the multiplier of the map
-    int width_ = 0, height_ = 0;  // 0: constant
+    Frame frame_;                      // light space -> world
+    Rgb scale_;                        // constant radiance, or the multiplier of the map
+    spectrum::Distribution constant_;  // the constant radiance's spectrum
+    int width_ = 0, height_ = 0;       // 0: constant
     std::vector<Rgb> texels_;
     std::vector<float> cos_edge_;  // cos(theta) at the row edges, height_ + 1 values from 1 to -1
     Distribution2D distribution_;  // luminance x solid angle of each texel

@@ -41,11 +41,13 @@ std::string light_name(const scene::Light& light, size_t i) {
 std::map<int, int> tracked_media(const accel::EmbreeScene& accel, const Light& light, bool single_point,
                                  Vec3 eye, int camera_medium) {
     std::map<int, int> count;
+    // Where a light sits does not depend on wavelength: any set of wavelengths will do.
+    const Wavelengths any_wavelengths = Wavelengths::visible(0.5f);
     const int n = single_point ? 1 : 4;
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
-            const LightLeSample s =
-                light.sample_Le({(i + 0.5f) / float(n), (j + 0.5f) / float(n)}, {0.25f, 0.5f});
+            const LightLeSample s = light.sample_Le({(i + 0.5f) / float(n), (j + 0.5f) / float(n)},
+                                                    {0.25f, 0.5f}, any_wavelengths);
             if (!(s.pdf_pos > 0)) continue;
             if (const std::optional<int> m = medium_reached(accel, eye, camera_medium, s.ray.origin))
                 ++count[*m];

@@ -26,6 +26,11 @@ SceneSphere SceneSphere::from_bounds(const Bounds& b) {
     return s;
 }
 
+Light::Light(const scene::Light& light)
+    : emission_(light.spectrum
+                    ? *light.spectrum
+                    : spectrum::Distribution::rgb(light.color, spectrum::RgbSpectrum::Use::Illuminant)) {}
+
 namespace {
 
 const char* kind_name(scene::Light::Kind k) {

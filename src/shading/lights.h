@@ -11,6 +11,8 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 #include "shading/distribution1d.h"
+#include "spectrum/distribution.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::shading {
 
@@ -24,7 +26,7 @@ struct SceneSphere {
 };
 
 struct LightLiSample {
-    Rgb L;                  // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
+    Spectrum L;             // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
     Vec3 wi;                // unit direction from the reference point towards the light
     float distance = kInf;  // to the sampled point on the light (kInf for directional / infinite)
     Vec3 p_light;           // the sampled point on the light (for shadow rays)
@@ -34,13 +36,13 @@ struct LightLiSample {
 };
 
 struct LightLeSample {
-    Ray ray;  // leaves the light (unit direction); tmin skips the emitting surface itself
-    Vec3 n;   // surface normal at the origin (area lights), else the direction
-    Rgb Le;   // emitted radiance (area) or intensity (point/spot) along the ray
+    Ray ray;      // leaves the light (unit direction); tmin skips the emitting surface itself
+    Vec3 n;       // surface normal at the origin (area lights), else the direction
+    Spectrum Le;  // emitted radiance (area) or intensity (point/spot) along the ray
     float pdf_pos = 1, pdf_dir = 1;
     // Flux carried by this one sample: Le * |cos| / (pdf_pos * pdf_dir). Averaging over N samples
     // gives the light's power; a photon's power is weight / N (times 1/P(choose light)).
-    Rgb weight;
+    Spectrum weight;
     bool back = false;  // a two-sided area light emitting from the back of its surface (n flipped)
 };
 
@@ -54,10 +56,14 @@ struct LightOptions {
     bool legacy_attenuation = false;  // honour .scn (ca, la, qa) in sample_Li
 };
 
+// Spectra: every light emits the spectrum its scene::Light gives (scene::Light::spectrum, or its
+// colour read as an illuminant RGB), evaluated at the path's wavelengths; power() is the RGB flux,
+// which only chooses lights.
 class Light {
 public:
+    explicit Light(const scene::Light& light);
     virtual ~Light() = default;
-    virtual LightLiSample sample_Li(Vec3 ref, Vec2 u) const = 0;
+    virtual LightLiSample sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const = 0;
     // Solid-angle pdf that sample_Li(ref) picks `p_light` (with normal n_light) in direction wi.
     virtual float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const = 0;
     // Area lights: radiance leaving an emitting surface point with normal n towards wo (unit, pointing
@@ -66,8 +72,8 @@ public:
     // the result is the radiance arriving from that direction. For a ray (origin o, direction d) that
     // escapes the scene, the radiance it brings back to o is Le({}, normalize(d)).
     // Delta lights: 0.
-    virtual Rgb Le(Vec3 n, Vec3 wo) const = 0;
-    virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const = 0;
+    virtual Spectrum Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const = 0;
+    virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const = 0;
     // The densities sample_Le has of emitting from a point with normal `n` in unit direction `w`
     // (the direction light travels): pdf_pos (area measure, 1 for point and spot lights; for
     // directional and infinite lights that of the disk photons start from) and pdf_dir (solid
@@ -77,6 +83,13 @@ public:
     virtual Rgb power() const = 0;
     virtual bool is_delta() const = 0;
     virtual bool is_infinite() const { return false; }
+
+protected:
+    // The light's emission spectrum (radiance, intensity or irradiance as the kind says) at `lambda`.
+    Spectrum emission(const Wavelengths& lambda) const { return emission_.sample(lambda); }
+
+private:
+    spectrum::Distribution emission_;
 };
 
 // All lights of a scene, with a power-proportional distribution for choosing one. Light i is built

@@ -10,9 +10,19 @@ Medium::Medium(const scene::Medium& m)
       sigma_s_(m.sigma_s * m.scale),
       phase_{m.g},
       to_medium_(m.to_world.inverse()) {
-    max_sigma_t_ = (sigma_a_ + sigma_s_).max();
+    using spectrum::RgbSpectrum;
+    sigma_a_s_ = RgbSpectrum(sigma_a_, RgbSpectrum::Use::Unbounded);
+    sigma_s_s_ = RgbSpectrum(sigma_s_, RgbSpectrum::Use::Unbounded);
+    // The spectra are smooth: their largest sum on a 1 nm grid, with a margin for in between
+    // (none for grey coefficients, whose spectra are flat: a grey medium's walk then scatters at
+    // its first collision, medium_tracking.h).
+    for (float l = spectrum::kLambdaMin; l <= spectrum::kLambdaMax; l += 1.0f)
+        max_sigma_t_ = std::max(max_sigma_t_, sigma_a_s_(l) + sigma_s_s_(l));
+    const auto grey = [](Rgb c) { return c.r == c.g && c.g == c.b; };
+    if (!grey(sigma_a_) || !grey(sigma_s_)) max_sigma_t_ *= 1.001f;
     grid_ = make_density_grid(m);
     Le_ = m.emission;
+    Le_s_ = RgbSpectrum(Le_, RgbSpectrum::Use::Illuminant);
     if (grid_) {
         majorant_grid_ = std::make_unique<MajorantGrid>(*grid_);
         if (!m.emission_scale.empty() && !Le_.is_black()) {
@@ -31,12 +41,19 @@ Medium::Medium(const scene::Medium& m)
 Medium::~Medium() = default;
 Medium::Medium(Medium&&) noexcept = default;
 
-MediumCoefficients Medium::at(Vec3 p) const {
-    if (!grid_) return {sigma_a_, sigma_s_, Le_};
+MediumCoefficients Medium::at(Vec3 p, const Wavelengths& lambda) const {
+    const Spectrum sa = sigma_a_s_.sample(lambda), ss = sigma_s_s_.sample(lambda);
+    const Spectrum le = Le_s_.sample(lambda);
+    if (!grid_) return {sa, ss, le};
     const Vec3 q = to_medium_.point(p);
     const float d = grid_->density(q);
     // Emission sigma_a(p) Le(p): through sigma_a it follows the density, times the Lescale grid.
-    return {sigma_a_ * d, sigma_s_ * d, le_scale_ ? Le_ * le_scale_->density(q) : Le_};
+    return {sa * d, ss * d, le_scale_ ? le * le_scale_->density(q) : le};
+}
+
+Rgb Medium::sigma_t_rgb(Vec3 p) const {
+    const Rgb s = sigma_a_ + sigma_s_;
+    return grid_ ? s * grid_->density(to_medium_.point(p)) : s;
 }
 
 Medium::Majorants Medium::majorants(Vec3 o, Vec3 d, float t0, float t1) const {

@@ -11,13 +11,16 @@
 #include "scene/scene.h"
 #include "shading/density_grid.h"
 #include "shading/phase.h"
+#include "spectrum/rgb_spectrum.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::shading {
 
-// Absorption and scattering coefficients (1/scene-unit) and emitted radiance at a point.
+// Absorption and scattering coefficients (1/scene-unit) and emitted radiance at a point, at a
+// path's wavelengths.
 struct MediumCoefficients {
-    Rgb sigma_a, sigma_s, Le;
-    Rgb sigma_t() const { return sigma_a + sigma_s; }
+    Spectrum sigma_a, sigma_s, Le;
+    Spectrum sigma_t() const { return sigma_a + sigma_s; }
 };
 
 class Medium {
@@ -29,14 +32,22 @@ public:
     bool homogeneous() const { return !grid_; }
     bool emissive() const { return !Le_.is_black(); }
     const PhaseFunction& phase() const { return phase_; }
-    // Coefficients at world-space point p.
-    MediumCoefficients at(Vec3 p) const;
+    // Coefficients at world-space point p. The RGB coefficients are read as unbounded spectra, the
+    // emission as an illuminant (spectrum/rgb_spectrum.h).
+    MediumCoefficients at(Vec3 p, const Wavelengths& lambda) const;
     // Homogeneous media: sigma_t everywhere (the exact transmittance is exp(-sigma_t d)).
-    Rgb sigma_t() const { return sigma_a_ + sigma_s_; }
+    Spectrum sigma_t(const Wavelengths& lambda) const {
+        return sigma_a_s_.sample(lambda) + sigma_s_s_.sample(lambda);
+    }
+    // Its colour (the RGB the scene gives, scaled): for choices that do not depend on wavelength.
+    Rgb sigma_t_rgb() const { return sigma_a_ + sigma_s_; }
+    Rgb sigma_t_rgb(Vec3 p) const;
+    Rgb sigma_s_rgb() const { return sigma_s_; }
 
     // Majorant segments along the world-space ray o + t d (d unit), t in [t0, t1): each next()
     // gives [ta, tb) and a scalar majorant (>= every channel of sigma_t there). Homogeneous media
-    // give one segment; grids one per majorant cell (space outside the grid is skipped).
+    // give one segment; grids one per majorant cell (space outside the grid is skipped). The majorant
+    // bounds sigma_t at every wavelength.
     class Majorants {
     public:
         bool next(float& ta, float& tb, float& sigma_maj);
@@ -51,7 +62,8 @@ public:
 
 private:
     Rgb sigma_a_, sigma_s_, Le_;
-    float max_sigma_t_ = 0;  // the largest channel of sigma_t at density 1
+    spectrum::RgbSpectrum sigma_a_s_, sigma_s_s_, Le_s_;
+    float max_sigma_t_ = 0;  // the largest sigma_t over wavelengths at density 1
     PhaseFunction phase_;
     Transform to_medium_;
     std::unique_ptr<DensityGrid> grid_;

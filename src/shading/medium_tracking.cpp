@@ -2,6 +2,7 @@
 // the majorant segments draws the tentative collisions, and each tracker says what a collision does.
 #include "shading/medium_tracking.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace phos::shading {
@@ -37,16 +38,17 @@ void walk_majorant_collisions(const Medium& medium, Vec3 o, Vec3 d, float t_max,
 // probability P_s (weight sigma_s / (sigma_maj P_s)) or pass a null collision (weight
 // sigma_n / (sigma_maj P_n)).
 FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
-                              Rgb throughput) {
+                              const Wavelengths& lambda, const Spectrum& throughput) {
     FreeFlight f;
     walk_majorant_collisions(medium, o, d, t_max, sampler, [&](float t, float sigma_maj) {
-        const MediumCoefficients c = medium.at(o + d * t);
+        const MediumCoefficients c = medium.at(o + d * t, lambda);
         if (!c.Le.is_black()) f.emitted += f.weight * c.sigma_a * c.Le * (1.0f / sigma_maj);
-        const Rgb sigma_n = max(Rgb(sigma_maj) - c.sigma_t(), Rgb(0.0f));
-        const Rgb w = throughput * f.weight;
+        Spectrum sigma_n = Spectrum(sigma_maj) - c.sigma_t();
+        for (float& x : sigma_n.v) x = std::max(x, 0.0f);
+        const Spectrum w = throughput * f.weight;
         const float ws = (w * c.sigma_s).average(), wn = (w * sigma_n).average();
         if (!(ws + wn > 0)) {  // nothing but absorption left: the walk ends here
-            f.weight = Rgb(0.0f);
+            f.weight = Spectrum(0.0f);
             return false;
         }
         const float p_s = ws / (ws + wn);
@@ -65,18 +67,17 @@ FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max,
 // Ratio tracking (Novak, Selle & Jarosz 2014, "Residual ratio tracking for estimating attenuation
 // in participating media", eq. 6): T = prod over the tentative collisions of (1 - sigma_t / sigma_maj),
 // with Russian roulette once T is small.
-Rgb transmittance(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler) {
-    if (medium.homogeneous()) {
-        const Rgb tau = medium.sigma_t() * std::fmin(t_max, 1e30f);
-        return {std::exp(-tau.r), std::exp(-tau.g), std::exp(-tau.b)};
-    }
-    Rgb T(1.0f);
+Spectrum transmittance(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
+                       const Wavelengths& lambda) {
+    if (medium.homogeneous()) return spectrum::exp(medium.sigma_t(lambda) * -std::fmin(t_max, 1e30f));
+    Spectrum T(1.0f);
     walk_majorant_collisions(medium, o, d, t_max, sampler, [&](float t, float sigma_maj) {
-        const Rgb sigma_t = medium.at(o + d * t).sigma_t();
-        T *= max(Rgb(1.0f) - sigma_t * (1.0f / sigma_maj), Rgb(0.0f));
+        const Spectrum sigma_t = medium.at(o + d * t, lambda).sigma_t();
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+            T[i] *= std::max(1 - sigma_t[i] / sigma_maj, 0.0f);
         if (T.max() < 0.05f) {  // Russian roulette: survive with probability 1/2
             if (sampler.next() < 0.5f) {
-                T = Rgb(0.0f);
+                T = Spectrum(0.0f);
                 return false;
             }
             T *= 2.0f;

@@ -27,10 +27,10 @@ struct FreeFlight {
     float t = 0;
     // Multiplies the path throughput: at the scattering point when `scattered`, else for the light
     // arriving from t_max (0 when the walk was absorbed, i.e. neither choice had any weight).
-    Rgb weight{1.0f};
+    Spectrum weight{1.0f};
     // Emission collected along the flight (collision estimator), to be multiplied by the
     // throughput before the flight.
-    Rgb emitted{0.0f};
+    Spectrum emitted{0.0f};
 };
 
 // One free flight from o along unit direction d over [0, t_max) (t_max may be kInf). `throughput`
@@ -38,10 +38,11 @@ struct FreeFlight {
 // history-aware probabilities), which keeps the path weights bounded in chromatic media; without it
 // a channel whose sigma_t is the majorant would gain a factor ~1/P_s at every scattering event.
 FreeFlight sample_free_flight(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
-                              Rgb throughput = Rgb(1.0f));
+                              const Wavelengths& lambda, const Spectrum& throughput = Spectrum(1.0f));
 
 // Transmittance between o and o + t_max d (unit d): exact for homogeneous media, ratio tracking
 // (unbiased, with Russian roulette once it is small) for grids.
-Rgb transmittance(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler);
+Spectrum transmittance(const Medium& medium, Vec3 o, Vec3 d, float t_max, Sampler& sampler,
+                       const Wavelengths& lambda);
 
 }  // namespace phos::shading

@@ -15,7 +15,8 @@ float distance_falloff(float d, bool legacy, Vec3 att) {
 }
 
 PointLight::PointLight(const scene::Light& light, const LightOptions& options)
-    : position_(light.position),
+    : Light(light),
+      position_(light.position),
       intensity_(light.color),
       legacy_(options.legacy_attenuation),
       attenuation_(light.attenuation) {}
@@ -34,21 +35,21 @@ LightLiSample sample_point_Li(Vec3 position, Vec3 ref) {
     return s;
 }
 
-LightLiSample PointLight::sample_Li(Vec3 ref, Vec2) const {
+LightLiSample PointLight::sample_Li(Vec3 ref, Vec2, const Wavelengths& lambda) const {
     LightLiSample s = sample_point_Li(position_, ref);
-    if (s.pdf > 0) s.L = intensity_ * distance_falloff(s.distance, legacy_, attenuation_);
+    if (s.pdf > 0) s.L = emission(lambda) * distance_falloff(s.distance, legacy_, attenuation_);
     return s;
 }
 
-LightLeSample PointLight::sample_Le(Vec2, Vec2 u_dir) const {
+LightLeSample PointLight::sample_Le(Vec2, Vec2 u_dir, const Wavelengths& lambda) const {
     LightLeSample s;
     const Vec3 w = warp::uniform_sphere(u_dir);
     s.ray = {position_, w};
     s.n = w;
-    s.Le = intensity_;
+    s.Le = emission(lambda);
     s.pdf_pos = 1;
     s.pdf_dir = warp::uniform_sphere_pdf();
-    s.weight = intensity_ / s.pdf_dir;
+    s.weight = s.Le / s.pdf_dir;
     return s;
 }
 

@@ -38,7 +38,8 @@ float invert_smooth_cdf(float v) {
 }  // namespace
 
 SpotLight::SpotLight(const scene::Light& light, const LightOptions& options)
-    : position_(light.position),
+    : Light(light),
+      position_(light.position),
       frame_(normalize(light.direction)),
       intensity_(light.color),
       exponent_(std::max(0.0f, light.dropoff)),
@@ -68,10 +69,10 @@ Rgb SpotLight::power() const {
     return intensity_ * (2 * kPi * (1 - std::pow(cos_cutoff_, n1)) / n1);
 }
 
-LightLiSample SpotLight::sample_Li(Vec3 ref, Vec2) const {
+LightLiSample SpotLight::sample_Li(Vec3 ref, Vec2, const Wavelengths& lambda) const {
     LightLiSample s = sample_point_Li(position_, ref);
     if (s.pdf > 0)
-        s.L = intensity_ *
+        s.L = emission(lambda) *
               (falloff(dot(-s.wi, frame_.n)) * distance_falloff(s.distance, legacy_, attenuation_));
     return s;
 }
@@ -92,7 +93,7 @@ void SpotLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
     pdf_dir = direction_pdf(dot(w, frame_.n));
 }
 
-LightLeSample SpotLight::sample_Le(Vec2, Vec2 u) const {
+LightLeSample SpotLight::sample_Le(Vec2, Vec2 u, const Wavelengths& lambda) const {
     float z = 1;
     const float phi = 2 * kPi * u.y;
     if (smooth_) {
@@ -121,10 +122,10 @@ LightLeSample SpotLight::sample_Le(Vec2, Vec2 u) const {
     LightLeSample s;
     s.ray = {position_, w};
     s.n = w;
-    s.Le = intensity_ * falloff(z);
+    s.Le = emission(lambda) * falloff(z);
     s.pdf_pos = 1;
     s.pdf_dir = pdf;
-    s.weight = pdf > 0 ? s.Le / pdf : Rgb(0.0f);
+    s.weight = pdf > 0 ? s.Le / pdf : Spectrum(0.0f);
     return s;
 }
 

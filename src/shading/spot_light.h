@@ -10,12 +10,12 @@ namespace phos::shading {
 class SpotLight final : public Light {
 public:
     SpotLight(const scene::Light& light, const LightOptions& options);
-    LightLiSample sample_Li(Vec3 ref, Vec2 u) const override;
+    LightLiSample sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const override;
     float pdf_Li(Vec3, Vec3, Vec3, Vec3) const override { return 0; }
-    Rgb Le(Vec3, Vec3) const override { return Rgb(0.0f); }
+    Spectrum Le(Vec3, Vec3, const Wavelengths&) const override { return Spectrum(0.0f); }
     // Directions are drawn exactly in proportion to the angular fall-off, so every sample carries
     // the same weight (= power()).
-    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir) const override;
+    LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const override;
     void pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const override;
     Rgb power() const override;
     bool is_delta() const override { return true; }

@@ -16,19 +16,19 @@ SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit) {
     return next_segments(ray, hit, [](const Medium&, Vec3, Vec3, float) {});
 }
 
-Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
-                         Sampler& sampler) {
-    if (!media || !media->active()) return accel.occluded(ray) ? Rgb(0.0f) : Rgb(1.0f);
+Spectrum shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
+                              Sampler& sampler, const Wavelengths& lambda) {
+    if (!media || !media->active()) return accel.occluded(ray) ? Spectrum(0.0f) : Spectrum(1.0f);
     const scene::Scene& scene = accel.scene();
-    Rgb T(1.0f);
+    Spectrum T(1.0f);
     for (int crossings = 0; crossings <= SurfaceWalk::kMaxCrossings; ++crossings) {
         accel::SurfaceHit hit;
         const bool found = accel.intersect(ray, hit);
-        if (found && !scene.materials[size_t(hit.material)].interface_only) return Rgb(0.0f);
+        if (found && !scene.materials[size_t(hit.material)].interface_only) return Spectrum(0.0f);
         const float len = length(ray.dir);
         if (medium >= 0) {
             const float t_end = (found ? hit.t : std::fmin(ray.tmax, kInf)) * len;
-            T *= transmittance((*media)[medium], ray.origin, ray.dir / len, t_end, sampler);
+            T *= transmittance((*media)[medium], ray.origin, ray.dir / len, t_end, sampler, lambda);
             if (T.is_black()) return T;
         }
         if (!found) return T;
@@ -42,7 +42,7 @@ Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media,
         }
         ray = next;
     }
-    return Rgb(0.0f);
+    return Spectrum(0.0f);
 }
 
 }  // namespace phos::shading

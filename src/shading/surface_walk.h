@@ -49,12 +49,14 @@ public:
     // stretch in a medium, calls on_stretch(const Medium&, Vec3 o, Vec3 d, float t_end) with the
     // whole stretch up to the next surface (as next_segments does) while `beta` still holds the
     // throughput before it: for estimators that integrate over the stretch (single scattering).
-    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted) {
-        return next(ray, hit, sampler, beta, emitted, [](const Medium&, Vec3, Vec3, float) {});
+    // Wavelength-dependent coefficients are read at `lambda`.
+    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, const Wavelengths& lambda, Spectrum& beta,
+               Spectrum& emitted) {
+        return next(ray, hit, sampler, lambda, beta, emitted, [](const Medium&, Vec3, Vec3, float) {});
     }
     template <class OnStretch>
-    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta, Rgb& emitted,
-               OnStretch&& on_stretch);
+    Event next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, const Wavelengths& lambda, Spectrum& beta,
+               Spectrum& emitted, OnStretch&& on_stretch);
 
     // The same without sampling: calls visit(const Medium&, Vec3 o, Vec3 d, float t_end) for
     // every stretch of the ray travelled in a medium before the returned event (d unit, t_end in
@@ -100,14 +102,15 @@ private:
 // ray.tmax: 0 if a scattering surface blocks it, else the product of the media's transmittances
 // over the stretches between the interfaces it crosses. Without active media this is a plain
 // occlusion test.
-Rgb shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
-                         Sampler& sampler);
+Spectrum shadow_transmittance(const accel::EmbreeScene& accel, const MediaSet* media, Ray ray, int medium,
+                              Sampler& sampler, const Wavelengths& lambda);
 
 // ---- implementation ----
 
 template <class OnStretch>
-SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler, Rgb& beta,
-                                     Rgb& emitted, OnStretch&& on_stretch) {
+SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit, Sampler& sampler,
+                                     const Wavelengths& lambda, Spectrum& beta, Spectrum& emitted,
+                                     OnStretch&& on_stretch) {
     const scene::Scene& scene = accel_.scene();
     while (true) {
         ++rays_;
@@ -118,7 +121,7 @@ SurfaceWalk::Event SurfaceWalk::next(Ray& ray, accel::SurfaceHit& hit, Sampler& 
             const float t_end = found ? hit.t * len : kInf;
             const Medium& medium = (*media_)[medium_];
             on_stretch(medium, ray.origin, d, t_end);
-            const FreeFlight f = sample_free_flight(medium, ray.origin, d, t_end, sampler, beta);
+            const FreeFlight f = sample_free_flight(medium, ray.origin, d, t_end, sampler, lambda, beta);
             emitted += beta * f.emitted;
             beta *= f.weight;
             if (f.scattered) {

@@ -3,7 +3,9 @@
 
 #include <cmath>
 
+#include "spectrum/blackbody.h"
 #include "spectrum/cie_tables.h"
+#include "spectrum/rgb_spectrum.h"
 
 namespace phos::spectrum {
 
@@ -69,6 +71,30 @@ Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w) {
     return {float(X * s), float(Y * s), float(Z * s)};
 }
 
+Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w) {
+    static const std::array<float, 9> m = [] {
+        std::array<float, 9> f;
+        for (size_t i = 0; i < 9; ++i)
+            f[i] = float(xyz_to_srgb()[i / 3][i % 3] / (kSpectrumSamples * kCieYIntegral));
+        return f;
+    }();
+    float X = 0, Y = 0, Z = 0;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        if (!(w.pdf(i) > 0) || L[i] == 0) continue;
+        const Vec3 c = cie_xyz(w[i]);
+        const float v = L[i] / w.pdf(i);
+        X += c.x * v, Y += c.y * v, Z += c.z * v;
+    }
+    return {m[0] * X + m[1] * Y + m[2] * Z, m[3] * X + m[4] * Y + m[5] * Z, m[6] * X + m[7] * Y + m[8] * Z};
+}
+
+Rgb colour_through(const SampledSpectrum& beta, const SampledWavelengths& lambda, Rgb colour) {
+    if (beta.is_flat() && !lambda.secondary_terminated()) return colour * beta[0];
+    if (beta.is_black()) return Rgb(0.0f);
+    const RgbSpectrum s(colour, RgbSpectrum::Use::Illuminant, RgbSpectrum::Fit::Table);
+    return to_srgb(beta * s.sample(lambda), lambda);
+}
+
 Vec3 integrate_xyz(const std::function<double(double lambda)>& S) {
     double X = 0, Y = 0, Z = 0;
     for (int i = 0; i < kCieSamples; ++i) {
@@ -100,6 +126,53 @@ Vec3 apply(const Mat3& m, Vec3 v) {
     double r[3];
     for (int i = 0; i < 3; ++i) r[i] = m[size_t(i)][0] * v.x + m[size_t(i)][1] * v.y + m[size_t(i)][2] * v.z;
     return {float(r[0]), float(r[1]), float(r[2])};
+}
+
+namespace {
+
+Mat3 multiply(const Mat3& a, const Mat3& b) {
+    Mat3 m{};
+    for (size_t i = 0; i < 3; ++i)
+        for (size_t j = 0; j < 3; ++j)
+            for (size_t k = 0; k < 3; ++k) m[i][j] += a[i][k] * b[k][j];
+    return m;
+}
+
+std::array<double, 3> times(const Mat3& m, const std::array<double, 3>& v) {
+    std::array<double, 3> r{};
+    for (size_t i = 0; i < 3; ++i) r[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+    return r;
+}
+
+// XYZ -> the Bradford transform's cone-like responses (Lam 1985, as CIECAM97s uses it).
+const Mat3 kBradford = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+
+}  // namespace
+
+Vec3 white_balance_source(float kelvin) {
+    const double cct = double(kelvin) * 1.4388 / 1.4380;
+    if (cct < 4000) {
+        const Blackbody b(cct);
+        const Vec3 c = integrate_xyz([&](double l) { return double(b(float(l))); });
+        return c / c.y;
+    }
+    // The CIE daylight locus (CIE 15): x from the temperature, y from x.
+    const double t = cct, t2 = t * t, t3 = t2 * t;
+    const double x = cct <= 7000 ? -4.6070e9 / t3 + 2.9678e6 / t2 + 0.09911e3 / t + 0.244063
+                                 : -2.0064e9 / t3 + 1.9018e6 / t2 + 0.24748e3 / t + 0.237040;
+    const double y = -3.0 * x * x + 2.870 * x - 0.275;
+    return {float(x / y), 1.0f, float((1 - x - y) / y)};
+}
+
+Mat3 white_balance(float source_kelvin) {
+    if (!(source_kelvin > 0)) return {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    const Vec3 s = white_balance_source(source_kelvin);
+    const std::array<double, 3> src = times(kBradford, {double(s.x), double(s.y), double(s.z)});
+    const std::array<double, 3> dst = times(kBradford, times(srgb_to_xyz(), {1.0, 1.0, 1.0}));
+    Mat3 scale{};
+    for (size_t i = 0; i < 3; ++i) scale[i][i] = dst[i] / src[i];
+    const Mat3 xyz = multiply(inverse(kBradford), multiply(scale, kBradford));
+    return multiply(xyz_to_srgb(), multiply(xyz, srgb_to_xyz()));
 }
 
 }  // namespace phos::spectrum

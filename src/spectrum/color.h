@@ -22,6 +22,15 @@ float d65(float lambda);
 // The XYZ the film adds for one path: (1/n) sum_i L(λi) (x̄, ȳ, z̄)(λi) / p(λi), over ∫ȳ (so that
 // a constant spectrum 1 has Y = 1). Wavelengths with p = 0 (terminated) add nothing.
 Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w);
+// The linear sRGB the film adds for one path: xyz_to_srgb() applied to to_xyz(L, w).
+Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w);
+// An estimate that is already a colour (a photon estimate, each photon taken to colour at its own
+// wavelengths) seen through a path's throughput `beta` at `lambda`: beta's common value times the
+// colour while beta is the same at every wavelength and none was terminated (exact: most camera
+// paths reach their photon estimate so), else the colour read as a spectrum at `lambda`
+// (rgb_spectrum.h, as an illuminant), times beta, back to colour (the colour's spectrum is the
+// smooth one its RGB gives).
+Rgb colour_through(const SampledSpectrum& beta, const SampledWavelengths& lambda, Rgb colour);
 // ∫ S (x̄, ȳ, z̄) dλ / ∫ȳ over [360, 830] by the 1 nm sum.
 Vec3 integrate_xyz(const std::function<double(double lambda)>& S);
 
@@ -29,5 +38,16 @@ Vec3 integrate_xyz(const std::function<double(double lambda)>& S);
 const Mat3& xyz_to_srgb();
 const Mat3& srgb_to_xyz();
 Vec3 apply(const Mat3& m, Vec3 v);
+
+// White balance as pbrt-v4's film does it ("whitebalance" T): the white of an illuminant of
+// temperature T is the CIE daylight chromaticity at T × 1.4388 / 1.4380 (the daylight formula's
+// temperatures are on the scale of the old second radiation constant, 1.4380 cm K), or, below
+// 4000 K where the daylight locus is undefined, that Planckian's. white_balance_source gives its
+// XYZ (Y = 1).
+Vec3 white_balance_source(float kelvin);
+// The linear sRGB -> linear sRGB matrix that adapts that white to the sRGB white by von Kries
+// scaling in the Bradford cone space: the source white becomes (1, 1, 1). Identity for T <= 0;
+// finite from about 300 K up (the pbrt loader accepts 1000 K to 40000 K).
+Mat3 white_balance(float source_kelvin);
 
 }  // namespace phos::spectrum

@@ -8,7 +8,7 @@
 // agree on. A failure names the scene, the integrator, the reference, the block, its ratio and
 // its tolerance, and prints the scene's whole table.
 //
-// The default suite runs the small version: eight scenes at 32 x 32, fixed seeds and sample /
+// The default suite runs the small version: nine scenes at 32 x 32, fixed seeds and sample /
 // iteration budgets (deterministic), about 90 s with ctest -j2 on 2 cores (Release).
 // PHOS_AGREEMENT=full runs the larger one: every scene at 64 x 64, twice the budgets (about 14
 // minutes; the slowest row, frosted-pane-point, about 230 s).
@@ -108,6 +108,8 @@ const std::vector<Row>& rows() {
         // per seed at 128 spp (and regularisation's widened lobes lose a little light at that
         // budget), so path gets 32 times its usual samples here (0.986 and 0.994 at 4096 spp).
         {"frosted-pane-point.scn", Budgets{.path = 2048}, true},
+        // spectral: a blackbody area light, measured gold, a dispersive glass sphere's caustic
+        {"spectral-caustics.pbrt", {}, true},
         // an area light's caustics through glass and in a mirror
         {"a-glass-mirror.pbrt", {}, false},
         // rough conductors and a rough dielectric

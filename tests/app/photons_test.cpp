@@ -181,7 +181,7 @@ TEST(Photons, PlyHoldsEveryStoredPhotonWithTheMapsPower) {
         EXPECT_EQ(s.count, counts.at(photon::map_name(m)));
         double total[3] = {0, 0, 0};
         for (const photon::Photon& p : maps.map[m].photons()) {
-            const Rgb power = p.power();
+            const Rgb power = p.colour();  // the dump's power columns: the photon's colour
             total[0] += power.r, total[1] += power.g, total[2] += power.b;
         }
         for (int c = 0; c < 3; ++c) {

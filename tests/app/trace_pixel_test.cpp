@@ -163,7 +163,7 @@ size_t check_paths(const Json& j, int x, int y) {
         EXPECT_GE(p["vertices"].items.size(), 1u);
         for (const Json& v : p["vertices"].items) {
             EXPECT_EQ(kEvents.count(v["event"].str), 1u) << v["event"].str;
-            EXPECT_EQ(v["throughput"].items.size(), 3u);
+            EXPECT_EQ(v["throughput"].items.size(), 4u);  // at the path's four wavelengths
         }
         EXPECT_EQ(p["contribution"].items.size(), 3u);
     }

@@ -103,7 +103,7 @@ TEST(SceneFormatRender, TextureIsLookedUpAtThePlysUv) {
         accel::SurfaceHit hit;
         EXPECT_TRUE(P.accel.intersect(ray, hit));
         EXPECT_NEAR(hit.p.z, -1.0f, 1e-5f);
-        return P.bsdf(hit).diffuse_albedo();
+        return P.bsdf(hit).diffuse_colour();
     };
     const std::pair<Vec2, const float*> expected[] = {
         {{0.25f, 0.25f}, C}, {{0.75f, 0.25f}, D}, {{0.25f, 0.75f}, A}, {{0.75f, 0.75f}, B}};

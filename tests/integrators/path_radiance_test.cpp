@@ -1,5 +1,6 @@
 // PathRadiance (render/path_radiance.h): which --layers component each contribution of a camera
-// path goes to, decided from the events the path reports.
+// path goes to, decided from the events the path reports, each taken to colour at the path's
+// wavelengths.
 #include "render/path_radiance.h"
 
 #include <gtest/gtest.h>
@@ -8,25 +9,29 @@
 #include <utility>
 #include <vector>
 
+#include "spectrum/color.h"
+
 namespace phos::render {
 namespace {
+
+const Wavelengths kLambda = Wavelengths::visible(0.3f);
 
 // The component a unit of emission and a unit of sampled light go to after `bounces` (true: delta).
 std::pair<Component, Component> where(std::initializer_list<bool> bounces) {
     const auto component_of = [](const RadianceParts& p) {
         for (const Component c : all_components())
-            if (RadianceParts(p)[c] == Rgb(1.0f)) return c;
+            if (RadianceParts(p)[c] == spectrum::to_srgb(Spectrum(1.0f), kLambda)) return c;
         ADD_FAILURE() << "no component holds the contribution";
         return Component::Direct;
     };
     RadianceParts emitted, sampled;
-    PathRadiance e(&emitted), l(&sampled);
+    PathRadiance e(kLambda, &emitted), l(kLambda, &sampled);
     for (const bool delta : bounces) {
         e.bounce(delta);
         l.bounce(delta);
     }
-    e.emission(Rgb(1.0f));
-    l.light(Rgb(1.0f));
+    e.emission(Spectrum(1.0f));
+    l.light(Spectrum(1.0f));
     return {component_of(emitted), component_of(sampled)};
 }
 
@@ -53,18 +58,22 @@ TEST(PathRadiance, EverythingAfterADeltaBounceFromTheCameraIsSpecular) {
 
 TEST(PathRadiance, TotalIsTheSumWithOrWithoutParts) {
     RadianceParts parts;
-    PathRadiance split(&parts), plain;
+    PathRadiance split(kLambda, &parts), plain(kLambda);
     for (PathRadiance* L : {&split, &plain}) {
-        L->emission(Rgb(0.5f));
+        L->emission(Spectrum(0.5f));
         L->bounce(false);
-        L->light(Rgb(0.25f));
-        L->emission(Rgb(0.125f));
+        L->light(Spectrum(0.25f));
+        L->emission(Spectrum(0.125f));
     }
-    EXPECT_EQ(split.total(), Rgb(0.875f));
-    EXPECT_EQ(plain.total(), Rgb(0.875f));
-    EXPECT_EQ(parts.direct, Rgb(0.625f));
-    EXPECT_EQ(parts.indirect, Rgb(0.25f));
-    EXPECT_EQ(parts.total(), split.total());
+    const Rgb one = spectrum::to_srgb(Spectrum(1.0f), kLambda);
+    const auto near = [&](Rgb a, Rgb b) {
+        for (int c = 0; c < 3; ++c) EXPECT_NEAR(a[c], b[c], 1e-6f * one.max());
+    };
+    near(split.total(), one * 0.875f);
+    near(plain.total(), one * 0.875f);
+    near(parts.direct, one * 0.625f);
+    near(parts.indirect, one * 0.25f);
+    near(parts.total(), split.total());
 }
 
 TEST(PathRadiance, ComponentsNameTheirLayers) {

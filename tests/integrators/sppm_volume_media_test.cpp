@@ -58,7 +58,8 @@ TEST(SppmVolumeMedia, PhotonsReachOnlyTheVolumePointsOfTheirOwnMedium) {
     for (int i = 0; i < 2; ++i) {
         vps[size_t(i)].p = Vec3(0.0f, -0.2f, 0.0f);
         vps[size_t(i)].wo = Vec3(0, 0, 1);
-        vps[size_t(i)].beta = Rgb(1.0f);
+        vps[size_t(i)].beta = Spectrum(1.0f);
+        vps[size_t(i)].lambda = Wavelengths::visible(0.5f);
         vps[size_t(i)].medium = i;  // 0: the smoke it sits in; 1: the other medium
     }
     std::vector<PixelStats> px(2);

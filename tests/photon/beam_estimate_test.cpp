@@ -24,6 +24,7 @@
 #include "core/rng.h"
 #include "photon/knn_brute_force.h"
 #include "scene/medium.h"
+#include "spectrum/color.h"
 
 namespace phos::photon {
 namespace {
@@ -36,16 +37,22 @@ scene::Medium homogeneous(Rgb sigma_a, Rgb sigma_s, float g) {
     return m;
 }
 
-// n photons in the box [-0.5, 0.5] x [-0.5, 0.5] x [0, 2] (around the +z axis), random powers and
-// directions.
+// n photons in the box [-0.5, 0.5] x [-0.5, 0.5] x [0, 2] (around the +z axis), random powers at
+// random wavelengths, and random directions.
 std::vector<Photon> photon_cloud(int n, uint64_t seed) {
     Sampler rng(seed);
+    // The fourth channel and the wavelengths from their own stream: the positions and directions
+    // are those of the RGB photons these tests were written with.
+    Sampler spectral(seed + 1000);
     std::vector<Photon> v;
     for (int i = 0; i < n; ++i) {
         const Vec3 p(rng.next() - 0.5f, rng.next() - 0.5f, 2.0f * rng.next());
-        const Rgb power(0.2f + rng.next(), 0.2f + rng.next(), 0.2f + rng.next());
+        Spectrum power;
+        for (int k = 0; k < 3; ++k) power[k] = 0.2f + rng.next();
+        power[3] = 0.2f + spectral.next();
+        const Wavelengths lambda = Wavelengths::visible(spectral.next());
         const Vec3 wi(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f);
-        v.push_back(Photon(p, power, wi, Vec3(0.0f)));
+        v.push_back(Photon(p, power, lambda, wi, Vec3(0.0f)));
     }
     return v;
 }
@@ -61,7 +68,9 @@ TEST(BeamEstimate, RadiiAreTheKthNearestDistances) {
     for (size_t i = 0; i < s.size(); ++i) {
         const Photon& ph = map.photon(uint32_t(i));
         EXPECT_EQ(s[i].position, ph.position);
-        EXPECT_EQ(s[i].power, ph.power());
+        // A sphere carries its photon's power as colour, at the photon's own wavelengths.
+        EXPECT_EQ(s[i].power, ph.colour());
+        EXPECT_EQ(s[i].power, spectrum::to_srgb(ph.power(), ph.wavelengths()));
         EXPECT_EQ(s[i].wi, ph.wi());
         const KnnResult r = testing::knn_brute_force(map.photons(), s[i].position, k, kInf, nb.data());
         const float expected = std::min(std::sqrt(r.max_dist2), max_radius);
@@ -126,7 +135,7 @@ TEST(BeamEstimate, EqualsTheRayIntegralOfThe3dEstimate) {
         const Rgb beam = beam_radiance_estimate(bvh, s.o, s.d, T, medium.phase(), &used);
         EXPECT_GT(used, 100u) << s.what << ": the segment meets many photons";
         const std::array<double, 3> q =
-            quadrature_3d(bvh.spheres(), s.o, s.d, s.t_end, medium.sigma_t(), medium.phase(), 400000);
+            quadrature_3d(bvh.spheres(), s.o, s.d, s.t_end, medium.sigma_t_rgb(), medium.phase(), 400000);
         for (int c = 0; c < 3; ++c) {
             const double ref = q[c];
             std::printf("[ measured ] %s, channel %d: beam %.6f, quadrature %.6f (%+.2e)\n", s.what, c,
@@ -177,7 +186,7 @@ TEST(StretchTransmittance, HomogeneousIsExact) {
     const StretchTransmittance T(m, o, d, 4.0f, 0.1f, 0.3f);
     EXPECT_FLOAT_EQ(T.end(), 4.0f);
     for (int c = 0; c < 3; ++c) {
-        const double s = m.sigma_t()[c];
+        const double s = m.sigma_t_rgb()[c];
         EXPECT_NEAR(T.at(1.5f)[c], std::exp(-s * 1.5), 1e-6);
         EXPECT_NEAR(T.total()[c], std::exp(-s * 4.0), 1e-6);
         const double I = (std::exp(-s * 0.7) - std::exp(-s * 3.1)) / s;
@@ -251,7 +260,7 @@ TEST(StretchTransmittance, VaryingGridIsConsistent) {
     for (float t : {0.5f, 1.2f, 2.4f}) {
         Rgb depth(0.0f);
         const float h = t / steps;
-        for (int i = 0; i < steps; ++i) depth += g.at(o + d * ((float(i) + 0.5f) * h)).sigma_t() * h;
+        for (int i = 0; i < steps; ++i) depth += g.sigma_t_rgb(o + d * ((float(i) + 0.5f) * h)) * h;
         for (int c = 0; c < 3; ++c) EXPECT_NEAR(T.at(t)[c], std::exp(-depth[c]), 2e-3) << t;
     }
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(T.total()[c], T.at(t_end)[c], 1e-6);

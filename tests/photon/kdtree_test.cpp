@@ -22,12 +22,19 @@
 namespace phos::photon {
 namespace {
 
-Photon make_photon(Vec3 p, Vec3 n = Vec3(0, 1, 0)) { return Photon(p, Rgb(1.0f), Vec3(0, 0, 1), n); }
+// A photon at p with normal n; `id` varies its power and wavelengths, so that the checks that a
+// tree photon is its input photon compare those fields too.
+Photon make_photon(Vec3 p, Vec3 n = Vec3(0, 1, 0), uint32_t id = 0) {
+    Spectrum power;
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) power[i] = 1.0f + float((id + uint32_t(i)) % 5);
+    return Photon(p, power, Wavelengths::visible(float(id % 1000) / 1000.0f), Vec3(0, 0, 1), n);
+}
 
 std::vector<Photon> random_cube(int n, uint64_t seed) {
     Sampler rng(seed);
     std::vector<Photon> v;
-    for (int i = 0; i < n; ++i) v.push_back(make_photon(Vec3(rng.next(), rng.next(), rng.next())));
+    for (int i = 0; i < n; ++i)
+        v.push_back(make_photon(Vec3(rng.next(), rng.next(), rng.next()), Vec3(0, 1, 0), uint32_t(i)));
     return v;
 }
 
@@ -60,7 +67,7 @@ std::vector<Photon> cornell_like(int n, uint64_t seed) {
                 p = {0.5f + 0.05f * u.x, 0, 0.5f + 0.05f * u.y}, nrm = {0, 1, 0};
                 break;
         }
-        v.push_back(make_photon(p, nrm));
+        v.push_back(make_photon(p, nrm, uint32_t(i)));
     }
     for (int i = 0; i < n / 50; ++i) v.push_back(v[rng.next_index(uint32_t(v.size()))]);
     return v;
@@ -195,7 +202,9 @@ TEST_P(KdTreeLeaf, SplitInvariantHolds) {
     for (uint32_t i = 0; i < P.size(); ++i) {
         idx[i] = tree.input_index(i);
         EXPECT_EQ(P[i].position, input[idx[i]].position);
-        EXPECT_EQ(P[i].power_rgbe, input[idx[i]].power_rgbe);
+        EXPECT_EQ(P[i].power(), input[idx[i]].power());
+        EXPECT_EQ(P[i].lambda_code, input[idx[i]].lambda_code);
+        EXPECT_EQ(P[i].flags, input[idx[i]].flags);
     }
     std::sort(idx.begin(), idx.end());
     for (uint32_t i = 0; i < idx.size(); ++i) ASSERT_EQ(idx[i], i);

@@ -1,5 +1,7 @@
-// Tests of the 20-byte photon record: RGBE power error bounds, octahedral direction/normal angular
-// error bounds, and that the packed fields do not disturb one another.
+// Tests of the 24-byte photon record: the shared-exponent power's error bounds, exact codes and
+// degenerate inputs (and the fast encoder against the reference), the wavelengths' 16-bit code and
+// terminated flag, octahedral direction/normal angular error bounds, and that the packed fields do
+// not disturb one another.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -8,6 +10,7 @@
 #include "core/rng.h"
 #include "photon/octahedral_avx2.h"
 #include "photon/photon.h"
+#include "spectrum/color.h"
 
 namespace phos::photon {
 namespace {
@@ -24,113 +27,149 @@ float angle_degrees(Vec3 a, Vec3 b) {
     return std::atan2(length(cross(a, b)), dot(a, b)) * 180.0f / kPi;
 }
 
-TEST(PhotonRecord, IsTwentyBytes) { EXPECT_EQ(sizeof(Photon), 20u); }
+Spectrum spectrum_of(float a, float b, float c, float d) {
+    Spectrum s;
+    s[0] = a, s[1] = b, s[2] = c, s[3] = d;
+    return s;
+}
 
-TEST(Rgbe, ErrorBoundOverWideRange) {
+Spectrum round_trip(const Spectrum& s) { return decode_power(encode_power(s)); }
+
+TEST(PhotonRecord, IsTwentyFourBytes) { EXPECT_EQ(sizeof(Photon), 24u); }
+
+TEST(SharedExponentPower, ErrorBoundOverWideRange) {
     Sampler rng(7);
     double sum_signed = 0;
     float worst_max_channel = 0;
+    int exact_zeros = 0;
     const int n = 200000;
     for (int i = 0; i < n; ++i) {
-        // Max channel anywhere in 2^-100..2^100, the others up to 2^12 times smaller (or zero).
+        // Max channel anywhere in 2^-100..2^100, the others up to 2^12 times smaller (or zero), the
+        // largest in each of the four channels in turn.
         const float base = std::ldexp(1.0f + rng.next(), int(rng.next_index(200)) - 100);
-        Rgb c(base, base * std::ldexp(rng.next(), -int(rng.next_index(12))),
-              rng.next() < 0.1f ? 0.0f : base * rng.next());
-        if (i % 3 == 1) std::swap(c.r, c.g);
-        if (i % 3 == 2) std::swap(c.r, c.b);
+        Spectrum c = spectrum_of(base, base * std::ldexp(rng.next(), -int(rng.next_index(12))),
+                                 rng.next() < 0.1f ? 0.0f : base * rng.next(), base * rng.next() * 1e-3f);
+        std::swap(c[0], c[i % 4]);
         const float m = c.max();
-        const Rgb d = decode_rgbe(encode_rgbe(c));
-        for (int ch = 0; ch < 3; ++ch) {
-            ASSERT_LE(std::fabs(d[ch] - c[ch]), kRgbeMaxRelativeError * m) << i << " ch " << ch;
+        const Spectrum d = round_trip(c);
+        for (int ch = 0; ch < 4; ++ch) {
+            ASSERT_LE(std::fabs(d[ch] - c[ch]), kPowerMaxRelativeError * m) << i << " ch " << ch;
+            if (c[ch] == 0) {
+                ASSERT_EQ(d[ch], 0.0f) << i << " ch " << ch;
+                ++exact_zeros;
+            }
         }
         const float rel = std::fabs(d.max() - m) / m;
         worst_max_channel = std::max(worst_max_channel, rel);
         sum_signed += (d.max() - m) / m;
     }
-    EXPECT_LE(worst_max_channel, kRgbeMaxRelativeError);
+    EXPECT_LE(worst_max_channel, kPowerMaxRelativeError);
+    EXPECT_GT(worst_max_channel, 0.5f * kPowerMaxRelativeError);  // the bound is not vacuous
+    EXPECT_GT(exact_zeros, n / 20);
     // Rounding, not truncation: no systematic darkening (truncation would average about -2^-9).
     EXPECT_LT(std::fabs(sum_signed / n), 2e-4);
 }
 
-TEST(Rgbe, ExactValuesAndCarry) {
+TEST(SharedExponentPower, ExactValuesAndCarry) {
     for (float v : {1.0f, 0.5f, 0.75f, 3.0f, 0.125f, 0x1.8p-100f, 0x1.fep+100f}) {
-        EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(v))), Rgb(v));
+        EXPECT_EQ(round_trip(Spectrum(v)), Spectrum(v)) << v;
     }
-    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(1.0f, 0.5f, 0.25f))), Rgb(1.0f, 0.5f, 0.25f));
-    // 255.75/256 rounds up to 256/256: the exponent must carry, decoding to exactly 1.
-    const Rgb d = decode_rgbe(encode_rgbe(Rgb(255.75f / 256.0f, 0.1f, 0.0f)));
-    EXPECT_EQ(d.r, 1.0f);
-    EXPECT_NEAR(d.g, 0.1f, 1.0f / 512.0f);
-    EXPECT_EQ(d.b, 0.0f);
+    EXPECT_EQ(round_trip(spectrum_of(1.0f, 0.5f, 0.25f, 0.125f)), spectrum_of(1.0f, 0.5f, 0.25f, 0.125f));
+    // The code's layout: channel i's mantissa in byte i, the exponent biased by 128 (1 = 128 * 2^(1-8)).
+    EXPECT_EQ(encode_power(Spectrum(1.0f)), (PowerCode{0x80808080u, 129}));
+    EXPECT_EQ(encode_power(spectrum_of(1.0f, 0.5f, 0.25f, 0.0f)), (PowerCode{0x00204080u, 129}));
+    EXPECT_EQ(encode_power(spectrum_of(0.0f, 0.0f, 0.0f, 3.0f)), (PowerCode{0xc0000000u, 130}));
+    // 255.75/256 rounds up to 256/256: the exponent must carry, decoding to exactly 1, whichever
+    // channel holds the largest value (the fast encoder's lanes).
+    for (int ch = 0; ch < 4; ++ch) {
+        Spectrum c = spectrum_of(0.1f, 0.0f, 0.3f, 0.7f);
+        c[ch] = 255.75f / 256.0f;
+        const PowerCode code = encode_power(c);
+        EXPECT_EQ(code.exponent, 129) << ch;
+        EXPECT_EQ(code, encode_power_reference(c)) << ch;
+        const Spectrum d = decode_power(code);
+        EXPECT_EQ(d[ch], 1.0f) << ch;
+        for (int k = 0; k < 4; ++k) EXPECT_NEAR(d[k], c[k], kPowerMaxRelativeError * 1.0f) << ch << " " << k;
+    }
 }
 
-TEST(Rgbe, DegenerateInputs) {
-    EXPECT_EQ(encode_rgbe(Rgb(0.0f)), 0u);
-    EXPECT_EQ(decode_rgbe(0u), Rgb(0.0f));
-    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(-1.0f, 2.0f, NAN))), Rgb(0.0f, 2.0f, 0.0f));
-    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(-1.0f))), Rgb(0.0f));
-    EXPECT_EQ(decode_rgbe(encode_rgbe(Rgb(1e-40f))), Rgb(0.0f));  // below the exponent range
-    const Rgb big = decode_rgbe(encode_rgbe(Rgb(INFINITY, 1e38f, 1.0f)));
+TEST(SharedExponentPower, DegenerateInputs) {
+    EXPECT_EQ(encode_power(Spectrum(0.0f)), PowerCode{});
+    EXPECT_EQ(encode_power(Spectrum(0.0f)).exponent, 0);
+    EXPECT_EQ(decode_power(PowerCode{}), Spectrum(0.0f));
+    // Exponent byte 0 is black whatever the mantissas say.
+    EXPECT_EQ(decode_power(PowerCode{0xffffffffu, 0}), Spectrum(0.0f));
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    EXPECT_EQ(round_trip(spectrum_of(-1.0f, 2.0f, nan, 0.5f)), spectrum_of(0.0f, 2.0f, 0.0f, 0.5f));
+    EXPECT_EQ(round_trip(Spectrum(-1.0f)), Spectrum(0.0f));
+    EXPECT_EQ(round_trip(Spectrum(nan)), Spectrum(0.0f));
+    EXPECT_EQ(round_trip(Spectrum(1e-40f)), Spectrum(0.0f));  // below the exponent range
+    const Spectrum big = round_trip(spectrum_of(inf, 1e38f, 1.0f, -inf));
     EXPECT_TRUE(big.is_finite());
-    EXPECT_GT(big.r, 1e38f);
+    EXPECT_GT(big[0], 1e38f);
+    EXPECT_EQ(big[3], 0.0f);
     // Tiny but representable powers (deep bounces of a weak light) keep their precision.
-    const Rgb tiny(3e-36f, 1e-36f, 2e-36f);
-    const Rgb dt = decode_rgbe(encode_rgbe(tiny));
-    EXPECT_NEAR(dt.r, tiny.r, tiny.r * kRgbeMaxRelativeError);
+    const Spectrum tiny = spectrum_of(3e-36f, 1e-36f, 2e-36f, 0.0f);
+    const Spectrum dt = round_trip(tiny);
+    for (int ch = 0; ch < 4; ++ch) EXPECT_NEAR(dt[ch], tiny[ch], tiny.max() * kPowerMaxRelativeError) << ch;
 }
 
-// The fast encoder must give the reference's word for every input: random powers over the whole
+// Disabled: fails against the library as it stands (reported, not changed here). For maxima in
+// [2^-128, 2^-120) encode_power_reference's scale ldexp(1, 8 - e) overflows to +inf, so every
+// channel's mantissa becomes 255 (a zero channel too: nearbyint(0 * inf) is NaN and fmin(NaN,
+// 255) is 255): 1e-37 at channel 0 decodes as 3.7e-37 in all four channels. The header promises
+// the bound above down to 2^-127 and black below it. (encode_power defers to the reference there,
+// so the fast-vs-reference test cannot see it.)
+TEST(SharedExponentPower, TinyMaximaKeepTheBoundOrEncodeBlack) {
+    for (int k = -132; k <= -115; ++k) {
+        for (float f : {1.0f, 1.5f, 1.99f}) {
+            const float m = std::ldexp(f, k);
+            const Spectrum c = spectrum_of(m, 0.5f * m, 0.0f, 0.25f * m);
+            const Spectrum d = round_trip(c);
+            if (d.is_black() && m < 0x1p-127f) continue;  // below the exponent range
+            for (int ch = 0; ch < 4; ++ch)
+                EXPECT_LE(std::fabs(d[ch] - c[ch]), kPowerMaxRelativeError * m) << m << " ch " << ch;
+        }
+    }
+}
+
+// The fast encoder must give the reference's code for every input: random powers over the whole
 // exponent range (where it defers to the reference at the ends), mantissas that round up to the
-// next exponent, ties, zeros, negatives, NaN and infinities.
-TEST(Rgbe, FastEncoderGivesTheReferenceWords) {
+// next exponent, ties, zeros, negatives, NaN and infinities, in every channel.
+TEST(SharedExponentPower, FastEncoderGivesTheReferenceCodes) {
     Sampler rng(31);
-    int mismatches = 0;
-    const auto check = [&](Rgb c) {
-        if (encode_rgbe(c) != encode_rgbe_reference(c)) ++mismatches;
+    int mismatches = 0, compared = 0;
+    const auto check = [&](const Spectrum& c) {
+        ++compared;
+        if (!(encode_power(c) == encode_power_reference(c))) ++mismatches;
     };
     for (int i = 0; i < 1000000; ++i) {
         const float scale = std::ldexp(1.0f, int(rng.next_index(300)) - 150);
-        check(Rgb(rng.next(), rng.next(), rng.next()) * scale);
-        check(Rgb(rng.next(), 1e-3f * rng.next(), 0.0f) * scale);
-        // Exactly representable mantissas and halfway points: k/2 * 2^j.
+        check(spectrum_of(rng.next(), rng.next(), rng.next(), rng.next()) * scale);
+        Spectrum skewed = spectrum_of(rng.next(), 1e-3f * rng.next(), 0.0f, 1e-6f * rng.next()) * scale;
+        std::swap(skewed[0], skewed[i % 4]);
+        check(skewed);
+        // Exactly representable mantissas and halfway points: k/2 * 2^j, and a carry candidate.
         const float half = float(rng.next_index(512)) * 0.5f * std::ldexp(1.0f, int(rng.next_index(40)) - 20);
-        check(Rgb(half, half * 0.5f, 255.5f * std::ldexp(1.0f, int(rng.next_index(40)) - 20)));
+        Spectrum ties = spectrum_of(half, half * 0.5f,
+                                    255.5f * std::ldexp(1.0f, int(rng.next_index(40)) - 20), half * 0.25f);
+        std::swap(ties[2], ties[i % 4]);
+        check(ties);
     }
     const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
-    for (Rgb c : {Rgb(0.0f), Rgb(-1.0f, 2.0f, -0.0f), Rgb(nan, 1.0f, 0.5f), Rgb(inf, 1.0f, 0.0f), Rgb(3e38f),
-                  Rgb(1e-40f), Rgb(0x1p-110f, 0x1p-120f, 0.0f), Rgb(0x1p114f, 1.0f, 0.0f),
-                  Rgb(255.5f, 0.0f, 1.0f), Rgb(0.99999994f, 0.5f, 0.25f)})
+    for (const Spectrum& c :
+         {Spectrum(0.0f), spectrum_of(-1.0f, 2.0f, -0.0f, 0.0f), spectrum_of(nan, 1.0f, 0.5f, nan),
+          spectrum_of(inf, 1.0f, 0.0f, 2.0f), spectrum_of(0.0f, 0.0f, 0.0f, inf), Spectrum(3e38f),
+          Spectrum(1e-40f), spectrum_of(0x1p-110f, 0x1p-120f, 0.0f, 0x1p-112f),
+          spectrum_of(0x1p114f, 1.0f, 0.0f, 0.0f), spectrum_of(255.5f, 0.0f, 1.0f, 255.0f),
+          spectrum_of(0.99999994f, 0.5f, 0.25f, 0.125f), spectrum_of(0.0f, 0.0f, 0.0f, 255.75f / 256.0f)})
         check(c);
+    EXPECT_GT(compared, 3000000);
     EXPECT_EQ(mismatches, 0);
 }
 
-// The four-lane rescale (scale_rgbe4, the photon tracer's division of every power by N) gives the
-// scalar encode_rgbe(decode_rgbe(w) * s) in every lane: random words over the whole exponent range
-// (black and tiny exponents among them, which send their group to the scalar path), words near a
-// carry to the next exponent, and scales from 1e-9 to 1e3 (1 / N for any N, and more).
-TEST(Rgbe, FourLaneRescaleGivesTheScalarWords) {
-    Sampler rng(32);
-    int mismatches = 0, vector_groups = 0;
-    for (int i = 0; i < 400000; ++i) {
-        const float s = std::ldexp(0.5f + rng.next(), int(rng.next_index(40)) - 30);
-        uint32_t w[4], want[4];
-        bool fast = true;
-        for (int k = 0; k < 4; ++k) {
-            const uint32_t bits = uint32_t(rng.next_bits());
-            // Mostly exponents of everyday powers; sometimes any byte, or a mantissa of 255.
-            const uint32_t eb = rng.next() < 0.9f ? 100 + (bits >> 24) % 60 : bits >> 24;
-            w[k] = (bits & 0xffffffu) | (eb << 24);
-            if (rng.next() < 0.2f) w[k] |= 0xffu;
-            want[k] = encode_rgbe(decode_rgbe(w[k]) * s);
-            fast = fast && eb >= 10;
-        }
-        vector_groups += fast;
-        scale_rgbe4(w, s);
-        for (int k = 0; k < 4; ++k) mismatches += w[k] != want[k];
-    }
-    EXPECT_EQ(mismatches, 0);
-    EXPECT_GT(vector_groups, 200000);  // most groups took the four-lane path
-}
+// (The RGBE tests' four-lane rescale, scale_rgbe4, has no counterpart: the tracer now rescales
+// each photon through encode_power, which the tests above cover.)
 
 template <int Bits>
 float worst_octahedral_error(int n, uint64_t seed) {
@@ -235,14 +274,30 @@ TEST(Octahedral, LaneEncodersGiveTheReferenceCodes) {
     expect_same_codes_as_reference<12>(23);
 }
 
+void expect_same_wavelengths(const Wavelengths& a, const Wavelengths& b) {
+    EXPECT_EQ(a.code(), b.code());
+    EXPECT_EQ(a.secondary_terminated(), b.secondary_terminated());
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+        EXPECT_EQ(a[i], b[i]) << i;
+        EXPECT_EQ(a.pdf(i), b.pdf(i)) << i;
+    }
+}
+
 TEST(PhotonRecord, ConstructAndDecodeFields) {
     const Vec3 p(0.25f, -3.5f, 1e3f);
-    const Rgb power(2e-5f, 1e-5f, 5e-6f);
+    const Spectrum power = spectrum_of(2e-5f, 1e-5f, 5e-6f, 1.5e-5f);
+    const Wavelengths lambda = Wavelengths::visible(0.3f);
     const Vec3 wi = normalize(Vec3(0.3f, 0.9f, -0.2f));
     const Vec3 n = normalize(Vec3(-0.1f, 0.2f, 0.97f));
-    Photon ph(p, power, wi * 2.0f, n);
+    Photon ph(p, power, lambda, wi * 2.0f, n);
     EXPECT_EQ(ph.position, p);
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(ph.power()[c], power[c], power.max() * kRgbeMaxRelativeError);
+    for (int c = 0; c < 4; ++c)
+        EXPECT_NEAR(ph.power()[c], power[c], power.max() * kPowerMaxRelativeError) << c;
+    EXPECT_EQ(ph.power(), decode_power(encode_power_reference(power)));
+    expect_same_wavelengths(ph.wavelengths(), lambda);
+    EXPECT_EQ(ph.flags, 0);
+    // The colour is the decoded power's at the stored wavelengths.
+    EXPECT_EQ(ph.colour(), spectrum::to_srgb(ph.power(), lambda));
     EXPECT_LE(angle_degrees(ph.wi(), wi), kDirectionMaxErrorDegrees);
     ASSERT_TRUE(ph.has_normal());
     EXPECT_LE(angle_degrees(ph.normal(), n), kNormalMaxErrorDegrees);
@@ -257,10 +312,77 @@ TEST(PhotonRecord, ConstructAndDecodeFields) {
     ph.set_normal(Vec3(0, -1, 0));
     EXPECT_EQ(ph.split_axis(), 3);
     EXPECT_EQ(ph.normal(), Vec3(0, -1, 0));
+
+    // Power, wavelengths and the terminated flag can each change without touching the rest.
+    const Vec3 wi_before = ph.wi();
+    const Spectrum other = spectrum_of(0.0f, 4.0f, 1.0f, 2.0f);
+    ph.set_power(other);
+    EXPECT_EQ(ph.power(), other);  // exactly representable
+    expect_same_wavelengths(ph.wavelengths(), lambda);
+    Wavelengths hero_only = Wavelengths::visible(0.8f);
+    hero_only.terminate_secondary();
+    ph.set_wavelengths(hero_only);
+    expect_same_wavelengths(ph.wavelengths(), hero_only);
+    EXPECT_EQ(ph.flags, Photon::kSecondaryTerminated);
+    EXPECT_EQ(ph.power(), other);
+    ph.set_wavelengths(lambda);  // clears the flag again
+    EXPECT_EQ(ph.flags, 0);
+    expect_same_wavelengths(ph.wavelengths(), lambda);
+    EXPECT_EQ(ph.position, p);
+    EXPECT_EQ(ph.wi(), wi_before);
+    EXPECT_EQ(ph.normal(), Vec3(0, -1, 0));
+    EXPECT_EQ(ph.split_axis(), 3);
+}
+
+// Every 16-bit code comes back from the record as the wavelengths it was made from, with and
+// without the secondary wavelengths terminated (a terminated photon's colour is its hero's alone).
+TEST(PhotonRecord, WavelengthsRoundTrip) {
+    int mismatches = 0;
+    for (uint32_t code = 0; code < uint32_t(spectrum::kWavelengthCodes); ++code) {
+        for (bool terminated : {false, true}) {
+            const Wavelengths lambda = Wavelengths::from_code(uint16_t(code), terminated);
+            const Photon ph(Vec3(0.0f), Spectrum(1.0f), lambda, Vec3(0, 0, 1), Vec3(0, 1, 0));
+            const Wavelengths back = ph.wavelengths();
+            bool same = back.code() == code && back.secondary_terminated() == terminated &&
+                        ph.lambda_code == code &&
+                        ((ph.flags & Photon::kSecondaryTerminated) != 0) == terminated;
+            for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+                same = same && back[i] == lambda[i] && back.pdf(i) == lambda.pdf(i);
+            mismatches += !same;
+        }
+    }
+    EXPECT_EQ(mismatches, 0);
+    // visible(u) is the code of u: the record keeps the photon's sampled wavelengths.
+    for (float u : {0.0f, 0.3f, 0.5f, 0.99999994f}) {
+        const Wavelengths lambda = Wavelengths::visible(u);
+        expect_same_wavelengths(
+            Photon(Vec3(0.0f), Spectrum(1.0f), lambda, Vec3(0, 0, 1), Vec3(0.0f)).wavelengths(), lambda);
+    }
+    // Terminated: only the hero carries the colour, at n times its density's weight.
+    Wavelengths hero = Wavelengths::visible(0.4f);
+    const Wavelengths all = hero;
+    hero.terminate_secondary();
+    const Photon ph(Vec3(0.0f), spectrum_of(1.0f, 0.0f, 0.0f, 0.0f), hero, Vec3(0, 0, 1), Vec3(0.0f));
+    const Rgb c = ph.colour(), c_all = spectrum::to_srgb(spectrum_of(1.0f, 0.0f, 0.0f, 0.0f), all);
+    for (int ch = 0; ch < 3; ++ch) EXPECT_FLOAT_EQ(c[ch], spectrum::kSpectrumSamples * c_all[ch]) << ch;
+}
+
+// The irradiance cache keeps a colour in a record's first three power channels.
+// A colour stored in a record (the irradiance cache's points) comes back, negative channels too.
+TEST(PhotonRecord, StoredColourRoundTrip) {
+    for (const Rgb colour : {Rgb(0.3f, 1.2f, 0.05f), Rgb(-0.2f, 0.13f, 0.6f), Rgb(0.5f, -0.01f, -0.3f)}) {
+        Photon ph(Vec3(0.0f), Spectrum(0.0f), Wavelengths(), Vec3(0, 0, 1), Vec3(0, 0, 1));
+        set_stored_colour(ph, colour);
+        EXPECT_EQ(ph.power()[3], 0.0f);
+        const Rgb back = stored_colour(ph);
+        float m = 0;
+        for (int ch = 0; ch < 3; ++ch) m = std::max(m, std::fabs(colour[ch]));
+        for (int ch = 0; ch < 3; ++ch) EXPECT_NEAR(back[ch], colour[ch], m * kPowerMaxRelativeError) << ch;
+    }
 }
 
 TEST(PhotonRecord, NoNormal) {
-    Photon ph(Vec3(1, 2, 3), Rgb(1.0f), Vec3(0, 0, 1), Vec3(0.0f));
+    Photon ph(Vec3(1, 2, 3), Spectrum(1.0f), Wavelengths::visible(0.5f), Vec3(0, 0, 1), Vec3(0.0f));
     EXPECT_FALSE(ph.has_normal());
     EXPECT_EQ(ph.normal(), Vec3(0.0f));
     ph.set_split_axis(2);

@@ -5,13 +5,17 @@
 #include <gtest/gtest.h>
 #include <tbb/task_arena.h>
 
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 
 #include "accel/embree_scene.h"
 #include "core/threads.h"
 #include "scene/scene.h"
 #include "shading/lights.h"
+#include "spectrum/color.h"
+#include "spectrum/rgb_spectrum.h"
 
 namespace phos::photon {
 namespace {
@@ -60,13 +64,44 @@ struct BoxScene {
     }
 };
 
-Rgb total_power(const std::vector<Photon>& v) {
-    double r = 0, g = 0, b = 0;
+// The stored power as linear sRGB: each photon's power taken to colour at its own wavelengths.
+std::array<double, 3> total_colour(const std::vector<Photon>& v) {
+    std::array<double, 3> sum{0, 0, 0};
     for (const Photon& p : v) {
-        const Rgb c = p.power();
-        r += c.r, g += c.g, b += c.b;
+        const Rgb c = p.colour();
+        for (int ch = 0; ch < 3; ++ch) sum[size_t(ch)] += c[ch];
     }
-    return {float(r), float(g), float(b)};
+    return sum;
+}
+double average(const std::array<double, 3>& c) { return (c[0] + c[1] + c[2]) / 3; }
+
+// The colour of one photon of a grey light is a Monte Carlo estimate over its four wavelengths
+// (drawn uniformly among the 2^16 codes): its relative variance, per channel and for the channels'
+// average, by the exact sum over every code. The light's spectrum is its RGB read as an
+// illuminant; the mean over the codes must give back that RGB (else the energy checks below would
+// test the colour conversion instead of the tracer).
+struct ColourNoise {
+    std::array<double, 3> channel{};
+    double average = 0;
+};
+ColourNoise grey_light_colour_noise() {
+    const spectrum::RgbSpectrum light(Rgb(1.0f), spectrum::RgbSpectrum::Use::Illuminant);
+    double m[4] = {0, 0, 0, 0}, m2[4] = {0, 0, 0, 0};
+    const int n = spectrum::kWavelengthCodes;
+    for (int code = 0; code < n; ++code) {
+        const Wavelengths lambda = Wavelengths::from_code(uint16_t(code));
+        const Rgb c = spectrum::to_srgb(light.sample(lambda), lambda);
+        const double v[4] = {c.r, c.g, c.b, c.average()};
+        for (int k = 0; k < 4; ++k) m[k] += v[k], m2[k] += v[k] * v[k];
+    }
+    ColourNoise noise;
+    for (int k = 0; k < 4; ++k) {
+        const double mean = m[k] / n;
+        EXPECT_NEAR(mean, 1.0, 1e-3) << "channel " << k;
+        const double rel_var = (m2[k] / n - mean * mean) / (mean * mean);
+        (k < 3 ? noise.channel[size_t(k)] : noise.average) = rel_var;
+    }
+    return noise;
 }
 
 TEST(PhotonTracer, ClosedBoxPowerSumsToFluxOverOneMinusAlbedo) {
@@ -75,7 +110,14 @@ TEST(PhotonTracer, ClosedBoxPowerSumsToFluxOverOneMinusAlbedo) {
     // rho / (1 - rho)^2. The global map's total power is Phi / (1 - rho), the indirect map's (no
     // direct photons) Phi rho / (1 - rho). With rho = 0.5 and N emitted, the relative standard
     // deviation of the global sum is sqrt(rho) / sqrt(N) = 0.5 % at N = 20000; we allow 5 sigma
-    // plus the RGBE rounding (unbiased, < 0.4 % per photon, averages out).
+    // plus the power encoding's rounding (unbiased, < 0.4 % per photon, averages out).
+    // Each emitted photon also draws its wavelengths, and its colour (to_srgb of its power there)
+    // is a Monte Carlo estimate of the light's RGB with relative variance v (measured by
+    // grey_light_colour_noise: about 0.034 for the channels' average, 0.023 / 0.001 / 0.34 for
+    // red / green / blue). The grey walls leave the spectrum's shape alone, so a path's stored
+    // count K and its colour C are independent and the relative variance of K C per emission is
+    // (1 + var_K) (1 + v) - 1: for the global map's average 0.55 instead of 0.5 (the bound grows
+    // by 5 %); blue's, 1.0, about doubles the variance.
     const float rho = 0.5f, I = 2.0f;
     BoxScene box(rho, I, false);
     TraceOptions o;
@@ -90,13 +132,28 @@ TEST(PhotonTracer, ClosedBoxPowerSumsToFluxOverOneMinusAlbedo) {
     ASSERT_TRUE(t.reached[kGlobalMap]);
     ASSERT_TRUE(t.reached[kIndirectMap]);
     EXPECT_GT(N, 15000);
-    const double tol_g = 5 * std::sqrt(rho / N) + 0.002;
-    EXPECT_NEAR(total_power(t.photons[kGlobalMap]).average() / (flux / (1 - rho)), 1.0, tol_g);
-    // Indirect: mean rho / (1 - rho) per emission, variance rho / (1 - rho)^2 -> relative std
-    // 1 / sqrt(rho N).
+    const ColourNoise v = grey_light_colour_noise();
+    const auto tol = [](double var_K, double v_C, double n) {
+        return 5 * std::sqrt(((1 + var_K) * (1 + v_C) - 1) / n) + 0.002;
+    };
+    // The light is white (RGB I): every channel of the stored colour is flux / (1 - rho).
+    const std::array<double, 3> global = total_colour(t.photons[kGlobalMap]);
+    const double want_g = flux / (1 - rho);
+    EXPECT_NEAR(average(global) / want_g, 1.0, tol(rho, v.average, N));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(global[size_t(c)] / want_g, 1.0, tol(rho, v.channel[size_t(c)], N)) << "channel " << c;
+    // Indirect: mean rho / (1 - rho) per emission, variance rho / (1 - rho)^2 -> relative
+    // variance 1 / rho (relative std 1 / sqrt(rho N) before the colour noise).
     const double Ni = double(t.emitted[kIndirectMap]);
-    const double tol_i = 5 / std::sqrt(rho * Ni) + 0.002;
-    EXPECT_NEAR(total_power(t.photons[kIndirectMap]).average() / (flux * rho / (1 - rho)), 1.0, tol_i);
+    const std::array<double, 3> indirect = total_colour(t.photons[kIndirectMap]);
+    const double want_i = flux * rho / (1 - rho);
+    EXPECT_NEAR(average(indirect) / want_i, 1.0, tol(1 / rho, v.average, Ni));
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(indirect[size_t(c)] / want_i, 1.0, tol(1 / rho, v.channel[size_t(c)], Ni))
+            << "channel " << c;
+    std::printf("[ measured ] stored colour / expected: global %.4f %.4f %.4f, indirect %.4f %.4f %.4f\n",
+                global[0] / want_g, global[1] / want_g, global[2] / want_g, indirect[0] / want_i,
+                indirect[1] / want_i, indirect[2] / want_i);
     EXPECT_TRUE(t.photons[kCausticMap].empty());
 }
 
@@ -110,7 +167,8 @@ TEST(PhotonTracer, SharpGlossyChainsAreCausticsAndStoreNothing) {
     // albedo is that at cos theta_i, averaged over the lit cap: <cos theta_i> = int sqrt(1 -
     // (d sin psi / r)^2) sin psi dpsi / int sin psi dpsi over [0, psi_max] (0.664 here, by the
     // midpoint rule below); what the lobe loses below the surface near the silhouette is a few
-    // percent. Allowed: 0.95 to 1.0 of that, plus 5 sigma (1/sqrt(N) over N > 4000 photons).
+    // percent. Allowed: 0.95 to 1.0 of that, plus 5 sigma (1/sqrt(N) over N > 4000 photons, times
+    // sqrt(1 + v) for the photons' colour noise over their wavelengths, v ~ 0.034: see above).
     // Without the split (infinite exponent) the sphere is an estimated surface: photons are
     // stored on it and nothing is a caustic.
     scene::Material glossy;
@@ -143,8 +201,9 @@ TEST(PhotonTracer, SharpGlossyChainsAreCausticsAndStoreNothing) {
     }
     const double albedo = 0.9 * (202.0 / 201.0) * cos_sum / weight_sum;
     const double flux_on_sphere = 4 * kPi * I * (1 - std::cos(psi_max)) / 2;
-    const double ratio = total_power(sharp.photons[kCausticMap]).average() / (albedo * flux_on_sphere);
-    const double tol = 5 / std::sqrt(double(sharp.photons[kCausticMap].size()));
+    const double ratio = average(total_colour(sharp.photons[kCausticMap])) / (albedo * flux_on_sphere);
+    const double tol =
+        5 * std::sqrt((1 + grey_light_colour_noise().average) / double(sharp.photons[kCausticMap].size()));
     EXPECT_GT(ratio, 0.95 - tol);
     EXPECT_LT(ratio, 1.0 + tol);
 
@@ -171,7 +230,7 @@ TEST(PhotonTracer, BudgetsStopJustAfterTheTarget) {
     EXPECT_GE(t.total_emitted, t.emitted[kCausticMap]);
     // Every caustic photon is also a global photon of some path: the caustic map's power per
     // emission cannot exceed the global map's.
-    EXPECT_LT(total_power(t.photons[kCausticMap]).average(), total_power(t.photons[kGlobalMap]).average());
+    EXPECT_LT(average(total_colour(t.photons[kCausticMap])), average(total_colour(t.photons[kGlobalMap])));
 }
 
 TEST(PhotonTracer, FixedEmissionCountFillsEveryWantedMap) {

@@ -1,12 +1,12 @@
 // The volume estimates beside a surface (photon/volume_estimate.h, photon/beam_estimate.h with
-// `surfaces`): photons spread uniformly over a box standing on a floor quad, each of power 1, so
-// the in-scattered radiance per unit length is the same everywhere, n / V / (4 pi) for isotropic
-// scattering. Just above the floor the kernels' balls reach below it, where no photon can be. The
-// k-nearest estimate that divides by the open part of its ball (photon/open_ball.h) reads the true
-// value there; the beam estimate, whose balls are the photons' own, keeps the power of the photons
-// beside the floor (the slab next to it averages the true value); the plain estimates read clearly
-// low. This is the cause of the photon mapper's dark smoke next to walls that the agreement matrix
-// found.
+// `surfaces`): photons spread uniformly over a box standing on a floor quad, each of flat power 1
+// at the same wavelengths (colour C, to_srgb of that power there), so the in-scattered radiance
+// per unit length is the same everywhere, C n / V / (4 pi) for isotropic scattering. Just above the floor the
+// kernels' balls reach below it, where no photon can be. The k-nearest estimate that divides by the open part
+// of its ball (photon/open_ball.h) reads the true value there; the beam estimate, whose balls are the
+// photons' own, keeps the power of the photons beside the floor (the slab next to it averages the true
+// value); the plain estimates read clearly low. This is the cause of the photon mapper's dark smoke next to
+// walls that the agreement matrix found.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,6 +19,7 @@
 #include "photon/beam_estimate.h"
 #include "photon/volume_estimate.h"
 #include "scene/medium.h"
+#include "spectrum/color.h"
 #include "support/shapes.h"
 
 namespace phos::photon {
@@ -27,7 +28,16 @@ namespace {
 constexpr int kPhotons = 200000;
 // The box [-1, 1] x [0, 1] x [-1, 1]: volume 4.
 constexpr double kVolume = 4.0;
-const double kTruth = kPhotons / kVolume / (4 * M_PI);  // n / V times the isotropic phase
+
+// Every photon's wavelengths.
+Wavelengths photon_wavelengths() { return Wavelengths::visible(0.5f); }
+
+// The red channel (what the checks read) of n / V times the isotropic phase times the photons'
+// colour.
+double truth() {
+    const Rgb colour = spectrum::to_srgb(Spectrum(1.0f), photon_wavelengths());
+    return kPhotons / kVolume / (4 * M_PI) * colour.r;
+}
 
 std::vector<Photon> uniform_photons() {
     Sampler rng(17);
@@ -36,7 +46,7 @@ std::vector<Photon> uniform_photons() {
     for (int i = 0; i < kPhotons; ++i) {
         const Vec3 p(2 * rng.next() - 1, rng.next(), 2 * rng.next() - 1);
         const Vec3 wi = normalize(Vec3(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f));
-        v.push_back(Photon(p, Rgb(1.0f), wi, Vec3(0.0f)));
+        v.push_back(Photon(p, Spectrum(1.0f), photon_wavelengths(), wi, Vec3(0.0f)));
     }
     return v;
 }
@@ -64,7 +74,8 @@ TEST(VolumeBoundary, KNearestEstimateBesideAFloorReadsTheTrueDensity) {
             sum_plain += volume_radiance_estimate(map, plain, x, Vec3(0, 0, 1), medium.phase())[0];
             sum_open += volume_radiance_estimate(map, open, x, Vec3(0, 0, 1), medium.phase())[0];
         }
-    const double r_plain = sum_plain / n / kTruth, r_open = sum_open / n / kTruth;
+    const double want = truth();
+    const double r_plain = sum_plain / n / want, r_open = sum_open / n / want;
     std::printf("[ measured ] k-nearest 0.02 above the floor: plain %.4f, open part %.4f of the truth\n",
                 r_plain, r_open);
     // 64 estimates of 60 photons: the mean's noise is about 1.6 %; the plain estimate's ball
@@ -98,11 +109,12 @@ TEST(VolumeBoundary, BeamEstimateKeepsThePowerOfPhotonsBesideAFloor) {
             sum_plain += a, sum_open += b;
             if (i < 4) near_plain += a, near_open += b;  // within 0.02 of the floor
         }
-    const double r_plain = sum_plain / n / kTruth, r_open = sum_open / n / kTruth;
+    const double want = truth();
+    const double r_plain = sum_plain / n / want, r_open = sum_open / n / want;
     std::printf(
         "[ measured ] beam estimate over the slab 0 < y < 0.3: plain %.4f, open part %.4f of the truth;"
         " within 0.02 of the floor: plain %.4f, open part %.4f\n",
-        r_plain, r_open, near_plain / 16 / kTruth, near_open / 16 / kTruth);
+        r_plain, r_open, near_plain / 16 / want, near_open / 16 / want);
     // 240 rays of length 1 through ~600 balls each: the mean's noise is under 1 %, and the open
     // shares, measured along 16 directions, are each within about 0.03 of the truth (open_ball.h).
     EXPECT_NEAR(r_open, 1.0, 0.025);

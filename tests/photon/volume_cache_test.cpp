@@ -22,13 +22,19 @@ namespace {
 
 std::vector<Photon> cloud(int n, uint64_t seed, const Vec3* direction = nullptr) {
     Sampler rng(seed);
+    // The fourth channel and the wavelengths from their own stream: the positions and directions
+    // are those of the RGB photons these tests were written with.
+    Sampler spectral(seed + 1000);
     std::vector<Photon> v;
     for (int i = 0; i < n; ++i) {
         const Vec3 p(rng.next(), rng.next(), rng.next());
-        const Rgb power(0.2f + rng.next(), 0.2f + rng.next(), 0.2f + rng.next());
+        Spectrum power;
+        for (int k = 0; k < 3; ++k) power[k] = 0.2f + rng.next();
+        power[3] = 0.2f + spectral.next();
+        const Wavelengths lambda = Wavelengths::visible(spectral.next());
         const Vec3 wi =
             direction ? *direction : Vec3(rng.next() - 0.5f, rng.next() - 0.5f, rng.next() - 0.5f);
-        v.push_back(Photon(p, power, normalize(wi), Vec3(0.0f)));
+        v.push_back(Photon(p, power, lambda, normalize(wi), Vec3(0.0f)));
     }
     return v;
 }

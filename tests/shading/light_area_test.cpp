@@ -1,6 +1,8 @@
 // Area lights against closed forms: Monte Carlo irradiance from sample_Li under a rectangle (mesh),
 // a transformed rectangle, a disk, an annulus, an ellipse (non-uniformly scaled disk) and spheres;
 // one- and two-sidedness; and the emitting-side rule (reverse_orientation XOR handedness swap).
+// Irradiance is checked at every wavelength sample: the closed form per unit radiance times what
+// the light's RGB colour emits there (read as an illuminant).
 #include <gtest/gtest.h>
 
 #include <utility>
@@ -12,19 +14,26 @@
 namespace phos::shading {
 namespace {
 
-using test::expect_mean;
-using test::RunningStat;
+using test::expect_means;
+using test::SpectralStat;
 
-// Irradiance at x (normal n) estimated from N sample_Li samples: mean of L cos+ / pdf.
-RunningStat irradiance(const Light& light, Vec3 x, Vec3 n, int N, uint64_t seed) {
+// The wavelengths the irradiance is estimated at.
+const Wavelengths& kLambda = spectral::fixed_lambda();
+
+// Irradiance at x (normal n) estimated from N sample_Li samples: mean of L cos+ / pdf, at each
+// wavelength of kLambda.
+SpectralStat irradiance(const Light& light, Vec3 x, Vec3 n, int N, uint64_t seed) {
     Sampler rng(seed);
-    RunningStat e;
+    SpectralStat e;
     for (int i = 0; i < N; ++i) {
-        const LightLiSample s = light.sample_Li(x, rng.next2());
-        e.add(s.pdf > 0 ? double(s.L.r) * std::max(0.0, test::dot_d(s.wi, n)) / s.pdf : 0.0);
+        const LightLiSample s = light.sample_Li(x, rng.next2(), kLambda);
+        e.add(s.pdf > 0 ? s.L * float(std::max(0.0, test::dot_d(s.wi, n)) / s.pdf) : Spectrum(0.0f));
     }
     return e;
 }
+
+// What a light of RGB colour L emits at kLambda, times `factor` (a closed form per unit radiance).
+Spectrum emitted(float L, double factor = 1) { return spectral::illuminant(Rgb(L), kLambda) * float(factor); }
 
 std::vector<Vec3> world_vertices(const scene::Shape& s) {
     std::vector<Vec3> v;
@@ -39,13 +48,15 @@ TEST(AreaLight, RectangleIrradianceMatchesLambert) {
     const Vec3 up{0, 1, 0};
     int i = 0;
     for (Vec3 x : {Vec3(0, 0, 0), Vec3(1, 0, 0.3f), Vec3(-0.7f, 0, -1.2f), Vec3(2, 0, 2)}) {
-        const double closed = test::lambert_irradiance(rect.mesh.positions, x, up, 2.0);
-        expect_mean(irradiance(light, x, up, 40000, 100 + uint64_t(i++)), closed, "rectangle irradiance");
+        const double closed = test::lambert_irradiance(rect.mesh.positions, x, up, 1.0);
+        expect_means(irradiance(light, x, up, 40000, 100 + uint64_t(i++)), emitted(2, closed),
+                     "rectangle irradiance");
     }
     // A tilted receiver as well.
     const Vec3 tilted = normalize(Vec3(0.3f, 1, -0.2f));
-    expect_mean(irradiance(light, {0.2f, 0, 0.1f}, tilted, 40000, 9),
-                test::lambert_irradiance(rect.mesh.positions, {0.2f, 0, 0.1f}, tilted, 2.0), "tilted");
+    expect_means(irradiance(light, {0.2f, 0, 0.1f}, tilted, 40000, 9),
+                 emitted(2, test::lambert_irradiance(rect.mesh.positions, {0.2f, 0, 0.1f}, tilted, 1.0)),
+                 "tilted");
 }
 
 TEST(AreaLight, TransformedMeshUsesWorldSpaceGeometry) {
@@ -59,8 +70,8 @@ TEST(AreaLight, TransformedMeshUsesWorldSpaceGeometry) {
     const Vec3 up{0, 1, 0};
     int i = 0;
     for (Vec3 x : {Vec3(0, 0, 0), Vec3(0.5f, 0, 0.5f), Vec3(-1, 0, -0.5f)}) {
-        expect_mean(irradiance(light, x, up, 40000, 200 + uint64_t(i++)),
-                    test::lambert_irradiance(poly, x, up, 1.5), "transformed rectangle");
+        expect_means(irradiance(light, x, up, 40000, 200 + uint64_t(i++)),
+                     emitted(1.5f, test::lambert_irradiance(poly, x, up, 1.0)), "transformed rectangle");
     }
 }
 
@@ -68,10 +79,11 @@ TEST(AreaLight, DiskAndAnnulusOnAxis) {
     const float r = 0.8f, h = 1.7f, ri = 0.3f, L = 3;
     const AreaLight d(test::area_light_record(Rgb(L)), test::disk({0, h, 0}, {0, -1, 0}, r));
     const AreaLight a(test::area_light_record(Rgb(L)), test::disk({0, h, 0}, {0, -1, 0}, r, ri));
-    const double disk_e = kPi * L * r * r / (r * r + h * h);
-    const double ring_e = disk_e - kPi * L * ri * ri / (ri * ri + h * h);
-    expect_mean(irradiance(d, {0, 0, 0}, {0, 1, 0}, 40000, 1), disk_e, "disk");
-    expect_mean(irradiance(a, {0, 0, 0}, {0, 1, 0}, 40000, 2), ring_e, "annulus");
+    // Per unit radiance.
+    const double disk_e = kPi * r * r / (r * r + h * h);
+    const double ring_e = disk_e - kPi * ri * ri / (ri * ri + h * h);
+    expect_means(irradiance(d, {0, 0, 0}, {0, 1, 0}, 40000, 1), emitted(L, disk_e), "disk");
+    expect_means(irradiance(a, {0, 0, 0}, {0, 1, 0}, 40000, 2), emitted(L, ring_e), "annulus");
     EXPECT_NEAR(d.sampler().area(), kPi * r * r, 1e-5f);
     EXPECT_NEAR(a.sampler().area(), kPi * (r * r - ri * ri), 1e-5f);
 }
@@ -90,8 +102,8 @@ TEST(AreaLight, EllipseFromNonUniformlyScaledDisk) {
     }
     int i = 0;
     for (Vec3 x : {Vec3(0, 0, 0), Vec3(1, 0, 0.5f), Vec3(-0.5f, 0, -1)})
-        expect_mean(irradiance(light, x, {0, 1, 0}, 40000, 300 + uint64_t(i++)),
-                    test::lambert_irradiance(poly, x, {0, 1, 0}, 1.0), "ellipse");
+        expect_means(irradiance(light, x, {0, 1, 0}, 40000, 300 + uint64_t(i++)),
+                     emitted(1, test::lambert_irradiance(poly, x, {0, 1, 0}, 1.0)), "ellipse");
 }
 
 TEST(AreaLight, SphereIrradiance) {
@@ -107,9 +119,9 @@ TEST(AreaLight, SphereIrradiance) {
     int i = 0;
     for (float theta : {0.0f, 0.4f, 1.0f}) {
         const Vec3 n{std::sin(theta), std::cos(theta), 0};
-        const double closed = kPi * L * (r / d) * (r / d) * std::cos(theta);
-        expect_mean(irradiance(plain, {0, 0, 0}, n, 40000, 400 + uint64_t(i++)), closed, "sphere");
-        expect_mean(irradiance(similar, {0, 0, 0}, n, 40000, 500 + uint64_t(i++)), closed, "scaled sphere");
+        const Spectrum closed = emitted(L, kPi * (r / d) * (r / d) * std::cos(theta));
+        expect_means(irradiance(plain, {0, 0, 0}, n, 40000, 400 + uint64_t(i++)), closed, "sphere");
+        expect_means(irradiance(similar, {0, 0, 0}, n, 40000, 500 + uint64_t(i++)), closed, "scaled sphere");
     }
 }
 
@@ -117,16 +129,18 @@ TEST(AreaLight, OneSidedAndTwoSided) {
     const scene::Shape rect = test::rectangle_y(-0.5f, 0.5f, -0.5f, 0.5f, 1);
     const AreaLight one(test::area_light_record(Rgb(1.0f)), rect);
     const AreaLight two(test::area_light_record(Rgb(1.0f), true), rect);
-    EXPECT_EQ(one.Le({0, -1, 0}, {0, -1, 0}), Rgb(1.0f));
-    EXPECT_EQ(one.Le({0, -1, 0}, {0, 1, 0}), Rgb(0.0f));
-    EXPECT_EQ(two.Le({0, -1, 0}, {0, 1, 0}), Rgb(1.0f));
+    const Spectrum white = emitted(1);  // RGB white: D65-shaped
+    EXPECT_FALSE(white.is_black());
+    EXPECT_EQ(one.Le({0, -1, 0}, {0, -1, 0}, kLambda), white);
+    EXPECT_EQ(one.Le({0, -1, 0}, {0, 1, 0}, kLambda), Spectrum(0.0f));
+    EXPECT_EQ(two.Le({0, -1, 0}, {0, 1, 0}, kLambda), white);
     // From above (behind the emitting side) a one-sided light delivers nothing.
     Sampler rng(5);
     for (int i = 0; i < 100; ++i) {
         const Vec2 u = rng.next2();
-        EXPECT_TRUE(one.sample_Li({0, 2, 0}, u).L.is_black());
-        EXPECT_EQ(two.sample_Li({0, 2, 0}, u).L, Rgb(1.0f));
-        EXPECT_EQ(one.sample_Li({0, 0, 0}, u).L, Rgb(1.0f));
+        EXPECT_TRUE(one.sample_Li({0, 2, 0}, u, kLambda).L.is_black());
+        EXPECT_EQ(two.sample_Li({0, 2, 0}, u, kLambda).L, white);
+        EXPECT_EQ(one.sample_Li({0, 0, 0}, u, kLambda).L, white);
     }
     EXPECT_NEAR(two.power().r, 2 * one.power().r, 1e-6f);
 }
@@ -139,13 +153,13 @@ TEST(AreaLight, TwoSidedLightsBothSidesAlike) {
     int i = 0;
     for (const auto& [x, n] :
          {std::pair<Vec3, Vec3>{{0.3f, 0, 0.1f}, {0, 1, 0}}, {{0.3f, 3, 0.1f}, {0, -1, 0}}}) {
-        const double closed = test::lambert_irradiance(rect.mesh.positions, x, n, 2.0);
-        expect_mean(irradiance(light, x, n, 40000, 700 + uint64_t(i++)), closed, "two-sided irradiance");
+        const Spectrum closed = emitted(2, test::lambert_irradiance(rect.mesh.positions, x, n, 1.0));
+        expect_means(irradiance(light, x, n, 40000, 700 + uint64_t(i++)), closed, "two-sided irradiance");
         Sampler rng(710 + uint64_t(i));
         for (int k = 0; k < 100; ++k) {
-            const LightLiSample s = light.sample_Li(x, rng.next2());
+            const LightLiSample s = light.sample_Li(x, rng.next2(), kLambda);
             ASSERT_GT(s.pdf, 0);
-            EXPECT_EQ(s.L, Rgb(2.0f));
+            EXPECT_EQ(s.L, emitted(2));
             EXPECT_NEAR(light.pdf_Li(x, s.wi, s.p_light, s.n_light), s.pdf, 1e-4f * s.pdf);
         }
     }

@@ -1,6 +1,7 @@
-// Photon emission (sample_Le) of area lights: the mean weight equals power() = pi L A (x2 when
-// two-sided) for every shape kind, power() matches the closed-form area, directions leave from the
-// emitting side, cosine-distributed.
+// Photon emission (sample_Le) of area lights: the mean weight equals pi L A (x2 when two-sided) at
+// every wavelength (L the light's RGB read as an illuminant), and its colour through the film is
+// power() = pi L A in RGB, for every shape kind; power() matches the closed-form area, directions
+// leave from the emitting side, cosine-distributed.
 #include <gtest/gtest.h>
 
 #include "core/transform.h"
@@ -11,7 +12,9 @@ namespace phos::shading {
 namespace {
 
 using test::expect_mean;
+using test::expect_means;
 using test::RunningStat;
+using test::SpectralStat;
 
 struct Case {
     const char* name;
@@ -48,32 +51,48 @@ std::vector<Case> cases() {
 
 TEST(AreaLightEmission, MeanWeightIsPowerAndPowerIsPiLA) {
     const Rgb L(2, 1, 0.5f);
+    const Wavelengths& lambda = spectral::fixed_lambda();
+    const Spectrum Le = spectral::illuminant(L, lambda);  // what the light emits at `lambda`
     int seed = 0;
     for (const Case& c : cases()) {
         const AreaLight light(test::area_light_record(L, c.two_sided), c.shape);
         const double sides = c.two_sided ? 2 : 1;
         EXPECT_NEAR(light.power().r, kPi * 2 * c.area * sides, 1e-4 * kPi * 2 * c.area * sides) << c.name;
         Sampler rng(uint64_t(++seed));
-        RunningStat weight, cos_mean;
+        RunningStat cos_mean;
+        SpectralStat weight;
+        // The weight's colour through the film, each sample at its own stratified wavelengths.
+        RunningStat colour[3];
         int back = 0;
         const int N = 20000;
         for (int i = 0; i < N; ++i) {
-            const LightLeSample s = light.sample_Le(rng.next2(), rng.next2());
+            const Vec2 u_pos = rng.next2(), u_dir = rng.next2();
+            const LightLeSample s = light.sample_Le(u_pos, u_dir, lambda);
             ASSERT_NEAR(length(s.ray.dir), 1.0f, 1e-5f);
-            weight.add(s.weight.r);
+            weight.add(s.weight);
+            const Wavelengths li = spectral::stratified_lambda(i, N);
+            const Rgb rgb = spectrum::to_srgb(light.sample_Le(u_pos, u_dir, li).weight, li);
+            for (int k = 0; k < 3; ++k) colour[k].add(rgb[k]);
             // s.n is the side the photon leaves from; for one-sided lights it is the emitting normal,
             // which must agree with sample_Li's normal at that point (Le non-zero leaving along n).
             const float c_out = dot(s.ray.dir, s.n);
             ASSERT_GE(c_out, -1e-6f) << c.name;
             cos_mean.add(c_out);
             if (!c.two_sided) {
-                EXPECT_EQ(light.Le(s.n, s.ray.dir), L);
+                EXPECT_EQ(light.Le(s.n, s.ray.dir, lambda), Le);
             } else if (dot(s.n, normalize(c.shape.normal)) < 0) {
                 ++back;
             }
             EXPECT_NEAR(s.pdf_pos, 1 / light.sampler().area(), 1e-6f);
         }
-        expect_mean(weight, light.power().r, c.name);
+        expect_means(weight, Le * float(kPi * c.area * sides), c.name);
+        // The film sees power() (the exact fit's RGB is within 1e-5 of L; 2e-3 relative covers
+        // the CIE tables' interpolation against the fit's 1 nm sums).
+        for (int k = 0; k < 3; ++k) {
+            EXPECT_NEAR(colour[k].mean(), light.power()[k],
+                        test::kSigmas * colour[k].std_error() + 2e-3 * light.power()[k])
+                << c.name << " channel " << k;
+        }
         // Cosine-weighted hemisphere: E[cos] = 2/3.
         expect_mean(cos_mean, 2.0 / 3.0, c.name);
         if (c.two_sided) {

@@ -144,7 +144,8 @@ TEST(LightMedia, ATransitionEmitterEmitsIntoTheMediumOnEachSide) {
     lights.set_media(place_lights_in_media(accel, lights, s.camera->eye, -1));
     int front = 0, back = 0;
     for (int i = 0; i < 64; ++i) {
-        const LightLeSample e = lights[size_t(light)].sample_Le({0.5f, 0.5f}, {(i + 0.5f) / 64, 0.3f});
+        const LightLeSample e = lights[size_t(light)].sample_Le({0.5f, 0.5f}, {(i + 0.5f) / 64, 0.3f},
+                                                                Wavelengths::visible(0.5f));
         const int m = lights.emission_medium(size_t(light), e);
         const bool along_normal = dot(e.ray.dir, Vec3(0, -1, 0)) > 0;  // the quad's normal is -y
         EXPECT_EQ(m, along_normal ? 0 : 1) << i;
@@ -162,7 +163,8 @@ TEST(LightMedia, LightsAreInVacuumUntilPlaced) {
     const int light = add_point_light(s, {0, 0, 0});
     const accel::EmbreeScene accel(s);
     const LightSet lights(s, accel.bounds());
-    const LightLeSample e = lights[size_t(light)].sample_Le({0.5f, 0.5f}, {0.5f, 0.5f});
+    const LightLeSample e =
+        lights[size_t(light)].sample_Le({0.5f, 0.5f}, {0.5f, 0.5f}, Wavelengths::visible(0.5f));
     EXPECT_EQ(lights.emission_medium(size_t(light), e), -1);
 }
 

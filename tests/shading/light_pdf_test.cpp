@@ -19,7 +19,7 @@ RunningStat inverse_pdf(const Light& light, Vec3 ref, int N, uint64_t seed) {
     Sampler rng(seed);
     RunningStat s;
     for (int i = 0; i < N; ++i) {
-        const LightLiSample ls = light.sample_Li(ref, rng.next2());
+        const LightLiSample ls = light.sample_Li(ref, rng.next2(), spectral::fixed_lambda());
         if (ls.pdf > 0) {
             const float again = light.pdf_Li(ref, ls.wi, ls.p_light, ls.n_light);
             EXPECT_NEAR(again, ls.pdf, 1e-4f * ls.pdf);
@@ -75,11 +75,13 @@ TEST(AreaLightPdf, SampledConePointsLieOnTheVisibleCap) {
     const AreaLight s(rec(), test::sphere(c, 0.7f));
     const Vec3 ref{3, 2.5f, 2};
     Sampler rng(8);
+    const Wavelengths& lambda = spectral::fixed_lambda();
+    const Spectrum white = spectral::illuminant(Rgb(1.0f), lambda);  // RGB white read as an illuminant
     for (int i = 0; i < 2000; ++i) {
-        const LightLiSample ls = s.sample_Li(ref, rng.next2());
+        const LightLiSample ls = s.sample_Li(ref, rng.next2(), lambda);
         ASSERT_NEAR(length(ls.p_light - c), 0.7f, 1e-4f);
         EXPECT_LE(dot(ls.n_light, ls.wi), 1e-3f);  // faces the reference point
-        EXPECT_EQ(ls.L, Rgb(1.0f));
+        EXPECT_EQ(ls.L, white);
     }
 }
 

@@ -1,5 +1,7 @@
 // Tests of the delta lights: point (irradiance on a plane, legacy attenuation, emission), spot (cone,
 // fall-off models, exact power, emission distribution) and directional (irradiance, emission disk).
+// Intensities are spectral: the closed forms per unit intensity times what the light's RGB colour
+// emits (read as an illuminant), at every wavelength sample.
 #include <gtest/gtest.h>
 
 #include "light_test_util.h"
@@ -11,7 +13,14 @@ namespace phos::shading {
 namespace {
 
 using test::expect_mean;
+using test::expect_means;
 using test::RunningStat;
+using test::SpectralStat;
+
+const Wavelengths& kLambda = spectral::fixed_lambda();
+
+// What a light of RGB colour c emits at kLambda.
+Spectrum emitted(Rgb c) { return spectral::illuminant(c, kLambda); }
 
 scene::Light point_record(Vec3 p, Rgb I) {
     scene::Light l;
@@ -25,16 +34,16 @@ TEST(PointLight, IrradianceOnPlaneIsExact) {
     const Vec3 pos{0.3f, 2.0f, -0.4f};
     const PointLight light(point_record(pos, Rgb(5, 2, 1)), {});
     const Vec3 n{0, 1, 0};
+    const Spectrum I = emitted(Rgb(5, 2, 1));
     for (Vec3 x : {Vec3(0, 0, 0), Vec3(1.5f, 0, 2), Vec3(-3, 0, 0.5f), Vec3(0.3f, 0, -0.4f)}) {
-        const LightLiSample s = light.sample_Li(x, {0.37f, 0.81f});
+        const LightLiSample s = light.sample_Li(x, {0.37f, 0.81f}, kLambda);
         ASSERT_TRUE(s.delta);
         ASSERT_EQ(s.pdf, 1.0f);
         const Vec3 d = pos - x;
         const double dist = std::sqrt(test::dot_d(d, d));
         const double cos_theta = d.y / dist;
-        const double expected = 5.0 * cos_theta / (dist * dist);
-        EXPECT_NEAR(s.L.r * dot(s.wi, n), expected, 1e-5 * expected);
-        EXPECT_NEAR(s.L.g / s.L.r, 2.0 / 5.0, 1e-6);
+        // E = I cos / d^2 at every wavelength (the colour's spectrum, not just its red).
+        EXPECT_TRUE(spectral::spectra_near(s.L * dot(s.wi, n), I * float(cos_theta / (dist * dist)), 1e-5));
         EXPECT_NEAR(s.distance, dist, 1e-5 * dist);
         EXPECT_NEAR(length(s.wi), 1.0f, 1e-6f);
         EXPECT_EQ(s.p_light, pos);
@@ -46,8 +55,10 @@ TEST(PointLight, LegacyAttenuationOnlyWhenAsked) {
     rec.attenuation = {1, 0.5f, 0.25f};
     const PointLight physical(rec, {});
     const PointLight legacy(rec, {.legacy_attenuation = true});
-    EXPECT_NEAR(physical.sample_Li({0, 0, 0}, {}).L.r, 2.0f / 9.0f, 1e-6f);
-    EXPECT_NEAR(legacy.sample_Li({0, 0, 0}, {}).L.r, 2.0f / (1 + 1.5f + 2.25f), 1e-6f);
+    const Spectrum I = emitted(Rgb(2.0f));
+    EXPECT_TRUE(spectral::spectra_near(physical.sample_Li({0, 0, 0}, {}, kLambda).L, I / 9.0f, 1e-6));
+    EXPECT_TRUE(
+        spectral::spectra_near(legacy.sample_Li({0, 0, 0}, {}, kLambda).L, I / (1 + 1.5f + 2.25f), 1e-6));
     EXPECT_NEAR(legacy.power().r, 4 * kPi * 2, 1e-4f);  // photons never see the attenuation
 }
 
@@ -55,15 +66,16 @@ TEST(PointLight, EmissionIsUniformAndCarriesPower) {
     const PointLight light(point_record({1, 2, 3}, Rgb(1.5f)), {});
     EXPECT_NEAR(light.power().r, 4 * kPi * 1.5f, 1e-5f);
     Sampler rng(7);
-    RunningStat weight, wz, wx;
+    RunningStat wz, wx;
+    SpectralStat weight;
     for (int i = 0; i < 20000; ++i) {
-        const LightLeSample s = light.sample_Le(rng.next2(), rng.next2());
+        const LightLeSample s = light.sample_Le(rng.next2(), rng.next2(), kLambda);
         EXPECT_EQ(s.ray.origin, Vec3(1, 2, 3));
-        weight.add(s.weight.r);
+        weight.add(s.weight);
         wz.add(s.ray.dir.z);
         wx.add(s.ray.dir.x);
     }
-    expect_mean(weight, 4 * kPi * 1.5, "point weight");
+    expect_means(weight, emitted(Rgb(1.5f)) * float(4 * kPi), "point weight");
     expect_mean(wz, 0.0, "mean direction z");  // uniform sphere: zero mean, var 1/3
     expect_mean(wx, 0.0, "mean direction x");
 }
@@ -87,9 +99,9 @@ TEST(SpotLight, IntensityInsideAndOutsideTheCone) {
     for (float angle : {0.0f, 0.2f, 0.45f, 0.49f, 0.51f, 1.0f, 2.5f}) {
         const Vec3 dir = f.to_world({std::sin(angle), 0, std::cos(angle)});
         const Vec3 x = Vec3(0, 4, 0) + dir * 2.0f;
-        const LightLiSample s = spot.sample_Li(x, {});
-        const float expected = angle <= 0.5f ? 3 * std::pow(std::cos(angle), 3.0f) / 4 : 0;
-        EXPECT_NEAR(s.L.r, expected, 1e-5f) << angle;
+        const LightLiSample s = spot.sample_Li(x, {}, kLambda);
+        const float expected = angle <= 0.5f ? std::pow(std::cos(angle), 3.0f) / 4 : 0;  // per unit I
+        EXPECT_TRUE(spectral::spectra_near(s.L, emitted(Rgb(3, 2, 1)) * expected, 1e-5, 1e-7)) << angle;
     }
 }
 
@@ -133,16 +145,18 @@ TEST(SpotLight, EmissionStaysInTheConeAndFollowsTheFalloff) {
         const int bins = 16, n = 40000;
         std::vector<int> count(bins, 0);
         Sampler rng(11);
-        RunningStat weight;
+        SpectralStat weight;
         for (int i = 0; i < n; ++i) {
-            const LightLeSample s = spot.sample_Le(rng.next2(), rng.next2());
+            const LightLeSample s = spot.sample_Le(rng.next2(), rng.next2(), kLambda);
             const float z = dot(s.ray.dir, spot.axis());
             ASSERT_GE(z, cos_cut - 1e-6f) << "direction left the cone";
             ASSERT_NEAR(length(s.ray.dir), 1.0f, 1e-5f);
-            weight.add(s.weight.g);
+            weight.add(s.weight);
             count[std::clamp(int((z - cos_cut) / (1 - cos_cut) * bins), 0, bins - 1)]++;
         }
-        expect_mean(weight, spot.power().g, "spot weight");
+        // The power per unit intensity (its green, I_g = 2, checked against the closed forms
+        // above) times the emission spectrum.
+        expect_means(weight, emitted(Rgb(3, 2, 1)) * (spot.power().g / 2), "spot weight");
         std::vector<double> expected(bins);
         double total = 0;
         for (int b = 0; b < bins; ++b) {
@@ -167,24 +181,26 @@ TEST(DirectionalLight, IrradianceAndEmissionDisk) {
     const SceneSphere sphere{{1, 0, -1}, 3};
     const DirectionalLight light(rec, sphere);
     const Vec3 d = normalize(rec.direction);
-    const LightLiSample s = light.sample_Li({0.5f, 0, 0}, {});
+    const Spectrum E = emitted(rec.color);
+    const LightLiSample s = light.sample_Li({0.5f, 0, 0}, {}, kLambda);
     EXPECT_TRUE(s.delta);
     EXPECT_NEAR(dot(s.wi, -d), 1.0f, 1e-6f);
     // Irradiance on a horizontal plane: E cos(theta).
-    EXPECT_NEAR(s.L.r * dot(s.wi, Vec3(0, 1, 0)), 4 * 2 / std::sqrt(5.25f), 1e-5f);
+    EXPECT_TRUE(spectral::spectra_near(s.L * dot(s.wi, Vec3(0, 1, 0)), E * (2 / std::sqrt(5.25f)), 1e-5));
     EXPECT_NEAR(light.power().r, 4 * kPi * 9, 1e-3f);
     Sampler rng(3);
-    RunningStat weight;
+    SpectralStat weight;
     for (int i = 0; i < 20000; ++i) {
-        const LightLeSample e = light.sample_Le(rng.next2(), rng.next2());
+        const LightLeSample e = light.sample_Le(rng.next2(), rng.next2(), kLambda);
         ASSERT_NEAR(dot(e.ray.dir, d), 1.0f, 1e-6f);
         const Vec3 rel = e.ray.origin - sphere.center;
         // On the disk tangent to the bounding sphere, upstream.
         ASSERT_NEAR(dot(rel, d), -3.0f, 1e-4f);
         ASSERT_LE(length(rel - d * dot(rel, d)), 3.0f + 1e-4f);
-        weight.add(e.weight.r);
+        weight.add(e.weight);
     }
-    expect_mean(weight, light.power().r, "directional weight");
+    // pi R^2 E: the disk photons start from.
+    expect_means(weight, E * float(kPi * 9), "directional weight");
 }
 
 }  // namespace

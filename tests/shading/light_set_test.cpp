@@ -122,9 +122,12 @@ TEST(LightSet, BadReferencesAndNonPhysicalAttenuation) {
     const LightSet physical(t, unit_bounds());
     EXPECT_EQ(log::warning_count() - before, 0);  // the .scn loader warns, once, with the location
     log::set_quiet(false);
-    EXPECT_NEAR(physical[0].sample_Li({0, 2, 0}, {}).L.r, 0.25f, 1e-6f);
+    // The default colour, RGB white, read as an illuminant: I(lambda) / d^2 without the .scn terms.
+    const Wavelengths& lambda = spectral::fixed_lambda();
+    const Spectrum I = spectral::illuminant(Rgb(1.0f), lambda);
+    EXPECT_TRUE(spectral::spectra_near(physical[0].sample_Li({0, 2, 0}, {}, lambda).L, I * 0.25f, 1e-6));
     const LightSet legacy(t, unit_bounds(), {.legacy_attenuation = true});
-    EXPECT_NEAR(legacy[0].sample_Li({0, 2, 0}, {}).L.r, 1.0f, 1e-6f);
+    EXPECT_TRUE(spectral::spectra_near(legacy[0].sample_Li({0, 2, 0}, {}, lambda).L, I, 1e-6));
 }
 
 TEST(Distribution1D, DiscreteAndContinuous) {

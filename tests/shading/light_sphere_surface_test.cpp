@@ -6,6 +6,7 @@
 #include "core/rng.h"
 #include "core/warp.h"
 #include "shading/lights.h"
+#include "spectral_test_util.h"
 
 namespace phos::shading {
 namespace {
@@ -27,16 +28,20 @@ TEST(SphereLight, PointsOnTheSurfaceSeeTheWholeInterior) {
     for (int k = 0; k < kPoints; ++k) {
         const Vec3 n = warp::uniform_sphere(points.next2());  // |n| = 1 up to rounding, either side
         Sampler sampler(11, uint64_t(k));
-        double E = 0;
+        const Wavelengths lambda = spectral::stratified_lambda(k, kPoints);
+        Spectrum E(0.0f);
         for (int i = 0; i < kSamples; ++i) {
-            const LightLiSample ls = lights[0].sample_Li(n, sampler.next2());
+            const LightLiSample ls = lights[0].sample_Li(n, sampler.next2(), lambda);
             const float c = dot(ls.wi, -n);
-            if (ls.pdf > 0 && c > 0) E += ls.L.r * c / ls.pdf;
+            if (ls.pdf > 0 && c > 0) E += ls.L * (c / ls.pdf);
         }
-        // Irradiance from a uniform radiance-1 hemisphere is pi. Inside a sphere, uniform area
-        // sampling makes cos_x cos_l / d^2 constant (= 1 / 4r^2), so every sample returns exactly
-        // pi: the tolerance only covers float rounding.
-        EXPECT_NEAR(E / kSamples, kPi, 1e-3 * kPi) << "point " << k;
+        // Irradiance from a uniform hemisphere of radiance L is pi L (here L is RGB white read as
+        // an illuminant). Inside a sphere, uniform area sampling makes cos_x cos_l / d^2 constant
+        // (= 1 / 4r^2), so every sample returns exactly pi L: the tolerance only covers float
+        // rounding.
+        EXPECT_TRUE(
+            spectral::spectra_near(E / float(kSamples), spectral::illuminant(Rgb(1.0f), lambda) * kPi, 1e-3))
+            << "point " << k;
     }
 }
 

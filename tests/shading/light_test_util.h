@@ -1,5 +1,9 @@
-// Helpers shared by the light tests: running mean/variance with a k-sigma check, and small scenes
-// (rectangle, disk, sphere emitters) built by hand.
+// Helpers shared by the light tests: running mean/variance with a k-sigma check (per wavelength for
+// spectral estimates), and small scenes (rectangle, disk, sphere emitters) built by hand.
+//
+// Emission is spectral: a light's RGB colour is read as an illuminant (spectrum/rgb_spectrum.h),
+// so even RGB white is D65-shaped; spectral::illuminant(L, lambda) is what a light of colour L emits
+// at `lambda`, and the closed forms below are per unit radiance times that.
 //
 // Statistical bound: for N independent samples X_i with finite variance, the sample mean has
 // standard deviation sigma / sqrt(N), and by the central limit theorem it is close to normal for the
@@ -15,6 +19,7 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "spectral_test_util.h"
 #include "support/shapes.h"
 
 namespace phos::shading::test {
@@ -42,6 +47,22 @@ struct RunningStat {
 inline void expect_mean(const RunningStat& s, double expected, const char* what) {
     const double tol = kSigmas * s.std_error() + 1e-5 * std::fabs(expected) + 1e-12;
     EXPECT_NEAR(s.mean(), expected, tol) << what << " (N=" << s.n << ", stderr=" << s.std_error() << ")";
+}
+
+// One RunningStat per wavelength sample of a spectral estimate.
+struct SpectralStat {
+    RunningStat s[spectral::kSpectrumSamples];
+    void add(const Spectrum& v) {
+        for (int i = 0; i < spectral::kSpectrumSamples; ++i) s[i].add(double(v[i]));
+    }
+};
+
+// expect_mean at every wavelength sample.
+inline void expect_means(const SpectralStat& st, const Spectrum& expected, const char* what) {
+    for (int i = 0; i < spectral::kSpectrumSamples; ++i) {
+        SCOPED_TRACE(::testing::Message() << "wavelength sample " << i);
+        expect_mean(st.s[i], double(expected[i]), what);
+    }
 }
 
 inline double dot_d(Vec3 a, Vec3 b) { return double(a.x) * b.x + double(a.y) * b.y + double(a.z) * b.z; }

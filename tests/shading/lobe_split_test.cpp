@@ -6,6 +6,7 @@
 
 #include "core/rng.h"
 #include "shading/bsdf.h"
+#include "spectral_test_util.h"
 
 namespace phos::shading {
 namespace {
@@ -37,6 +38,7 @@ Material with(Rgb kd, Rgb ks, float n, Rgb kt, float t_n = 1e6f) {
 }
 
 const Vec3 kUp = normalize(Vec3(0.3f, 0.1f, 1.0f));
+const Wavelengths& kLambda = spectral::fixed_lambda();
 constexpr float kMirror = Material::kMirrorShininess;
 
 TEST(LobeSplit, PureMaterials) {
@@ -110,7 +112,7 @@ TEST(LobeSplit, SmoothGlassIsDeltaWhateverTheShadingNormal) {
         EXPECT_EQ(s.followed, uint32_t(kTransmission));
         EXPECT_EQ(s.estimated, uint32_t(kDiffuse));
         EXPECT_NEAR(s.p_estimated, 0.25f, 1e-6f);
-        probe_failed += !b.sample_lobes(kTransmission, wo, 0.5f, {0.5f, 0.5f});
+        probe_failed += !b.sample_lobes(kTransmission, wo, 0.5f, {0.5f, 0.5f}, kLambda);
     }
     EXPECT_GT(probe_failed, 0);  // the case this test is about does occur
 }
@@ -119,10 +121,10 @@ TEST(LobeSplit, DeltaMaskSamplesOnlyDeltaLobes) {
     const Bsdf b = make(with(Rgb(0.3f), Rgb(0.6f), kMirror, Rgb(0.0f)));
     const Bsdf::LobeSplit s = b.split_lobes(kUp);
     for (float u : {0.01f, 0.3f, 0.6f, 0.99f}) {
-        const auto d = b.sample_lobes(s.followed, kUp, u, {0.3f, 0.7f});
+        const auto d = b.sample_lobes(s.followed, kUp, u, {0.3f, 0.7f}, kLambda);
         ASSERT_TRUE(d);
         EXPECT_TRUE(d->is_specular());
-        const auto n = b.sample_lobes(s.estimated, kUp, u, {0.3f, 0.7f});
+        const auto n = b.sample_lobes(s.estimated, kUp, u, {0.3f, 0.7f}, kLambda);
         ASSERT_TRUE(n);
         EXPECT_FALSE(n->is_specular());
     }
@@ -171,14 +173,18 @@ TEST(LobeSplit, TheTwoPartsSumToTheWholeBsdf) {
     Sampler sampler(7, 1, 2);
     int sampled = 0;
     for (int i = 0; i < 200; ++i) {
-        const auto bs = b.sample_lobes(s.followed, kUp, sampler.next(), sampler.next2());
+        const Wavelengths lambda = spectral::stratified_lambda(i, 200);
+        const auto bs = b.sample_lobes(s.followed, kUp, sampler.next(), sampler.next2(), lambda);
         if (!bs) continue;
         ++sampled;
-        const Rgb whole = b.eval(kUp, bs->wi), parts = est.eval(kUp, bs->wi) + fol.eval(kUp, bs->wi);
-        for (int c = 0; c < 3; ++c) EXPECT_NEAR(whole[c], parts[c], 1e-5f * std::max(1.0f, whole[c]));
+        const Spectrum whole = b.eval(kUp, bs->wi, lambda),
+                       parts = est.eval(kUp, bs->wi, lambda) + fol.eval(kUp, bs->wi, lambda);
+        for (int c = 0; c < spectral::kSpectrumSamples; ++c)
+            EXPECT_NEAR(whole[c], parts[c], 1e-5f * std::max(1.0f, whole[c]));
         EXPECT_NEAR(fol.pdf(kUp, bs->wi), bs->pdf, 1e-4f * bs->pdf);
-        for (int c = 0; c < 3; ++c)
-            EXPECT_NEAR(fol.eval(kUp, bs->wi)[c], bs->f[c], 1e-5f * std::max(1.0f, bs->f[c]));
+        const Spectrum f = fol.eval(kUp, bs->wi, lambda);
+        for (int c = 0; c < spectral::kSpectrumSamples; ++c)
+            EXPECT_NEAR(f[c], bs->f[c], 1e-5f * std::max(1.0f, bs->f[c]));
     }
     EXPECT_GT(sampled, 150);
 }
@@ -195,9 +201,10 @@ TEST(Regularized, WidensSharpLobesToTheExponentAndKeepsTheRest) {
     double cos_sum = 0, weight_sum = 0;
     const int n = 4000;
     for (int i = 0; i < n; ++i) {
-        const auto s = mirror.sample(wo, sampler.next(), sampler.next2());
+        const auto s = mirror.sample(wo, sampler.next(), sampler.next2(), spectral::stratified_lambda(i, n));
         if (!s) continue;
         EXPECT_FALSE(s->is_specular());
+        EXPECT_TRUE(s->weight.is_flat());  // grey ks: the same at every wavelength
         cos_sum += dot(s->wi, r);
         weight_sum += s->weight.average();
     }
@@ -218,7 +225,7 @@ TEST(Regularized, WidensSharpLobesToTheExponentAndKeepsTheRest) {
     EXPECT_EQ(phong.regularized(100).sharp_lobes(100), uint32_t(kGlossy));
     const Bsdf wide = make(with(Rgb(0.2f), Rgb(0.5f), 20, Rgb(0.0f)));
     const Vec3 wi = normalize(Vec3(-0.2f, 0.1f, 1.0f));
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(wide.regularized(100).eval(wo, wi)[c], wide.eval(wo, wi)[c]);
+    EXPECT_EQ(wide.regularized(100).eval(wo, wi, kLambda), wide.eval(wo, wi, kLambda));
     Material thin = with(Rgb(0.0f), Rgb(0.0f), 0, Rgb(1.0f));
     thin.thin = true;
     EXPECT_EQ(make(thin).regularized(10).flags(), make(thin).flags());

@@ -4,6 +4,11 @@
 // uniform grids against closed forms and quadrature, the grid's lookup convention and the majorant
 // segments. (The phase function is tested in phase_test.cpp.)
 //
+// Coefficients are spectral: a medium's RGB sigma_a and sigma_s are read as unbounded spectra and
+// its emission as an illuminant (spectrum/rgb_spectrum.h). The per-channel checks of the RGB
+// renderer are made at every wavelength sample of a fixed set, against the closed forms of those
+// spectra's values there (computed here from the RGB, independently of the medium).
+//
 // Statistical tolerances are 5 standard errors of the estimated mean, measured from the same
 // samples (a correct implementation fails one check with probability ~6e-7), plus 1e-6 so that a
 // zero-variance estimate is not compared at float rounding.
@@ -16,6 +21,7 @@
 
 #include "core/rng.h"
 #include "shading/medium_tracking.h"
+#include "spectral_test_util.h"
 #include "support/chi_square.h"
 
 namespace phos::shading {
@@ -29,12 +35,19 @@ scene::Medium homogeneous(Rgb sigma_a, Rgb sigma_s, float g = 0) {
     return m;
 }
 
-// Per-channel running mean and standard error of the mean.
-struct Mean3 {
-    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+using spectral::kSpectrumSamples;
+
+const Wavelengths& kLambda = spectral::fixed_lambda();
+
+// An RGB coefficient at kLambda (an unbounded spectrum).
+Spectrum coef(Rgb c) { return spectral::unbounded(c, kLambda); }
+
+// Per-wavelength-sample running mean and standard error of the mean.
+struct MeanS {
+    double sum[kSpectrumSamples] = {}, sum2[kSpectrumSamples] = {};
     long n = 0;
-    void add(Rgb v) {
-        for (int c = 0; c < 3; ++c) sum[c] += v[c], sum2[c] += double(v[c]) * v[c];
+    void add(const Spectrum& v) {
+        for (int c = 0; c < kSpectrumSamples; ++c) sum[c] += v[c], sum2[c] += double(v[c]) * v[c];
         ++n;
     }
     double mean(int c) const { return sum[c] / double(n); }
@@ -51,30 +64,48 @@ TEST(Tracking, HomogeneousTransmittanceIsBeerLambert) {
     scene::Medium sm = homogeneous(Rgb(0.05f, 0.1f, 0.2f), Rgb(0.25f, 0.15f, 0.05f));
     sm.scale = 2;  // sigma_t = (0.6, 0.5, 0.5)
     const Medium m(sm);
-    EXPECT_FLOAT_EQ(m.sigma_t().r, 0.6f);
-    EXPECT_FLOAT_EQ(m.sigma_t().b, 0.5f);
+    EXPECT_FLOAT_EQ(m.sigma_t_rgb().r, 0.6f);
+    EXPECT_FLOAT_EQ(m.sigma_t_rgb().b, 0.5f);
+    // The scaled RGB coefficients as spectra, summed.
+    const Spectrum st = coef(sm.sigma_a * 2.0f) + coef(sm.sigma_s * 2.0f);
+    EXPECT_TRUE(spectral::spectra_near(m.sigma_t(kLambda), st, 1e-6));
+    EXPECT_FALSE(st.is_flat());  // a coloured medium: the test is about more than one value
+    // Under RGB white the film sees the spectrum as the RGB sigma_t (each term's exact fit is within
+    // 1e-5 of its RGB; 1 % allows for 4096 x 4 stratified wavelengths' Monte Carlo error).
+    const Rgb colour = spectral::film_colour(
+        [&](const Wavelengths& l) { return m.sigma_t(l) * spectral::illuminant(Rgb(1.0f), l); });
+    EXPECT_TRUE(spectral::rgb_near(colour, m.sigma_t_rgb(), 0.01));
     Sampler s(1);
     const Vec3 d = normalize(Vec3(0.3f, -0.4f, 0.5f));
     for (float t : {0.0f, 0.3f, 1.0f, 4.0f}) {
-        const Rgb T = transmittance(m, Vec3(1, 2, 3), d, t, s);
-        EXPECT_FLOAT_EQ(T.r, std::exp(-0.6f * t));
-        EXPECT_FLOAT_EQ(T.g, std::exp(-0.5f * t));
-        EXPECT_FLOAT_EQ(T.b, std::exp(-0.5f * t));
+        const Spectrum T = transmittance(m, Vec3(1, 2, 3), d, t, s, kLambda);
+        for (int i = 0; i < kSpectrumSamples; ++i) EXPECT_FLOAT_EQ(T[i], std::exp(-st[i] * t)) << i;
     }
     // An unbounded ray through an absorbing medium keeps nothing; through a clear one, everything.
-    EXPECT_EQ(transmittance(m, Vec3(0.0f), d, kInf, s).max(), 0.0f);
+    EXPECT_EQ(transmittance(m, Vec3(0.0f), d, kInf, s, kLambda).max(), 0.0f);
     const Medium clear(homogeneous(Rgb(0.0f), Rgb(0.0f)));
-    EXPECT_EQ(transmittance(clear, Vec3(0.0f), d, kInf, s), Rgb(1.0f));
+    EXPECT_EQ(transmittance(clear, Vec3(0.0f), d, kInf, s, kLambda), Spectrum(1.0f));
 }
 
 TEST(Tracking, HomogeneousMajorantIsOneSegmentOverTheWholeRange) {
-    const Medium m(homogeneous(Rgb(0.1f, 0.2f, 0.3f), Rgb(0.5f, 0.1f, 0.4f)));
+    const Rgb sa(0.1f, 0.2f, 0.3f), ss(0.5f, 0.1f, 0.4f);
+    const Medium m(homogeneous(sa, ss));
     Medium::Majorants it = m.majorants(Vec3(0.0f), Vec3(0, 0, 1), 0.25f, 3.5f);
     float ta = 0, tb = 0, sigma = 0;
     ASSERT_TRUE(it.next(ta, tb, sigma));
     EXPECT_EQ(ta, 0.25f);
     EXPECT_EQ(tb, 3.5f);
-    EXPECT_FLOAT_EQ(sigma, 0.7f);  // the largest channel of sigma_t
+    // The largest sigma_t over the wavelengths (scanned every 0.1 nm): bounded, and tight to
+    // 0.5 % (a looser one only costs null collisions, but is no longer the medium's majorant).
+    const spectrum::RgbSpectrum a(sa, spectrum::RgbSpectrum::Use::Unbounded),
+        b(ss, spectrum::RgbSpectrum::Use::Unbounded);
+    float largest = 0;
+    for (int k = 0; k <= 4700; ++k) {
+        const float l = spectrum::kLambdaMin + 0.1f * float(k);
+        largest = std::max(largest, a(l) + b(l));
+    }
+    EXPECT_GE(sigma, largest);
+    EXPECT_LE(sigma, 1.005f * largest);
     EXPECT_FALSE(it.next(ta, tb, sigma));
     Medium::Majorants empty = m.majorants(Vec3(0.0f), Vec3(0, 0, 1), 1.0f, 1.0f);
     EXPECT_FALSE(empty.next(ta, tb, sigma));
@@ -84,10 +115,17 @@ TEST(Tracking, GreySlabPassesWithBeerLambertProbabilityAndScattersWithTheAlbedo)
     // sigma_t = 0.8, albedo 0.75, slab thickness 1.5: T = exp(-1.2) = 0.301.
     const Medium m(homogeneous(Rgb(0.2f), Rgb(0.6f)));
     const float d = 1.5f, sigma_t = 0.8f;
+    // Grey coefficients are flat spectra: sigma_t is 0.8 at every wavelength, and so is its
+    // majorant (what makes the weights below exact: no null collisions).
+    EXPECT_TRUE(spectral::flat_near(m.sigma_t(spectral::fixed_lambda()), sigma_t, 1e-7));
+    Medium::Majorants it = m.majorants(Vec3(0.0f), Vec3(0, 1, 0), 0.0f, d);
+    float ta = 0, tb = 0, sigma_maj = 0;
+    ASSERT_TRUE(it.next(ta, tb, sigma_maj));
+    EXPECT_FLOAT_EQ(sigma_maj, sigma_t) << "a grey medium's majorant is its sigma_t";
     const int n = 100000;
     Sampler s(11, 3);
     long passed = 0;
-    Mean3 pass_weight;
+    MeanS pass_weight;
     double worst_pass = 0, worst_albedo = 0;
     // The scattering distances follow the exponential pdf truncated to [0, d): 20 bins of equal
     // probability under it.
@@ -95,26 +133,30 @@ TEST(Tracking, GreySlabPassesWithBeerLambertProbabilityAndScattersWithTheAlbedo)
     std::vector<double> observed(bins, 0.0);
     const double norm = -std::expm1(-double(sigma_t) * d);
     for (int i = 0; i < n; ++i) {
-        const FreeFlight f = sample_free_flight(m, Vec3(0.0f), Vec3(0, 1, 0), d, s);
+        // Each flight at its own wavelengths: a grey medium is the same at all of them.
+        const FreeFlight f =
+            sample_free_flight(m, Vec3(0.0f), Vec3(0, 1, 0), d, s, spectral::stratified_lambda(i, n));
         ASSERT_TRUE(f.emitted.is_black());
         if (f.scattered) {
             ASSERT_GE(f.t, 0.0f);
             ASSERT_LT(f.t, d);
-            for (int c = 0; c < 3; ++c)
+            for (int c = 0; c < kSpectrumSamples; ++c)
                 worst_albedo = std::max(worst_albedo, double(std::fabs(f.weight[c] - 0.75f)));
             const double cdf = -std::expm1(-double(sigma_t) * f.t) / norm;
             observed[size_t(std::min(bins - 1, int(cdf * bins)))] += 1;
-            pass_weight.add(Rgb(0.0f));
+            pass_weight.add(Spectrum(0.0f));
         } else {
             ++passed;
-            for (int c = 0; c < 3; ++c) worst_pass = std::max(worst_pass, double(std::fabs(f.weight[c] - 1)));
+            for (int c = 0; c < kSpectrumSamples; ++c)
+                worst_pass = std::max(worst_pass, double(std::fabs(f.weight[c] - 1)));
             pass_weight.add(f.weight);
         }
     }
     const double T = std::exp(-double(sigma_t) * d);
     // Binomial: the fraction passing has standard error sqrt(T (1 - T) / n) = 0.0015.
     EXPECT_NEAR(double(passed) / n, T, 5 * std::sqrt(T * (1 - T) / n));
-    for (int c = 0; c < 3; ++c) EXPECT_NEAR(pass_weight.mean(c), T, 5 * pass_weight.se(c) + 1e-6);
+    for (int c = 0; c < kSpectrumSamples; ++c)
+        EXPECT_NEAR(pass_weight.mean(c), T, 5 * pass_weight.se(c) + 1e-6);
     // A grey medium has no null collisions under its own sigma_t: weights are exact.
     EXPECT_LT(worst_pass, 1e-6) << "a grey flight that passes keeps weight 1";
     EXPECT_LT(worst_albedo, 1e-6)
@@ -128,28 +170,34 @@ TEST(Tracking, GreySlabPassesWithBeerLambertProbabilityAndScattersWithTheAlbedo)
 // channel whatever throughput the path brings in: the mean pass-through weight is exp(-sigma_t d)
 // and the mean scattering weight sigma_s / sigma_t (1 - exp(-sigma_t d)) (the integral of
 // T(t) sigma_s over [0, d)), channel by channel.
-TEST(Tracking, ChromaticFreeFlightsAreUnbiasedPerChannel) {
-    const Rgb sa(0.05f, 0.3f, 1.0f), ss(0.9f, 0.4f, 0.2f);
-    const Rgb st = sa + ss;  // (0.95, 0.7, 1.2)
-    const Medium m(homogeneous(sa, ss));
+TEST(Tracking, ChromaticFreeFlightsAreUnbiasedPerWavelength) {
+    const Rgb sa_rgb(0.05f, 0.3f, 1.0f), ss_rgb(0.9f, 0.4f, 0.2f);
+    const Medium m(homogeneous(sa_rgb, ss_rgb));
+    const Spectrum ss = coef(ss_rgb), st = coef(sa_rgb) + ss;
     const float d = 1.0f;
-    for (const Rgb throughput : {Rgb(1.0f), Rgb(1.0f, 0.2f, 0.05f), Rgb(0.01f, 0.5f, 3.0f)}) {
-        Sampler s(13, uint64_t(throughput.g * 1000));
-        Mean3 pass, scatter;
+    Spectrum chromatic_a, chromatic_b;
+    chromatic_a.v = {1.0f, 0.2f, 0.05f, 0.5f};
+    chromatic_b.v = {0.01f, 0.5f, 3.0f, 1.0f};
+    int seed = 0;
+    for (const Spectrum& throughput : {Spectrum(1.0f), chromatic_a, chromatic_b}) {
+        Sampler s(13, uint64_t(++seed));
+        MeanS pass, scatter;
         const int n = 200000;
         for (int i = 0; i < n; ++i) {
-            const FreeFlight f = sample_free_flight(m, Vec3(0.0f), Vec3(0, 1, 0), d, s, throughput);
+            const FreeFlight f = sample_free_flight(m, Vec3(0.0f), Vec3(0, 1, 0), d, s, kLambda, throughput);
             ASSERT_TRUE(f.weight.is_finite());
-            pass.add(f.scattered ? Rgb(0.0f) : f.weight);
-            scatter.add(f.scattered ? f.weight : Rgb(0.0f));
+            pass.add(f.scattered ? Spectrum(0.0f) : f.weight);
+            scatter.add(f.scattered ? f.weight : Spectrum(0.0f));
         }
-        for (int c = 0; c < 3; ++c) {
+        for (int c = 0; c < kSpectrumSamples; ++c) {
             const double T = std::exp(-double(st[c]) * d);
             const double S = double(ss[c]) / st[c] * (1 - T);
             EXPECT_NEAR(pass.mean(c), T, 5 * pass.se(c) + 1e-6)
-                << "pass-through, channel " << c << ", throughput " << throughput.r << "," << throughput.g;
+                << "pass-through, wavelength " << kLambda[c] << ", throughput "
+                << spectral::describe(throughput);
             EXPECT_NEAR(scatter.mean(c), S, 5 * scatter.se(c) + 1e-6)
-                << "scattering, channel " << c << ", throughput " << throughput.r << "," << throughput.g;
+                << "scattering, wavelength " << kLambda[c] << ", throughput "
+                << spectral::describe(throughput);
         }
     }
 }
@@ -163,12 +211,15 @@ TEST(Tracking, EmissionIsCollectedUnbiasedly) {
     ASSERT_TRUE(m.emissive());
     const float d = 2.0f;
     Sampler s(21);
-    Mean3 em;
-    for (int i = 0; i < 200000; ++i) em.add(sample_free_flight(m, Vec3(0.0f), Vec3(1, 0, 0), d, s).emitted);
-    const Rgb sa = sm.sigma_a, st = sm.sigma_a + sm.sigma_s;
-    for (int c = 0; c < 3; ++c) {
-        const double expected = sa[c] * sm.emission[c] * (1 - std::exp(-double(st[c]) * d)) / st[c];
-        EXPECT_NEAR(em.mean(c), expected, 5 * em.se(c) + 1e-6) << "channel " << c;
+    MeanS em;
+    for (int i = 0; i < 200000; ++i)
+        em.add(sample_free_flight(m, Vec3(0.0f), Vec3(1, 0, 0), d, s, kLambda).emitted);
+    // The emission is read as an illuminant, the coefficients as unbounded spectra.
+    const Spectrum sa = coef(sm.sigma_a), st = sa + coef(sm.sigma_s),
+                   Le = spectral::illuminant(sm.emission, kLambda);
+    for (int c = 0; c < kSpectrumSamples; ++c) {
+        const double expected = double(sa[c]) * Le[c] * (1 - std::exp(-double(st[c]) * d)) / st[c];
+        EXPECT_NEAR(em.mean(c), expected, 5 * em.se(c) + 1e-6) << "wavelength " << kLambda[c];
     }
 }
 
@@ -236,12 +287,12 @@ double density_integral(const scene::Medium& g, Vec3 o, Vec3 d, float len) {
 }
 
 // Mean of ratio-tracking transmittance and of delta-tracking pass-through weights over n samples.
-void track(const Medium& m, Vec3 o, Vec3 d, float len, int n, uint64_t seed, Mean3& ratio, Mean3& pass) {
+void track(const Medium& m, Vec3 o, Vec3 d, float len, int n, uint64_t seed, MeanS& ratio, MeanS& pass) {
     Sampler s(seed);
     for (int i = 0; i < n; ++i) {
-        ratio.add(transmittance(m, o, d, len, s));
-        const FreeFlight f = sample_free_flight(m, o, d, len, s);
-        pass.add(f.scattered ? Rgb(0.0f) : f.weight);
+        ratio.add(transmittance(m, o, d, len, s, kLambda));
+        const FreeFlight f = sample_free_flight(m, o, d, len, s, kLambda);
+        pass.add(f.scattered ? Spectrum(0.0f) : f.weight);
     }
 }
 
@@ -249,9 +300,9 @@ TEST(Grid, LookupFollowsThePbrtSampledGridConvention) {
     // 2 x 1 x 1 samples (0.5, 3.0): cell centres at medium x = -1 and 1 (the box is x in [-2, 2]).
     const scene::Medium g = grid_medium(2, 1, 1, {0.5f, 3.0f});
     const Medium m(g);
-    const float sigma_t_r = 0.5f;  // red channel at density 1
-    const auto density_at = [&](Vec3 p_medium) {
-        return m.at(g.to_world.point(p_medium)).sigma_t().r / sigma_t_r;
+    const Spectrum st1 = coef(g.sigma_a) + coef(g.sigma_s);  // sigma_t at density 1
+    const auto density_at = [&](Vec3 p_medium) {             // read at the hero wavelength
+        return m.at(g.to_world.point(p_medium), kLambda).sigma_t()[0] / st1[0];
     };
     const float yc = 2.0f, zc = 0.0f;  // the centre of the box in y and z: those factors are 1
     EXPECT_NEAR(density_at(Vec3(-1, yc, zc)), 0.5f, 1e-4f);  // cell centres hold the samples
@@ -265,15 +316,19 @@ TEST(Grid, LookupFollowsThePbrtSampledGridConvention) {
     EXPECT_EQ(density_at(Vec3(2.01f, yc, zc)), 0.0f);              // outside the box
     EXPECT_EQ(density_at(Vec3(0, -1.01f, zc)), 0.0f);
     // The coefficients scale both sigma_a and sigma_s; grids carry no emission.
-    const MediumCoefficients c = m.at(g.to_world.point(Vec3(1, yc, zc)));
-    EXPECT_NEAR(c.sigma_a.g, 0.2f * 3.0f, 1e-4f);
-    EXPECT_NEAR(c.sigma_s.b, 0.1f * 3.0f, 1e-4f);
+    const MediumCoefficients c = m.at(g.to_world.point(Vec3(1, yc, zc)), kLambda);
+    EXPECT_TRUE(spectral::spectra_near(c.sigma_a, coef(g.sigma_a) * 3.0f, 1e-4));
+    EXPECT_TRUE(spectral::spectra_near(c.sigma_s, coef(g.sigma_s) * 3.0f, 1e-4));
     EXPECT_TRUE(c.Le.is_black());
     // Against the reference at random points of (and around) the box.
     Sampler s(31);
     for (int i = 0; i < 2000; ++i) {
         const Vec3 p(-2.5f + 5 * s.next(), -1.5f + 7 * s.next(), -3.5f + 7 * s.next());
-        ASSERT_NEAR(density_at(p), reference_density(g, p), 1e-4) << p.x << " " << p.y << " " << p.z;
+        const double ref = reference_density(g, p);
+        ASSERT_NEAR(density_at(p), ref, 1e-4) << p.x << " " << p.y << " " << p.z;
+        // The density scales sigma_t at every wavelength alike.
+        ASSERT_TRUE(
+            spectral::spectra_near(m.at(g.to_world.point(p), kLambda).sigma_t(), st1 * float(ref), 0, 1e-4));
     }
 }
 
@@ -286,18 +341,19 @@ TEST(Grid, ConstantGridMatchesTheHomogeneousClosedForm) {
     const Vec3 a = g.to_world.point(Vec3(0.3f, 0.5f, 0.4f)), b = g.to_world.point(Vec3(0.3f, 3.5f, 0.4f));
     const float len = length(b - a);  // 6 world units (y is scaled by 2)
     const Vec3 d = (b - a) / len;
-    const Rgb st = (g.sigma_a + g.sigma_s) * 1.5f;  // (0.75, 0.6, 0.6): T = 0.011 .. 0.027
-    Mean3 ratio, pass;
+    // sigma_t = (0.75, 0.6, 0.6) in RGB: T = 0.011 .. 0.027.
+    const Spectrum st = (coef(g.sigma_a) + coef(g.sigma_s)) * 1.5f;
+    MeanS ratio, pass;
     track(grid, a, d, len, 40000, 5, ratio, pass);
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kSpectrumSamples; ++c) {
         const double T = std::exp(-double(st[c]) * len);
         EXPECT_NEAR(ratio.mean(c), T, 5 * ratio.se(c) + 1e-6) << "ratio tracking, channel " << c;
         EXPECT_NEAR(pass.mean(c), T, 5 * pass.se(c) + 1e-6) << "delta tracking, channel " << c;
     }
     // Shorter stretch with a larger transmittance (half the length: T = 0.11 .. 0.17).
-    Mean3 ratio2, pass2;
+    MeanS ratio2, pass2;
     track(grid, a, d, 0.5f * len, 40000, 6, ratio2, pass2);
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kSpectrumSamples; ++c) {
         const double T = std::exp(-double(st[c]) * 0.5 * len);
         EXPECT_NEAR(ratio2.mean(c), T, 5 * ratio2.se(c) + 1e-6) << "ratio tracking, channel " << c;
         EXPECT_NEAR(pass2.mean(c), T, 5 * pass2.se(c) + 1e-6) << "delta tracking, channel " << c;
@@ -317,10 +373,11 @@ TEST(Grid, DensityGradientMatchesTheOpticalDepthIntegral) {
     const Vec3 d = (e - o) / len;
     const double closed = 0.4375 * (a + b) * 6.0;
     EXPECT_NEAR(density_integral(g, o, d, len), closed, 1e-4 * closed) << "the reference quadrature";
-    const Rgb st = g.sigma_a + g.sigma_s;  // (0.5, 0.4, 0.4): optical depths 1.31, 1.05, 1.05
-    Mean3 ratio, pass;
+    // sigma_t = (0.5, 0.4, 0.4) in RGB: optical depths 1.31, 1.05, 1.05.
+    const Spectrum st = coef(g.sigma_a) + coef(g.sigma_s);
+    MeanS ratio, pass;
     track(grid, o, d, len, 40000, 7, ratio, pass);
-    for (int c = 0; c < 3; ++c) {
+    for (int c = 0; c < kSpectrumSamples; ++c) {
         const double T = std::exp(-st[c] * closed);
         EXPECT_NEAR(ratio.mean(c), T, 5 * ratio.se(c) + 1e-6) << "ratio tracking, channel " << c;
         EXPECT_NEAR(pass.mean(c), T, 5 * pass.se(c) + 1e-6) << "delta tracking, channel " << c;
@@ -349,10 +406,10 @@ TEST(Grid, ObliqueRaysThroughAVaryingGridMatchQuadrature) {
         const float len = length(e - o);
         const Vec3 d = (e - o) / len;
         const double tau = density_integral(g, o, d, len);
-        Mean3 ratio, pass;
+        MeanS ratio, pass;
         track(grid, o, d, len, 20000, 8, ratio, pass);
-        const Rgb st = g.sigma_a + g.sigma_s;
-        for (int c = 0; c < 3; ++c) {
+        const Spectrum st = coef(g.sigma_a) + coef(g.sigma_s);
+        for (int c = 0; c < kSpectrumSamples; ++c) {
             const double T = std::exp(-st[c] * tau);
             EXPECT_NEAR(ratio.mean(c), T, 5 * ratio.se(c) + 1e-5)
                 << "ratio tracking, channel " << c << ", tau " << tau;
@@ -402,10 +459,10 @@ TEST(Grid, MajorantSegmentsCoverTheRayInsideTheBoxAndBoundSigmaT) {
             }
             starts.push_back(ta);
             ends.push_back(tb);
-            // sigma_maj bounds every channel of sigma_t anywhere on the segment.
+            // sigma_maj bounds sigma_t at every wavelength anywhere on the segment.
             for (int k = 0; k < 16; ++k) {
                 const float t = ta + (tb - ta) * (k < 2 ? float(k) * 0.9999f : s.next());
-                const float st = grid.at(o + d * t).sigma_t().max();
+                const float st = grid.at(o + d * t, Wavelengths::visible(s.next())).sigma_t().max();
                 ASSERT_LE(st, sigma * (1 + 1e-5f) + 1e-6f)
                     << "ray " << i << " t " << t << " in [" << ta << ", " << tb << ")";
             }
@@ -434,7 +491,8 @@ TEST(Grid, MajorantSegmentsCoverTheRayInsideTheBoxAndBoundSigmaT) {
             for (int a = 0; a < 3; ++a)
                 near_face |= std::fabs(pm[a] - g.p0[a]) < 1e-3f || std::fabs(pm[a] - g.p1[a]) < 1e-3f;
             if (!near_face) {
-                EXPECT_EQ(grid.at(o + d * tout).sigma_t().max(), 0.0f) << "ray " << i << " t " << tout;
+                EXPECT_EQ(grid.at(o + d * tout, kLambda).sigma_t().max(), 0.0f)
+                    << "ray " << i << " t " << tout;
             }
         }
     }

@@ -10,6 +10,7 @@
 
 #include "core/format.h"
 #include "core/vec.h"
+#include "spectrum/sampled_spectrum.h"
 
 namespace phos::app {
 
@@ -61,6 +62,11 @@ public:
     JsonWriter& value(float v) { return number(double(v), 9); }
     JsonWriter& value(double v) { return number(v, 17); }
     JsonWriter& value(Vec3 v) { return begin_array().value(v.x).value(v.y).value(v.z).end_array(); }
+    JsonWriter& value(const Spectrum& s) {
+        begin_array();
+        for (float x : s.v) value(x);
+        return end_array();
+    }
     JsonWriter& value(Rgb c) { return begin_array().value(c.r).value(c.g).value(c.b).end_array(); }
 
     // key(k).value(v)

@@ -16,7 +16,7 @@ namespace {
 float colour_reference(std::span<const photon::Photon> photons) {
     std::vector<float> largest;
     largest.reserve(photons.size());
-    for (const photon::Photon& p : photons) largest.push_back(p.power().max());
+    for (const photon::Photon& p : photons) largest.push_back(p.colour().max());
     if (largest.empty()) return 1.0f;
     const auto at = largest.begin() + ptrdiff_t(kColourPercentile * double(largest.size() - 1));
     std::nth_element(largest.begin(), at, largest.end());
@@ -95,7 +95,7 @@ io::PointCloud photon_cloud(const integrators::PhotonMaps& maps, const std::vect
         const float reference = colour_reference(photons);
         double total[3] = {0, 0, 0};
         for (const photon::Photon& p : photons) {
-            const Rgb power = p.power();
+            const Rgb power = p.colour();
             const Vec3 wi = p.wi(), normal = p.normal();
             Rgb shown = power * (1.0f / reference);
             if (shown.max() > 1) shown = shown * (1.0f / shown.max());

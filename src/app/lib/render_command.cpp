@@ -40,6 +40,7 @@
 #include "render/aov.h"
 #include "render/prepared.h"
 #include "render/progressive_checkpoint.h"
+#include "spectrum/color.h"
 
 namespace phos::app {
 namespace {
@@ -57,16 +58,38 @@ void check_writable(const std::string& path, const std::string& what) {
     ::unlink(probe.c_str());
 }
 
+// The scene's film response applied to an image of radiance: pbrt-v4's Film "rgb" with the
+// "cie1931" sensor scales by the imaging ratio (shutter time x ISO / 100) and, with `whitebalance`,
+// adapts that temperature's white to the output's (spectrum::white_balance). Identity by default.
+Image with_film_response(Image img, const scene::FilmResponse& r) {
+    if (r.exposure == 1 && r.white_balance_kelvin <= 0) return img;
+    const spectrum::Mat3 m = r.white_balance_kelvin > 0 ? spectrum::white_balance(r.white_balance_kelvin)
+                                                        : spectrum::Mat3{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (Rgb& c : img.pixels) {
+        const Vec3 v = spectrum::apply(m, Vec3(c.r, c.g, c.b)) * r.exposure;
+        c = Rgb(v.x, v.y, v.z);
+    }
+    return img;
+}
+
+// A film layer's image as written: radiance layers with the film response, AOVs as they are.
+Image layer_output(const film::Film& film, const std::string& name, const scene::FilmResponse& r) {
+    const Image img = film.find_layer(name)->image();
+    const std::vector<std::string>& aovs = render::aov_names();
+    return std::find(aovs.begin(), aovs.end(), name) != aovs.end() ? img : with_film_response(img, r);
+}
+
 // Writes the image and its layers (each atomically). If that fails (disk full, file size limit),
 // the previous files are intact and the image is saved to the temporary directory instead, so the
 // work is not lost; the error says both.
 void write_images(const std::string& output, const film::Film& film, const std::vector<std::string>& layers,
-                  float exposure) {
+                  float exposure, const scene::FilmResponse& response) {
     std::string failure;
+    const Image image = with_film_response(film.image(), response);
     try {
-        io::write_image(output, film.image(), {exposure});
+        io::write_image(output, image, {exposure});
         for (const std::string& name : layers)
-            io::write_image(layer_path(output, name), film.find_layer(name)->image(), {exposure});
+            io::write_image(layer_path(output, name), layer_output(film, name, response), {exposure});
         return;
     } catch (const InputError& e) {
         failure = e.what();
@@ -79,7 +102,7 @@ void write_images(const std::string& output, const film::Film& film, const std::
         rescued = ((ec ? std::filesystem::path("/tmp") : tmp) /
                    ("phos-rescued-" + std::to_string(::getpid()) + "-" + stem + ".exr"))
                       .string();
-        io::write_image(rescued, film.image(), {exposure});
+        io::write_image(rescued, image, {exposure});
     } catch (const InputError&) {
         rescued.clear();
     }
@@ -263,7 +286,8 @@ std::vector<std::pair<std::string, std::string>> image_options(RenderCommand& cm
 // Budgets, previews, checkpoints and resuming, for every integrator: turns --iterations / --time /
 // --resume into the sample or iteration count, and returns the observers (checkpoints, previews,
 // the state resumed) and the render identity that checkpoints carry.
-render::RenderObservers setup_budget(RenderCommand& cmd, const std::string& output, bool progressive) {
+render::RenderObservers setup_budget(RenderCommand& cmd, const std::string& output, bool progressive,
+                                     const scene::FilmResponse& response) {
     const render::BudgetSettings& p = cmd.budget;
     render::RenderObservers watch;
     render::RenderOptions& opt = cmd.render;
@@ -311,9 +335,9 @@ render::RenderObservers setup_budget(RenderCommand& cmd, const std::string& outp
     }
     if (p.write_every > 0) {
         const float exposure = cmd.run.exposure;
-        watch.on_preview = [output, exposure](const film::Film& f) {
+        watch.on_preview = [output, exposure, response](const film::Film& f) {
             try {
-                io::write_image(output, f.image(), {exposure});
+                io::write_image(output, with_film_response(f.image(), response), {exposure});
             } catch (const InputError& e) {
                 log::warn(std::string(e.what()) +
                           "; the preview was not written (the previous file is intact)");
@@ -483,7 +507,7 @@ int run_render(const RenderCommand& command, const RenderHooks& hooks) {
     if (cmd.render.layers && integrators::integrator(cmd.run.integrator).layers.empty())
         throw InputError("--layers: the " + name_of(cmd.run.integrator) +
                          " integrator has no component layers");
-    render::RenderObservers watch = setup_budget(cmd, output, progressive);
+    render::RenderObservers watch = setup_budget(cmd, output, progressive, scene.film_response);
     cmd.budget.clock_start = clock_start;
     if (!dist::root()) {  // rank 0 alone writes, shows and streams (docs/distributed.md)
         watch.on_checkpoint = nullptr;
@@ -638,9 +662,10 @@ int run_render(const RenderCommand& command, const RenderHooks& hooks) {
     const std::vector<std::string> layers = written_layers(film, opt);
     if (to_memory) {
         RenderResult& r = *hooks.result;
-        r.image = film.image();
+        r.image = with_film_response(film.image(), scene.film_response);
         r.layers.clear();
-        for (const std::string& name : layers) r.layers.emplace_back(name, film.find_layer(name)->image());
+        for (const std::string& name : layers)
+            r.layers.emplace_back(name, layer_output(film, name, scene.film_response));
         r.integrator = cmd.run.integrator;
         r.done = done;
         r.seconds = render_seconds;
@@ -648,7 +673,7 @@ int run_render(const RenderCommand& command, const RenderHooks& hooks) {
         r.photons = stats.photons_emitted();  // r.interrupted is set above
     } else {
         ScopedTimer t(stats, "write");
-        write_images(output, film, layers, cmd.run.exposure);
+        write_images(output, film, layers, cmd.run.exposure, scene.film_response);
     }
     if (trace)  // --trace-pixel: printed, and written with --trace-json
         report_trace(*trace, {integrator_name, film.main().value(trace->x(), trace->y())},

@@ -32,6 +32,12 @@ constexpr size_t kTextPhotons = 8;
 std::string num(double v) { return printf_string("%.4g", v); }
 std::string vec(Vec3 v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
 std::string rgb(Rgb c) { return num(c.r) + " " + num(c.g) + " " + num(c.b); }
+// A spectrum at the path's wavelengths: its values in brackets.
+std::string spec(const Spectrum& s) {
+    std::string out = "[";
+    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) out += (i ? " " : "") + num(s[i]);
+    return out + "]";
+}
 
 // The surface or medium a vertex lies in: "shape 4 (scene.scn:12), material 1 "white"".
 std::string where(const TracedVertex& v) {
@@ -58,8 +64,9 @@ void text_light(std::string& out, const TracedLight& l) {
     out += ", pdf " + num(l.pdf);
     if (l.mis_weight != 1) out += ", MIS weight " + num(l.mis_weight);
     out += l.visible ? ", visible" : ", blocked";
-    if (l.visible && !(l.transmittance == Rgb(1.0f))) out += " (transmittance " + rgb(l.transmittance) + ")";
-    out += ", contribution " + rgb(l.contribution) + "\n";
+    if (l.visible && !(l.transmittance == Spectrum(1.0f)))
+        out += " (transmittance " + spec(l.transmittance) + ")";
+    out += ", contribution " + spec(l.contribution) + "\n";
 }
 
 void text_lookup(std::string& out, const TracedLookup& l) {
@@ -84,11 +91,11 @@ void text_vertex(std::string& out, size_t index, const TracedVertex& v) {
     out += "  " + std::to_string(index) + " " + render::trace_event_name(v.event);
     if (v.placed) out += " at " + vec(v.position);
     if (v.event == render::TraceEvent::Escaped) out += " along " + vec(v.direction);
-    out += where(v) + ", throughput " + rgb(v.throughput) + "\n";
+    out += where(v) + ", throughput " + spec(v.throughput) + "\n";
     text_details(out, v);
     if (v.sampled)
         out += "      goes on along " + vec(v.direction) + ", pdf " + num(v.pdf) + ", weight " +
-               rgb(v.weight) + "\n";
+               spec(v.weight) + (v.dispersed ? " (dispersed: the hero wavelength goes on alone)" : "") + "\n";
 }
 
 void text_pass(std::string& out, const TracedPass& p) {
@@ -112,7 +119,7 @@ void text_visible_point(std::string& out, const TracedVisiblePoint& vp) {
     if (vp.medium >= 0) out += " in medium " + std::to_string(vp.medium);
     if (vp.material >= 0)
         out += ", material " + std::to_string(vp.material) + " \"" + vp.material_name + "\"";
-    out += ", throughput " + rgb(vp.throughput) + "\n";
+    out += ", throughput " + spec(vp.throughput) + "\n";
     for (const TracedPass& p : vp.passes) text_pass(out, p);
 }
 
@@ -250,6 +257,10 @@ std::string trace_text(const render::PathRecorder& trace, const TraceHeader& hea
                                 : "sample " + std::to_string(p.sample);
         out += ": contribution " + rgb(p.contribution) +
                (p.visible_point || progressive ? " (emission and direct light)\n" : "\n");
+        out += "  wavelengths";
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+            out += " " + num(p.lambda[size_t(i)]) + " nm (pdf " + num(p.lambda_pdf[size_t(i)]) + ")";
+        out += "\n";
         if (!p.camera.empty()) {
             out += "  camera ray\n";
             text_details(out, p.camera);
@@ -277,6 +288,11 @@ std::string trace_json(const render::PathRecorder& trace, const TraceHeader& hea
         w.key("vertices").begin_array();
         for (const TracedVertex& v : p.vertices) json_vertex(w, v);
         w.end_array().field("contribution", p.contribution);
+        w.key("wavelengths").begin_array();
+        for (float l : p.lambda) w.value(l);
+        w.end_array().key("wavelength_pdfs").begin_array();
+        for (float l : p.lambda_pdf) w.value(l);
+        w.end_array();
         if (p.visible_point) {
             w.key("visible_point");
             json_visible_point(w, *p.visible_point);

@@ -163,6 +163,15 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
                 params.find("screenwindow")->loc.fail("screenwindow needs 4 values: xmin xmax ymin ymax");
             c.screen_window = sw;
         }
+        // pbrt-v4's exposure time, a factor of the film's imaging ratio (no motion blur in phos).
+        const float open = params.get_float("shutteropen", 0.0f),
+                    close = params.get_float("shutterclose", 1.0f);
+        c.exposure_time = close - open;
+        if (!(c.exposure_time > 0)) {
+            const Param* sp =
+                params.has("shutterclose") ? params.find("shutterclose") : params.find("shutteropen");
+            sp->loc.fail(d + ": shutterclose must be later than shutteropen (the shutter never opens)");
+        }
         if (params.has("frameaspectratio")) {
             params.get_float("frameaspectratio", 1.0f);
             warn(params.find("frameaspectratio")->loc, d + ": parameter \"float frameaspectratio\" is not "
@@ -187,6 +196,22 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
     scene_.settings.height = h;
     const std::string out = params.get_string("filename", "");
     if (!out.empty()) scene_.settings.output = out;
+    // The sensor (pbrt-v4's PixelSensor): phos's film is the CIE 1931 observer. The imaging ratio
+    // exposure time × ISO / 100 is completed by the camera's shutter times (end_of_files).
+    film_iso_ = params.get_float("iso", 100.0f);
+    if (!(film_iso_ > 0)) params.find("iso")->loc.fail(d + ": iso must be positive");
+    float white_balance = params.get_float("whitebalance", 0.0f);
+    if (!(white_balance == 0 || (white_balance >= 1000 && white_balance <= 40000)))
+        params.find("whitebalance")
+            ->loc.fail(d + ": whitebalance must be 0 (none) or a temperature in [1000, 40000] kelvin");
+    const std::string sensor = params.get_string("sensor", "cie1931");
+    if (sensor != "cie1931") {
+        warn(params.find("sensor")->loc,
+             d + ": sensor \"" + sensor + "\" is not supported; the CIE 1931 observer (\"cie1931\") is used");
+        // pbrt-v4 white-balances a camera sensor for 6500 K unless told otherwise.
+        if (white_balance == 0) white_balance = 6500;
+    }
+    scene_.film_response.white_balance_kelvin = white_balance;
     done(params, d);
 }
 
@@ -356,6 +381,7 @@ void SceneBuilder::end_of_files(const Loc& loc) {
     if (!stack_.empty())
         warn(stack_.back().loc, "AttributeBegin without AttributeEnd at the end of the input");
     if (!world_) warn(loc, "no WorldBegin in the scene");
+    scene_.film_response.exposure = (camera_ ? camera_->exposure_time : 1.0f) * film_iso_ / 100;
     if (!camera_) return;  // the renderer frames the scene itself
     const CameraSpec& c = *camera_;
     scene::Camera cam;

@@ -69,6 +69,7 @@ public:
 private:
     struct AreaLight {
         Rgb L{1.0f};
+        std::optional<spectrum::Distribution> spectrum;  // L's spectrum when the file gives one
         bool two_sided = false;
         float power = -1;  // > 0: rescale L so the shape emits this flux
         Loc loc;
@@ -91,6 +92,7 @@ private:
         Transform camera_to_world;
         float fov_deg = 90, lens_radius = 0, focal_distance = 1e6f;
         std::optional<std::vector<float>> screen_window;
+        float exposure_time = 1;  // shutterclose - shutteropen
         int medium = -1;
         Loc loc;
     };
@@ -107,7 +109,11 @@ private:
     void set_ctm(const Transform& t, const Loc& loc);
 
     // Colours: an "rgb", "spectrum" or "blackbody" (or "float", as grey) parameter, or nullopt.
-    std::optional<Rgb> color(const ParamList& params, const std::string& name, SpectrumUse use) const;
+    // With `spectrum_out`, also the spectrum whose sRGB the colour is, for a blackbody, a named
+    // illuminant (use Illuminant), a named metal or glass (other uses), an inline list or a file;
+    // nullopt for RGB and float values.
+    std::optional<Rgb> color(const ParamList& params, const std::string& name, SpectrumUse use,
+                             std::optional<spectrum::Distribution>* spectrum_out = nullptr) const;
     // A colour that may instead name a texture ("texture reflectance" "wood"); sets *tex (or -1).
     Rgb color_or_texture(const ParamList& params, const std::string& name, Rgb def, int* tex, SpectrumUse use,
                          const std::string& directive);
@@ -128,6 +134,7 @@ private:
     std::map<std::string, Transform> coord_systems_;
     std::map<std::string, int> named_materials_, float_textures_, spectrum_textures_, media_, objects_;
     std::optional<CameraSpec> camera_;
+    float film_iso_ = 100;  // Film "iso": with the camera's exposure time, scene_.film_response
     bool world_ = false;
     Loc world_loc_;
     int object_ = -1;  // index into scene_.objects while between ObjectBegin and ObjectEnd

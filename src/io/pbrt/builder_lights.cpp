@@ -50,8 +50,16 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     scene::Light light;
     light.to_world = t;
     const float scale = params.get_float("scale", 1.0f);
+    // The emission (times `scale`), and its spectrum when the file gives one; times(k) scales both.
+    std::optional<spectrum::Distribution> emission;
     auto emitted = [&](const char* name) {
-        return color(params, name, SpectrumUse::Illuminant).value_or(Rgb(1.0f)) * scale;
+        const Rgb c = color(params, name, SpectrumUse::Illuminant, &emission).value_or(Rgb(1.0f)) * scale;
+        if (emission) emission = emission->scaled(scale);
+        return c;
+    };
+    auto times = [&](float k) {
+        light.color = light.color * k;
+        if (emission) emission = emission->scaled(k);
     };
     auto positive = [&](const char* name) {
         const float v = params.get_float(name, -1.0f);
@@ -64,7 +72,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         light.kind = scene::Light::Kind::Point;
         light.color = emitted("I");
         const float power = positive("power");
-        if (power > 0) light.color = light.color * (power / (4 * kPi));
+        if (power > 0) times(power / (4 * kPi));
         light.position = t.point(params.get_point3("from", {0, 0, 0}));
     } else if (type == "spot") {
         light.kind = scene::Light::Kind::Spot;
@@ -81,7 +89,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         const float power = positive("power");
         if (power > 0) {
             const float c0 = std::cos(light.falloff_start), c1 = std::cos(light.cutoff);
-            light.color = light.color * (power / (2 * kPi * ((1 - c0) + 0.5f * (c0 - c1))));
+            times(power / (2 * kPi * ((1 - c0) + 0.5f * (c0 - c1))));
         }
     } else if (type == "distant") {
         light.kind = scene::Light::Kind::Directional;
@@ -90,7 +98,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         if (!(length(to - from) > 0)) loc.fail(d + ": \"from\" and \"to\" coincide");
         light.direction = normalize(t.vector(to - from));
         const float e = positive("illuminance");
-        if (e > 0) light.color = light.color * e;
+        if (e > 0) times(e);
     } else if (type == "infinite") {
         light.kind = scene::Light::Kind::Infinite;
         const Param* fp = params.find("filename");
@@ -101,7 +109,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         if (!fp) {
             light.color = emitted("L");
             // A uniform environment of radiance L gives illuminance pi * L on an upward surface.
-            if (e > 0) light.color = light.color * (e / kPi);
+            if (e > 0) times(e / kPi);
         } else {
             const std::string path = resolve(params.get_string("filename", ""), fp->loc);
             Image img;
@@ -138,10 +146,11 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     }
     if (!light.color.is_finite()) loc.fail(d + ": emission is not finite");
     done(params, d);
+    light.spectrum = std::move(emission);
     light.medium = gs_.outside;  // pbrt-v4: a light sits in the current outside medium
     light.medium_declared = gs_.media_declared;
     light.origin = loc.str();
-    scene_.lights.push_back(light);
+    scene_.lights.push_back(std::move(light));
 }
 
 void SceneBuilder::area_light_source(const std::string& type, const ParamList& params, const Loc& loc) {
@@ -156,7 +165,8 @@ void SceneBuilder::area_light_source(const std::string& type, const ParamList& p
     AreaLight al;
     al.loc = loc;
     const float scale = params.get_float("scale", 1.0f);
-    al.L = color(params, "L", SpectrumUse::Illuminant).value_or(Rgb(1.0f)) * scale;
+    al.L = color(params, "L", SpectrumUse::Illuminant, &al.spectrum).value_or(Rgb(1.0f)) * scale;
+    if (al.spectrum) al.spectrum = al.spectrum->scaled(scale);
     al.two_sided = params.get_bool("twosided", false);
     al.power = params.get_float("power", -1.0f);
     if (params.has("power") && !(al.power > 0))

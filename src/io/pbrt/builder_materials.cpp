@@ -9,6 +9,7 @@
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
 #include "io/text/image_texture.h"
+#include "spectrum/dispersion.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -34,10 +35,13 @@ float shininess_from_alpha(float alpha) {
 
 }  // namespace
 
-std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::string& name,
-                                       SpectrumUse use) const {
+std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::string& name, SpectrumUse use,
+                                       std::optional<spectrum::Distribution>* spectrum_out) const {
+    if (spectrum_out) spectrum_out->reset();
     const Param* p = params.find(name);
     if (!p) return std::nullopt;
+    const bool illuminant = use == SpectrumUse::Illuminant;
+    std::optional<spectrum::Distribution> s;  // the spectrum, when the value is one
     Rgb c;
     if (p->type == "rgb") {
         c = Rgb(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
@@ -48,19 +52,30 @@ std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::strin
         c = Rgb(float(p->numbers[0]));
     } else if (p->type == "blackbody") {
         if (!(p->numbers[0] > 0)) p->loc.fail("blackbody temperature must be positive");
-        c = blackbody_rgb(float(p->numbers[0]));
+        // pbrt-v3's second value multiplies (pbrt-v4's upgrade moves it into "scale").
+        const float k = p->numbers.size() > 1 ? float(p->numbers[1]) : 1.0f;
+        if (!(k >= 0)) p->loc.fail("blackbody scale (the second value) must not be negative");
+        c = blackbody_rgb(float(p->numbers[0])) * k;
+        s = luminance_1(spectrum::Distribution::blackbody(float(p->numbers[0]))).scaled(k);
     } else if (p->type == "spectrum") {
         std::vector<float> lambda, value;
         if (!p->strings.empty()) {
-            const std::string& s = p->strings[0];
-            if (const auto named = named_spectrum_rgb(s, use)) {
-                if (s.rfind("stdillum-F", 0) == 0)
-                    warn_once("spectrum " + s, p->loc, "spectrum \"" + s + "\" is approximated as white");
+            const std::string& n = p->strings[0];
+            if (const auto named = named_spectrum_rgb(n, use)) {
+                if (n.rfind("stdillum-F", 0) == 0)
+                    warn_once("spectrum " + n, p->loc, "spectrum \"" + n + "\" is approximated as white");
+                if (spectrum_out) {
+                    if (illuminant) {
+                        if (const auto d = named_illuminant(n)) *spectrum_out = luminance_1(*d);
+                    } else {
+                        *spectrum_out = named_material_spectrum(n);
+                    }
+                }
                 return *named;
             }
-            const std::string path = resolve(s, p->loc);
+            const std::string path = resolve(n, p->loc);
             if (!read_spectrum_file(path, lambda, value))
-                p->loc.fail("\"" + s + "\" is neither a named spectrum nor a readable spectrum file");
+                p->loc.fail("\"" + n + "\" is neither a named spectrum nor a readable spectrum file");
         } else {
             for (size_t i = 0; i + 1 < p->numbers.size(); i += 2)
                 lambda.push_back(float(p->numbers[i])), value.push_back(float(p->numbers[i + 1]));
@@ -68,11 +83,15 @@ std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::strin
         for (size_t i = 1; i < lambda.size(); ++i)
             if (!(lambda[i] > lambda[i - 1])) p->loc.fail("spectrum wavelengths must increase");
         c = sampled_spectrum_rgb(lambda, value, use);
+        const spectrum::Distribution table =
+            spectrum::Distribution::tabulated(std::move(lambda), std::move(value));
+        s = illuminant ? luminance_1(table) : table;
     } else {
         p->loc.fail("parameter '" + name + "' should be a colour (rgb, spectrum or blackbody), not " +
                     p->type);
     }
     if (!c.is_finite()) p->loc.fail("parameter " + p->declaration() + " is not finite");
+    if (spectrum_out) *spectrum_out = std::move(s);
     return c;
 }
 
@@ -249,28 +268,44 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         if (remap) alpha = std::sqrt(alpha);
         return shininess_from_alpha(alpha);
     };
-    auto eta_param = [&](const std::string& name, float def) {
+    // A dielectric's index: a float, a named glass (its Sellmeier index, `ior` at the d line), or
+    // a spectrum of wavelength-value pairs inline or in a file (`ior` its value at the d line).
+    // *dispersion gets the index's spectrum when it has one.
+    auto eta_param = [&](const std::string& name, float def,
+                         std::optional<spectrum::Distribution>* dispersion = nullptr) {
         const Param* p = params.find(name);
         if (!p) return def;
         float eta = def;
+        std::optional<spectrum::Distribution> dispersive;
         if (p->type == "float") {
             eta = params.get_float(name, def);
-        } else if (p->type == "spectrum" && !p->strings.empty()) {
-            const auto v = named_spectrum_value(p->strings[0]);
-            if (!v) p->loc.fail("unknown named spectrum \"" + p->strings[0] + "\"");
-            eta = *v;
-            warn_once("dispersion", p->loc,
-                      d + ": dispersion is not rendered; the index at the d line (587.6 nm) is used");
         } else if (p->type == "spectrum") {
             std::vector<float> l, v;
-            for (size_t i = 0; i + 1 < p->numbers.size(); i += 2)
-                l.push_back(float(p->numbers[i])), v.push_back(float(p->numbers[i + 1]));
-            eta = sampled_spectrum_at(l, v, 550.0f);
-            warn_once("dispersion", p->loc, d + ": dispersion is not rendered; eta at ~550 nm is used");
+            if (!p->strings.empty()) {
+                const std::string& n = p->strings[0];
+                if (const auto value = named_spectrum_value(n)) {
+                    eta = *value;
+                    if (n.rfind("glass-", 0) == 0) dispersive = named_material_spectrum(n);
+                } else if (!read_spectrum_file(resolve(n, p->loc), l, v)) {
+                    p->loc.fail("\"" + n + "\" is neither a named spectrum nor a readable spectrum file");
+                }
+            } else {
+                for (size_t i = 0; i + 1 < p->numbers.size(); i += 2)
+                    l.push_back(float(p->numbers[i])), v.push_back(float(p->numbers[i + 1]));
+            }
+            if (!l.empty()) {
+                for (size_t i = 1; i < l.size(); ++i)
+                    if (!(l[i] > l[i - 1])) p->loc.fail("spectrum wavelengths must increase");
+                for (float x : v)
+                    if (!(x > 0)) p->loc.fail(d + ": eta must be positive at every wavelength");
+                eta = sampled_spectrum_at(l, v, float(spectrum::kLineD));
+                dispersive = spectrum::Distribution::tabulated(std::move(l), std::move(v));
+            }
         } else {
             p->loc.fail("parameter '" + name + "' should be float or spectrum, not " + p->type);
         }
         if (!(eta > 0)) p->loc.fail(d + ": eta must be positive");
+        if (dispersion) *dispersion = std::move(dispersive);
         return eta;
     };
 
@@ -307,13 +342,22 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         } else {
             m.conductor = true;
             m.specular = Rgb(1.0f);
-            m.conductor_eta = color(params, pre + "eta", SpectrumUse::Unbounded)
-                                  .value_or(*named_spectrum_rgb("metal-Cu-eta", SpectrumUse::Unbounded));
-            m.conductor_k = color(params, pre + "k", SpectrumUse::Unbounded)
-                                .value_or(*named_spectrum_rgb("metal-Cu-k", SpectrumUse::Unbounded));
+            // Each of eta and k: as given, else pbrt-v4's default, copper; a named metal or a
+            // sampled spectrum keeps its spectrum too.
+            const auto part = [&](const std::string& pname, const std::string& copper, Rgb& rgb,
+                                  std::optional<spectrum::Distribution>& measured) {
+                if (const auto c = color(params, pname, SpectrumUse::Unbounded, &measured)) {
+                    rgb = *c;
+                } else {
+                    rgb = *named_spectrum_rgb(copper, SpectrumUse::Unbounded);
+                    measured = named_material_spectrum(copper);
+                }
+            };
+            part(pre + "eta", "metal-Cu-eta", m.conductor_eta, m.conductor_eta_spectrum);
+            part(pre + "k", "metal-Cu-k", m.conductor_k, m.conductor_k_spectrum);
         }
     } else if (type == "dielectric" || type == "thindielectric") {
-        m.ior = eta_param("eta", 1.5f);
+        m.ior = eta_param("eta", 1.5f, &m.ior_spectrum);
         m.transmission = Rgb(1.0f);
         m.thin = type == "thindielectric";
         m.transmission_shininess = m.thin ? 1e6f : roughness_shininess("");

@@ -64,11 +64,13 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     }
     const AreaLight& al = *gs_.area_light;
     Rgb L = al.L;
+    std::optional<spectrum::Distribution> emission = al.spectrum;
     if (al.power > 0) {
         // pbrt-v4: scale so that the emitted flux pi * area * L (twice if two-sided) equals `power`.
         const float k = kPi * area * (al.two_sided ? 2.0f : 1.0f);
         if (!(k > 0)) loc.fail("area light with \"power\" on a shape of zero area");
         L = L * (al.power / k);
+        if (emission) emission = emission->scaled(al.power / k);
     }
     // Not needed to render an area light, but filled as other loaders do: a representative point
     // and the mean emitting direction (area-weighted normal) for meshes.
@@ -87,7 +89,7 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
         if (total > 0) position = sum_p / total;
         if (length(sum_n) > 0) direction = normalize(sum_n);
     }
-    const int index = scene_.add_area_light(std::move(shape), L, al.two_sided);
+    const int index = scene_.add_area_light(std::move(shape), L, al.two_sided, std::move(emission));
     scene::Light& light = scene_.lights[size_t(index)];
     light.position = position;
     light.direction = direction;

@@ -60,8 +60,11 @@ void ParamList::add(Param p) {
                        " values, got " + std::to_string(p.numbers.size()));
         if (t == "rgb" && p.numbers.size() != 3)
             p.loc.fail("rgb parameter " + p.declaration() + " needs 3 values");
-        if (t == "blackbody" && p.numbers.size() != 1)
-            p.loc.fail("blackbody parameter " + p.declaration() + " needs one temperature");
+        // pbrt-v4: a temperature; pbrt-v3: a temperature and a scale.
+        if (t == "blackbody" && p.numbers.size() > 2)
+            p.loc.fail("blackbody parameter " + p.declaration() +
+                       " needs a temperature (and, as in pbrt-v3, a scale), got " +
+                       std::to_string(p.numbers.size()) + " values");
         if (t == "integer")
             for (double v : p.numbers) {
                 if (v != std::floor(v))

@@ -1,14 +1,16 @@
-// Spectrum to RGB conversion for the pbrt loader. phos renders in RGB, so spectra are integrated
-// once at load time, through the spectral layer's CIE tables, Planck's law and named glasses
-// (src/spectrum, docs/spectral.md).
+// Spectra of the pbrt loader: their RGB, integrated once at load time through the spectral layer's
+// CIE tables, Planck's law and named glasses (src/spectrum, docs/spectral.md), and the spectra
+// themselves as spectrum::Distribution.
 #include "io/pbrt/spectra.h"
 
 #include <cmath>
 #include <map>
 
 #include "spectrum/blackbody.h"
+#include "spectrum/cie_tables.h"
 #include "spectrum/color.h"
 #include "spectrum/dispersion.h"
+#include "spectrum/named_metals.h"
 #include "spectrum/piecewise_linear.h"
 
 namespace phos::io::pbrt {
@@ -99,6 +101,42 @@ std::optional<float> named_spectrum_value(const std::string& name) {
     if (const auto g = glass_index(name)) return *g;
     if (const auto c = named_spectrum_rgb(name, SpectrumUse::Unbounded)) return c->g;
     return std::nullopt;
+}
+
+spectrum::Distribution luminance_1(const spectrum::Distribution& d) {
+    const float y = d.xyz().y;
+    if (!(y > 0)) return spectrum::Distribution::constant(0.0f);
+    return d.scaled(1.0f / y);
+}
+
+std::optional<spectrum::Distribution> named_illuminant(const std::string& name) {
+    using spectrum::Distribution;
+    // D65 at the CIE table's own 1 nm samples (the sRGB white exactly).
+    static const Distribution d65 = [] {
+        std::vector<float> lambda, value;
+        for (int l = spectrum::kCieMin; l <= spectrum::kCieMax; ++l)
+            lambda.push_back(float(l)), value.push_back(spectrum::d65(float(l)));
+        return Distribution::tabulated(std::move(lambda), std::move(value));
+    }();
+    if (name == "stdillum-D65") return d65;
+    if (name == "stdillum-A") return Distribution::blackbody(2856.0f);
+    if (name == "stdillum-D50") return Distribution::blackbody(5003.0f);
+    if (name == "illum-acesD60") return Distribution::blackbody(6000.0f);
+    if (name.rfind("stdillum-F", 0) == 0) return d65;  // fluorescent lamps: white approximation
+    return std::nullopt;
+}
+
+std::optional<spectrum::Distribution> named_material_spectrum(const std::string& name) {
+    if (const auto g = spectrum::named_glass(name)) return spectrum::Distribution::sellmeier(*g);
+    if (name.rfind("metal-", 0) != 0) return std::nullopt;
+    const size_t dash = name.rfind('-');
+    const std::string part = name.substr(dash + 1);
+    const auto metal = spectrum::named_metal(name);
+    if (!metal || (part != "eta" && part != "k")) return std::nullopt;
+    std::vector<float> lambda, value;
+    for (const spectrum::OpticalConstant& c : metal->table)
+        lambda.push_back(c.lambda), value.push_back(part == "eta" ? c.eta : c.k);
+    return spectrum::Distribution::tabulated(std::move(lambda), std::move(value));
 }
 
 }  // namespace phos::io::pbrt

@@ -1,5 +1,7 @@
-// Spectral values of pbrt scenes turned into phos's linear sRGB: blackbody temperatures, pbrt-v4's
-// named spectra (metals, glasses, standard illuminants) and sampled wavelength-value spectra.
+// Spectral values of pbrt scenes: blackbody temperatures, pbrt-v4's named spectra (metals, glasses,
+// standard illuminants) and sampled wavelength-value spectra, as phos's linear sRGB and, where the
+// scene keeps a spectrum (light emission, conductors' η and k, dispersive indices), as a
+// spectrum::Distribution whose sRGB is that colour.
 #pragma once
 
 #include <optional>
@@ -7,6 +9,7 @@
 #include <vector>
 
 #include "core/vec.h"
+#include "spectrum/distribution.h"
 
 namespace phos::io::pbrt {
 
@@ -30,5 +33,18 @@ std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use);
 // A named spectrum's single value: a named glass's index at the d line (587.6 nm), else the green
 // of its RGB.
 std::optional<float> named_spectrum_value(const std::string& name);
+
+// `d` scaled to luminance Y = 1, as pbrt-v4 scales every emission spectrum other than RGB (so its
+// sRGB is the Illuminant colour above); the constant 0 when its luminance is not positive.
+spectrum::Distribution luminance_1(const spectrum::Distribution& d);
+// pbrt-v4's named illuminants as the spectra whose colours named_spectrum_rgb gives (not yet
+// normalised): "stdillum-D65" the CIE D65 table; "stdillum-A", "stdillum-D50" and "illum-acesD60"
+// Planckians of 2856 K, 5003 K and 6000 K; the fluorescent "stdillum-F*" D65 (white). nullopt for
+// other names.
+std::optional<spectrum::Distribution> named_illuminant(const std::string& name);
+// The measured spectra of pbrt-v4's named metals ("metal-Au-eta", "metal-Au-k": spectrum/
+// named_metals.h's tables) and glasses ("glass-BK7": the Sellmeier index); nullopt for other names
+// and for the metals phos has no measured data of ("metal-CuZn-*", RGB only).
+std::optional<spectrum::Distribution> named_material_spectrum(const std::string& name);
 
 }  // namespace phos::io::pbrt

@@ -1,5 +1,7 @@
-// `.mat` files: a surface (diffuse, mirror, Fresnel dielectric, texture, emission) and the
-// homogeneous medium inside objects made of it. A `.mat` named by many objects is read once.
+// `.mat` files: a surface (diffuse, mirror, Fresnel dielectric, dispersive or not, texture,
+// emission) and the homogeneous medium inside objects made of it. A `.mat` named by many objects
+// is read once. (spectrum::Distribution and the named glasses come with scene/material.h, whose
+// Material holds the dispersion.)
 #include <cmath>
 
 #include "core/error.h"
@@ -8,15 +10,31 @@
 #include "core/spelling.h"
 #include "io/scene_format/reader.h"
 #include "io/text/image_texture.h"
+#include "spectrum/dispersion.h"
+#include "spectrum/distribution.h"
 
 namespace phos::io::scene_format {
 
 namespace {
 
-const std::vector<std::string> kMatKeys = {"diffuse",    "specular",   "transmission", "ior",     "texture",
-                                           "absorption", "scattering", "phase",        "emission"};
+const std::vector<std::string> kMatKeys = {"diffuse",    "specular",  "transmission", "ior",     "abbe",
+                                           "cauchy",     "sellmeier", "glass",        "texture", "absorption",
+                                           "scattering", "phase",     "emission"};
 
 const char* channel_name(int c) { return c == 0 ? "red" : c == 1 ? "green" : "blue"; }
+
+// The named glasses as a .mat names them: "BK7" for pbrt-v4's "glass-BK7".
+std::vector<std::string> glass_names() {
+    std::vector<std::string> names;
+    for (const spectrum::NamedGlass& g : spectrum::named_glasses()) names.push_back(g.name.substr(6));
+    return names;
+}
+
+std::string join(const std::vector<std::string>& names) {
+    std::string out;
+    for (const std::string& n : names) out += (out.empty() ? "" : ", ") + n;
+    return out;
+}
 
 }  // namespace
 
@@ -33,6 +51,59 @@ const MatFile& Reader::read_mat(const FileArg& f) {
     int texture_index = -1;
     // The last of the diffuse / specular / transmission lines, where an energy error is reported.
     const Line* last_term = nullptr;
+    // The dispersion key (abbe, cauchy, sellmeier or glass; one at most) and what it gives: the
+    // index over wavelength, or for abbe the Abbe number that `ior` completes.
+    const Line* dispersion_line = nullptr;
+    std::optional<spectrum::Distribution> dispersion;
+    double abbe = 0;
+    const Line* ior_line = nullptr;
+    const auto dispersion_key = [&](const Line& l) -> std::optional<spectrum::Distribution> {
+        const std::string& k = l.keyword.text;
+        if (k == "abbe") {
+            abbe = numbers(l, 1, "V_d")[0];
+            if (!(abbe > 0))
+                fail(l.args[0], "abbe: the Abbe number V_d must be positive, got '" + l.args[0].text + "'");
+            return std::nullopt;  // completed by `ior` after the last line
+        }
+        if (k == "cauchy") {
+            const std::vector<double> v = numbers(l, 2, "A B (B in um^2)");
+            for (size_t i = 0; i < 2; ++i)
+                if (!(v[i] > 0))
+                    fail(l.args[i], std::string("cauchy: ") + (i == 0 ? "A" : "B") +
+                                        " must be positive, got '" + l.args[i].text + "'");
+            return spectrum::Distribution::cauchy(float(v[0]), float(v[1]));
+        }
+        if (k == "sellmeier") {
+            const std::vector<double> v = numbers(l, 6, "B1 B2 B3 C1 C2 C3 (C in um^2)");
+            require_non_negative(l, v, 0, 6);
+            if (!(v[0] + v[1] + v[2] > 0))
+                fail(l.args[0], "sellmeier: B1, B2 and B3 are all 0 (no dispersion)");
+            spectrum::Sellmeier sm;
+            for (size_t i = 0; i < 3; ++i) sm.B[i] = v[i], sm.C[i] = v[i + 3];
+            // A resonance (lambda^2 = C) inside the visible range makes the index infinite there.
+            for (size_t i = 3; i < 6; ++i) {
+                const double nm = std::sqrt(v[i]) * 1e3;
+                if (nm >= 360 && nm <= 830)
+                    fail(l.args[i], "sellmeier: C" + std::to_string(i - 2) + " = " + l.args[i].text +
+                                        " um^2 puts a resonance at " + printf_string("%.0f", nm) +
+                                        " nm, inside the visible range (360-830 nm)");
+            }
+            for (int nm = 360; nm <= 830; ++nm)
+                if (const double n = sm.ior(nm); !(std::isfinite(n) && n > 0))
+                    fail(l.keyword,
+                         "sellmeier: the index is not a positive number at " + std::to_string(nm) + " nm");
+            return spectrum::Distribution::sellmeier(sm);
+        }
+        require_args(l, 1, "1 argument: a glass name");  // glass
+        const std::string& name = l.args[0].text;
+        const std::string bare = name.rfind("glass-", 0) == 0 ? name.substr(6) : name;
+        if (const auto g = spectrum::named_glass("glass-" + bare))
+            return spectrum::Distribution::sellmeier(*g);
+        const std::string guess = nearest_name(bare, glass_names());
+        fail(l.args[0], "glass: unknown glass '" + name + "'" +
+                            (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+                            " (glasses: " + join(glass_names()) + ")");
+    };
     for (const Line& l : file().lines) {
         const std::string& k = l.keyword.text;
         const auto colour = [&] {
@@ -64,6 +135,15 @@ const MatFile& Reader::read_mat(const FileArg& f) {
                 fail(l.args[0],
                      "ior: the index of refraction must be positive, got '" + l.args[0].text + "'");
             m.ior = float(n);
+            ior_line = &l;
+        } else if (k == "abbe" || k == "cauchy" || k == "sellmeier" || k == "glass") {
+            reject_duplicate(l, seen);
+            if (dispersion_line)
+                fail(l.keyword, k + ": the dispersion is already given by '" + dispersion_line->keyword.text +
+                                    "' (line " + std::to_string(dispersion_line->keyword.line) +
+                                    "); a material takes one of abbe, cauchy, sellmeier, glass");
+            dispersion_line = &l;
+            dispersion = dispersion_key(l);
         } else if (k == "phase") {
             reject_duplicate(l, seen);
             const double v = numbers(l, 1, "g")[0];
@@ -77,12 +157,32 @@ const MatFile& Reader::read_mat(const FileArg& f) {
             texture_index = texture(file_argument(l, 0, "texture"));
         } else {
             const std::string guess = nearest_name(k, kMatKeys);
-            fail(l.keyword,
-                 "unknown key '" + k + "' in a .mat file" +
-                     (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
-                     " (keys: diffuse, specular, transmission, ior, texture, absorption, scattering, "
-                     "phase, emission)");
+            fail(l.keyword, "unknown key '" + k + "' in a .mat file" +
+                                (guess.empty() ? "" : "; did you mean '" + guess + "'?") +
+                                " (keys: " + join(kMatKeys) + ")");
         }
+    }
+    if (dispersion_line) {
+        const Token& at = dispersion_line->keyword;
+        if (at.text == "abbe") {
+            // The Abbe number describes the dispersion around the index `ior` gives at the d line.
+            if (!ior_line)
+                fail(at,
+                     "abbe: needs 'ior', the index n_d at the d line (587.6 nm) that the Abbe number "
+                     "V_d completes");
+            if (!(m.ior > 1))
+                fail(ior_line->args[0],
+                     "ior: with 'abbe' the index n_d must exceed 1, got '" + ior_line->args[0].text + "'");
+            dispersion = spectrum::Distribution::abbe(m.ior, float(abbe));
+        } else {
+            const float n_d = (*dispersion)(float(spectrum::kLineD));
+            if (ior_line)
+                fail(ior_line->keyword,
+                     "ior: the index is given by '" + at.text + "' (line " + std::to_string(at.line) + "), " +
+                         printf_string("%.5g", double(n_d)) + " at the d line (587.6 nm); give one of them");
+            m.ior = n_d;
+        }
+        m.ior_spectrum = dispersion;
     }
     // The dissertation's Russian roulette picks diffuse, specular or transmission with these as
     // probabilities: their sum must not exceed 1 (small rounding in the file tolerated).
@@ -100,8 +200,10 @@ const MatFile& Reader::read_mat(const FileArg& f) {
                       ": the texture multiplies diffuse, which is 0: the surface is black (add "
                       "'diffuse 1 1 1' to see the texture's colours)");
     }
-    if (m.ior != 1.0f && m.transmission.is_black())
-        log::warn(file().name + ": ior is set but transmission is 0: the ior has no effect");
+    if ((m.ior != 1.0f || m.ior_spectrum) && m.transmission.is_black()) {
+        const std::string key = dispersion_line ? dispersion_line->keyword.text : "ior";
+        log::warn(file().name + ": " + key + " is set but transmission is 0: the " + key + " has no effect");
+    }
 
     MatFile mat;
     mat.textured = texture_index >= 0;

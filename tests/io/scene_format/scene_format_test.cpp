@@ -7,6 +7,7 @@
 
 #include "core/log.h"
 #include "io/scene_format/scene_format_loader.h"
+#include "spectrum/dispersion.h"
 #include "support/mesh_writers.h"
 #include "test_util.h"
 
@@ -138,6 +139,47 @@ TEST(SceneFormat, MaterialTermsAndEmissiveObjects) {
     EXPECT_EQ(s.shapes[2].area_light, 0);
     EXPECT_TRUE(s.materials[size_t(s.shapes[2].material)].emission.is_black());
     EXPECT_EQ(s.materials[size_t(s.shapes[2].material)].diffuse, Rgb(0.2f));
+}
+
+// The dispersion keys: the index over wavelength, `ior` its value at the d line (587.6 nm).
+TEST(SceneFormat, DispersionKeysGiveTheIndexOverWavelength) {
+    testing::TempDir dir;
+    dir.write("abbe.mat", "transmission 1 1 1\nabbe 30\nior 1.7\n");
+    dir.write("cauchy.mat", "transmission 1 1 1\ncauchy 1.5 0.0042\n");
+    dir.write("sellmeier.mat",
+              "transmission 1 1 1\nsellmeier 1.03961212 0.231792344 1.01046945 0.00600069867 0.0200179144 "
+              "103.560653\n");
+    dir.write("glass.mat", "transmission 1 1 1\nglass SF10\n");
+    dir.write("prefixed.mat", "transmission 1 1 1\nglass glass-LASF9\n");
+    dir.write("plain.mat", "transmission 1 1 1\nior 1.5\n");
+    const scene::Scene s = load(dir,
+                                "sphere 1 0 0 0 abbe.mat\nsphere 1 3 0 0 cauchy.mat\nsphere 1 6 0 0 "
+                                "sellmeier.mat\nsphere 1 9 0 0 glass.mat\nsphere 1 12 0 0 prefixed.mat\n"
+                                "sphere 1 15 0 0 plain.mat\n");
+    const auto mat = [&](size_t i) -> const scene::Material& {
+        return s.materials[size_t(s.shapes[i].material)];
+    };
+    const auto n = [&](size_t i, double lambda) { return double((*mat(i).ior_spectrum)(float(lambda))); };
+    for (size_t i = 0; i < 5; ++i) {
+        ASSERT_TRUE(mat(i).ior_spectrum.has_value()) << i;
+        EXPECT_NEAR(mat(i).ior, n(i, spectrum::kLineD), 1e-6) << i;  // ior: the d line's index
+        EXPECT_GT(n(i, 450), n(i, 650)) << i;                        // normal dispersion
+    }
+    // abbe: n_d = ior, and (n_d - 1) / (n_F - n_C) = V_d.
+    EXPECT_NEAR(n(0, spectrum::kLineD), 1.7, 1e-5);
+    EXPECT_NEAR((n(0, spectrum::kLineD) - 1) / (n(0, spectrum::kLineF) - n(0, spectrum::kLineC)), 30, 1e-2);
+    // cauchy: A + B / lambda^2, lambda in um.
+    EXPECT_NEAR(n(1, 500), 1.5 + 0.0042 / 0.25, 1e-6);
+    EXPECT_NEAR(mat(1).ior, 1.5 + 0.0042 / (0.5875618 * 0.5875618), 1e-6);
+    // sellmeier: BK7's coefficients give BK7's catalogue index.
+    EXPECT_NEAR(mat(2).ior, 1.51680, 1e-4);
+    // glass: the named glasses, with or without pbrt-v4's "glass-" prefix.
+    EXPECT_NEAR(mat(3).ior, 1.72828, 1e-4);
+    EXPECT_NEAR(mat(4).ior, 1.85025, 1e-4);
+    EXPECT_NEAR(n(3, 450), spectrum::named_glass("glass-SF10")->ior(450), 1e-6);
+    // A plain ior has no dispersion.
+    EXPECT_FALSE(mat(5).ior_spectrum.has_value());
+    EXPECT_FLOAT_EQ(mat(5).ior, 1.5f);
 }
 
 TEST(SceneFormat, SmokeIsAnInvisibleBoundaryAroundItsMedium) {
