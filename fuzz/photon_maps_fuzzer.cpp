@@ -28,7 +28,7 @@ std::vector<Vec3> query_points(const PhotonMaps& maps) {
 void query(const PhotonMaps& maps) {
     float sink = 0;  // keeps the decoded values alive
     const auto take = [&](const Photon& p) {
-        sink += p.power().r + p.wi().x + p.normal().y + float(p.split_axis());
+        sink += p.power()[0] + p.wavelengths()[0] + p.wi().x + p.normal().y + float(p.split_axis());
     };
     EstimateOptions eo;
     eo.k = 8;

@@ -22,9 +22,11 @@ std::vector<Photon> random_photons(int n, bool surface, uint64_t seed) {
     std::vector<Photon> v;
     for (int i = 0; i < n; ++i) {
         const Vec3 p(rng.next(), rng.next(), surface ? 0.0f : rng.next());
-        const Rgb power(rng.next(), rng.next(), rng.next());
+        Spectrum power;
+        for (int k = 0; k < spectrum::kSpectrumSamples; ++k) power[k] = rng.next();
+        const Wavelengths lambda = Wavelengths::visible(rng.next());
         const Vec3 wi(rng.next() - 0.5f, rng.next() - 0.5f, 1.0f);
-        v.emplace_back(p, power, wi, surface ? Vec3(0, 0, 1) : Vec3(0.0f));
+        v.emplace_back(p, power, lambda, wi, surface ? Vec3(0, 0, 1) : Vec3(0.0f));
     }
     return v;
 }
@@ -65,7 +67,7 @@ int main(int argc, char** argv) {
     volume.volume_cache.build(volume.map[kVolumeMap], vo, volume.map[kVolumeCausticMap], vo, 3);
     std::vector<PhotonSphere> spheres;
     for (const Photon& p : volume.map[kVolumeMap].photons())
-        spheres.push_back({p.position, 0.1f, p.power(), p.wi()});
+        spheres.push_back({p.position, 0.1f, p.colour(), p.wi()});
     volume.volume_beams.build(spheres, 2);
     spheres.resize(5);
     volume.volume_caustic_beams.build(spheres, 2);
