@@ -73,11 +73,11 @@ GatherPoint make_gather_point(const VisiblePoint& vp, int max_depth, const Prepa
 }
 
 // contribution() at a volume point or a surface point that is not Lambert-only.
-Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi, const Spectrum& power,
-                           const Wavelengths& lambda) {
+Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi,
+                           const spectrum::ColourWeights& power, const Wavelengths& lambda) {
     if (g.kind == GatherPoint::kVolume)
-        return spectrum::to_srgb(power, lambda) * shading::henyey_greenstein(dot(-vp.wo, wi), g.g);
-    return spectrum::to_srgb(vp.bsdf->eval(vp.wo, wi, lambda) * power, lambda);
+        return power.total() * shading::henyey_greenstein(dot(-vp.wo, wi), g.g);
+    return power.of(vp.bsdf->eval(vp.wo, wi, lambda));
 }
 
 // What a photon arriving along wi with `power` at its wavelengths `lambda` after `bounces` adds to
@@ -85,12 +85,11 @@ Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi
 // at the photon's own wavelengths), or black when it adds nothing. Small, so the gather's loop
 // inlines it: most points are Lambert-only.
 inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi,
-                        const Spectrum& power, const Wavelengths& lambda, int bounces) {
+                        const spectrum::ColourWeights& power, const Wavelengths& lambda, int bounces) {
     if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
     if (g.kind == GatherPoint::kLambert)  // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side
-        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0
-                   ? spectrum::to_srgb(g.kd.sample(lambda) * power, lambda) * float(1 / M_PI)
-                   : Rgb(0.0f);
+        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? power.of(g.kd.sample(lambda)) * float(1 / M_PI)
+                                                      : Rgb(0.0f);
     return contribution_evaluated(g, vp, wi, power, lambda);
 }
 }  // namespace
@@ -161,15 +160,14 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
     const double scale = scale_;
     // --trace-pixel: what the traced slots gather is recorded as the photon arrives (in the
     // photon's own order of hits), by a search of its own (path_recorder.h).
-    const auto record = [&](uint64_t idx, Vec3 p, int volume_medium, Vec3 wi, const Spectrum& power,
-                            const Wavelengths& lambda, int bounces) {
+    const auto record = [&](uint64_t idx, Vec3 p, int volume_medium, Vec3 wi,
+                            const spectrum::ColourWeights& power, const Wavelengths& lambda, int bounces) {
         const bool volume = volume_medium >= 0;
         grid.query(p, [&](uint32_t i) {
             if (size_t(i) - trace_first_ >= trace_count_ || (volume && vps[i].medium != volume_medium))
                 return;
             const Rgb c = contribution(gather_[i], vps[i], volume, wi, power, lambda, bounces);
-            if (!c.is_black() && c.is_finite())
-                trace_->photon(i, {idx, p, spectrum::to_srgb(power, lambda), wi, c});
+            if (!c.is_black() && c.is_finite()) trace_->photon(i, {idx, p, power.total(), wi, c});
         });
     };
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
@@ -186,19 +184,21 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
             const auto on_volume = [&, idx](const photon::PhotonVolumeHit& h) {
                 if (h.bounces == 0) return;
                 if (!local) local = local_slots();
+                const spectrum::ColourWeights power = spectrum::colour_weights(h.power, h.lambda);
                 grid.query(h.p, [&](uint32_t i) {
                     if (vps[i].medium != h.medium) return;
-                    const Rgb c = contribution(gather_[i], vps[i], true, h.wi, h.power, h.lambda, h.bounces);
+                    const Rgb c = contribution(gather_[i], vps[i], true, h.wi, power, h.lambda, h.bounces);
                     int64_t q[3];
                     if (quantize(c, scale, q)) add(local, i, q, 1);
                 });
-                if (trace_count_) record(idx, h.p, h.medium, h.wi, h.power, h.lambda, h.bounces);
+                if (trace_count_) record(idx, h.p, h.medium, h.wi, power, h.lambda, h.bounces);
             };
             // Surface photons wait for the binned gather.
             const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
-                hits.push_back({h.hit.p, h.wi, h.power, h.lambda, h.bounces});
-                if (trace_count_) record(idx, h.hit.p, -1, h.wi, h.power, h.lambda, h.bounces);
+                hits.push_back(
+                    {h.hit.p, h.wi, spectrum::colour_weights(h.power, h.lambda), h.lambda, h.bounces});
+                if (trace_count_) record(idx, h.hit.p, -1, h.wi, hits.back().power, h.lambda, h.bounces);
             };
             return photon::Visitor{on_surface, on_volume};
         };

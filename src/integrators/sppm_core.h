@@ -31,6 +31,7 @@
 #include "render/progressive_checkpoint.h"
 #include "render/render_budget.h"
 #include "shading/bsdf.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators {
 using namespace render;  // the render support the algorithms are written over (src/render/)
@@ -120,8 +121,8 @@ private:
     struct PendingHit {
         Vec3 p;
         Vec3 wi;
-        Spectrum power;
-        Wavelengths lambda;  // the photon's
+        spectrum::ColourWeights power;  // the photon's power, wavelength by wavelength, as colour
+        Wavelengths lambda;             // the photon's
         int bounces;
         uint32_t bucket = 0;  // in the grid level being gathered
     };
@@ -148,7 +149,7 @@ private:
     size_t pending_blocks_ = 0;
     struct BinnedHit {
         Vec3 wi;
-        Spectrum power;
+        spectrum::ColourWeights power;
         Wavelengths lambda;
         int bounces;
     };

@@ -88,6 +88,23 @@ Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w) {
     return {m[0] * X + m[1] * Y + m[2] * Z, m[3] * X + m[4] * Y + m[5] * Z, m[6] * X + m[7] * Y + m[8] * Z};
 }
 
+ColourWeights colour_weights(const SampledSpectrum& L, const SampledWavelengths& w) {
+    static_assert(kSpectrumSamples == 4);
+    const Mat3& m = xyz_to_srgb();
+    ColourWeights cw;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        if (!(w.pdf(i) > 0) || L[i] == 0) {
+            cw.w[size_t(i)] = Rgb(0.0f);
+            continue;
+        }
+        const Vec3 c =
+            cie_xyz(w[i]) * float(double(L[i]) / (double(w.pdf(i)) * kSpectrumSamples * kCieYIntegral));
+        const Vec3 rgb = apply(m, c);
+        cw.w[size_t(i)] = Rgb(rgb.x, rgb.y, rgb.z);
+    }
+    return cw;
+}
+
 Rgb colour_through(const SampledSpectrum& beta, const SampledWavelengths& lambda, Rgb colour) {
     if (beta.is_flat() && !lambda.secondary_terminated()) return colour * beta[0];
     if (beta.is_black()) return Rgb(0.0f);

@@ -24,6 +24,20 @@ float d65(float lambda);
 Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w);
 // The linear sRGB the film adds for one path: xyz_to_srgb() applied to to_xyz(L, w).
 Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w);
+// The colour each of L's wavelengths adds through the film: to_srgb(f * L, w) = sum_i f[i] * w[i]
+// for any f (a BSDF's value at those wavelengths), computed once for many f (SPPM's photons meet
+// many visible points).
+struct ColourWeights {
+    std::array<Rgb, kSpectrumSamples> w;
+    Rgb of(const SampledSpectrum& f) const {
+        Rgb c(0.0f);
+        for (int i = 0; i < kSpectrumSamples; ++i) c += w[size_t(i)] * f[i];
+        return c;
+    }
+    Rgb total() const { return w[0] + w[1] + w[2] + w[3]; }
+};
+ColourWeights colour_weights(const SampledSpectrum& L, const SampledWavelengths& w);
+
 // An estimate that is already a colour (a photon estimate, each photon taken to colour at its own
 // wavelengths) seen through a path's throughput `beta` at `lambda`: beta's common value times the
 // colour while beta is the same at every wavelength and none was terminated (exact: most camera

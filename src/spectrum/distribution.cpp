@@ -92,6 +92,8 @@ float Distribution::operator()(float lambda) const {
 }
 
 SampledSpectrum Distribution::sample(const SampledWavelengths& w) const {
+    if (kind_ == Kind::Constant) return SampledSpectrum(scale_);
+    if (kind_ == Kind::Rgb) return rgb_.sample(w) * scale_;
     SampledSpectrum s;
     for (int i = 0; i < kSpectrumSamples; ++i) s[i] = (*this)(w[i]);
     return s;
