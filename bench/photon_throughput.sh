@@ -13,7 +13,7 @@
 #     top-s and below-s are the k-d build's thread time (-v, summed over threads) in its top levels'
 #     passes over the whole map (ranges of 2^18 photons and more) and below them: a share that
 #     grows with the threads while the work stays the same is time spent waiting for memory;
-#   - with --big: 100 M global photons (2 threads): peak RSS against the map's own bytes (20 B per
+#   - with --big: 100 M global photons (2 threads): peak RSS against the map's own bytes (24 B per
 #     photon) and the build rate. Needs ~3 GB of memory and a few minutes;
 #   - with --contend: the stand-in, on a few cores, for many cores' memory pressure. The photonmap
 #     command on 1 thread pinned to the first core, alone and while `memory_bandwidth --contend`
@@ -136,7 +136,7 @@ if [ "$big" = 1 ]; then
     build_s=$(field "time photon map build:")
     trace=$(field "time photon trace:")
     peak_gb=$(echo "$peak" | awk '{ print ($2 == "GB") ? $1 : $1 / 1000 }')
-    map_gb=$(calc "$stored * 20 / 1000000000")
+    map_gb=$(calc "$stored * 24 / 1000000000")
     printf '100 M photons (2 threads): %s stored, map %.2f GB, peak RSS %s GB (%.2fx the map), trace %s s, build %s s (%.2f M photons/s)\n' \
         "$stored" "$map_gb" "$peak_gb" "$(calc "$peak_gb / $map_gb")" "$trace" "$build_s" \
         "$(calc "$stored / $build_s / 1000000")"
