@@ -227,8 +227,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
     // whose light-sampling strategy is at v, with its direct_samples samples when v is the first
     // non-delta vertex.
     const float direct_scale = first ? vcm::mis(C.it.direct_mis) : 1.0f;
-    const auto add = [&](const MergeVertex& l, const Wavelengths& lambda, const Spectrum& f, float pdf_dir,
-                         float pdf_rev) {
+    const auto add = [&](const MergeVertex& l, const Spectrum& f, float pdf_dir, float pdf_rev) {
         float w = 1;
         if (!C.it.strategies.ppm) {
             SubpathMis lm = l.mis;
@@ -236,7 +235,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
             if (C.it.pixel_radius) lm.dVM *= C.merge_at.factors.vc;  // the pixel's 1 / eta^2
             w = merge_weight(v.mis, lm, pdf_dir * go_on, pdf_rev, C.merge_at.factors);
         }
-        sum[l.part] += spectrum::to_srgb(f * l.beta, lambda) * (w * C.merge_at.merge_norm);
+        sum[l.part] += l.beta.of(f) * (w * C.merge_at.merge_norm);
     };
     const shading::Bsdf& b = *v.bsdf;
     if (b.is_lambertian()) {
@@ -252,7 +251,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
             const float cos_i = dot(l.wo, ns) * side;
             if (l.length > max_length || !(dot(l.wo, ng) * side > 0) || !(cos_i > 0)) return;
             const Wavelengths lambda = l.wavelengths();
-            add(l, lambda, kd.sample(lambda) * kInvPi, cos_i * kInvPi, pdf_rev);
+            add(l, kd.sample(lambda) * kInvPi, cos_i * kInvPi, pdf_rev);
         });
         return;
     }
@@ -261,7 +260,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
         if (l.length > max_length) return;
         const Wavelengths lambda = l.wavelengths();
         const Scattering s = evaluate(C.P, v, l.wo, shading::TransportMode::Radiance, lambda);
-        if (!s.f.is_black()) add(l, lambda, s.f, s.pdf_dir, s.pdf_rev);
+        if (!s.f.is_black()) add(l, s.f, s.pdf_dir, s.pdf_rev);
     });
 }
 

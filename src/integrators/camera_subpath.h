@@ -16,6 +16,7 @@
 #include "integrators/fixed_film.h"
 #include "integrators/progressive_options.h"
 #include "integrators/vertex_grid.h"
+#include "spectrum/color.h"
 
 namespace phos::integrators::vcm {
 
@@ -51,7 +52,9 @@ constexpr Strategies kBdptStrategies{.connect = true};
 // Plain data, so that ranks can exchange them (under MPI each traces its own pixels' subpaths).
 struct MergeVertex {
     Vec3 p, wo;
-    Spectrum beta;  // at its subpath's wavelengths
+    // Its throughput at its subpath's wavelengths, as the colour each wavelength adds
+    // (spectrum::colour_weights): merging weighs them by the camera vertex's BSDF there.
+    spectrum::ColourWeights beta;
     SubpathMis mis;
     int length;
     Part part;      // part_at_first_vertex

@@ -13,6 +13,7 @@
 #include "core/memory.h"
 #include "dist/ranks.h"
 #include "integrators/bidirectional_path.h"
+#include "integrators/camera_subpath.h"
 #include "integrators/sppm_core.h"
 #include "photon/beam_bvh.h"
 #include "photon/photon.h"
@@ -253,7 +254,7 @@ void progressive_phase(const scene::Scene& scene, const MemoryEstimateInputs& in
 // (kMergeableVerticesPerPath, measured 2.0: surfaces at least two segments from the light) packed
 // twice (in their batches, then in grid order) and the grid over them.
 constexpr double kLightVerticesPerPath = 4, kMergeableVerticesPerPath = 2.5;
-constexpr double kMergeVertexBytes = 64, kVertexGridPerPoint = 12 + 4 + 8;
+constexpr double kMergeVertexBytes = double(sizeof(vcm::MergeVertex)), kVertexGridPerPoint = 12 + 4 + 8;
 void bidirectional_phase(const MemoryEstimateInputs& in, bool light_vertices, const Phase& common,
                          std::vector<Phase>& phases) {
     const RenderOptions& ro = in.render;

@@ -79,9 +79,9 @@ public:
                     for (const Vertex& v : traced) {
                         if (i < pixels_) kept.push_back(v);  // without the BSDF
                         if (v.mergeable)
-                            mergeable.push_back({v.p, v.wo, v.beta, v.mis, v.length, part_at_first_vertex(v),
-                                                 uint32_t(i), v.lambda.code(),
-                                                 v.lambda.secondary_terminated()});
+                            mergeable.push_back({v.p, v.wo, spectrum::colour_weights(v.beta, v.lambda), v.mis,
+                                                 v.length, part_at_first_vertex(v), uint32_t(i),
+                                                 v.lambda.code(), v.lambda.secondary_terminated()});
                     }
                 }
                 if (i < pixels_) end_[i] = uint32_t(kept.size());
