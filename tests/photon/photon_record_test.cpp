@@ -168,8 +168,8 @@ TEST(SharedExponentPower, FastEncoderGivesTheReferenceCodes) {
     EXPECT_EQ(mismatches, 0);
 }
 
-// (The RGBE tests' four-lane rescale, scale_rgbe4, has no counterpart: the tracer now rescales
-// each photon through encode_power, which the tests above cover.)
+// (The tracer's final rescale of every photon's power by 1 / N goes through encode_power, which
+// the tests above cover.)
 
 template <int Bits>
 float worst_octahedral_error(int n, uint64_t seed) {
