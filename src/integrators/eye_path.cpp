@@ -20,18 +20,25 @@ using shading::Bsdf;
 
 namespace {
 
+// The wavelengths of estimate k of the n a visible point averages (its light samples, the single
+// scattering along a stretch). A PPM hit point keeps that average for the whole render, so its
+// colour noise has to average out within it: while the path's throughput `w` is the same at every
+// wavelength, estimate k takes the path's wavelengths shifted by k / (4 n) in the sampling
+// density's CDF (all 4 n stratified); otherwise (a coloured or dispersive chain before the point)
+// every estimate takes the path's own.
+Wavelengths estimate_wavelengths(const Wavelengths& lambda, const Spectrum& w, int k, int n) {
+    if (!w.is_flat() || lambda.secondary_terminated()) return lambda;
+    const int step = spectrum::kWavelengthCodes / (spectrum::kSpectrumSamples * n);
+    return Wavelengths::from_code(uint16_t(int(lambda.code()) + k * step));
+}
+
 // The average of n light samples at a surface visible point (from the pixel's sequences with
-// `light_sequence`, else from `sampler`), times the path's throughput `w`, as colour. A PPM hit
-// point keeps this value for the whole render, so its colour noise has to average out within it:
-// while `w` is the same at every wavelength, sample k takes the path's wavelengths shifted by
-// k / (4 n) in the sampling density's CDF (all 4 n stratified); otherwise (a coloured or
-// dispersive chain before the point) every sample takes the path's own.
+// `light_sequence`, else from `sampler`), times the path's throughput `w`, as colour, each at
+// estimate_wavelengths.
 Rgb direct_light_colour(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, int n,
                         const LightSampleSequence* light_sequence, Sampler& sampler,
                         const Wavelengths& lambda, const Spectrum& w, RayCounts& rays, int medium) {
-    const bool own_wavelengths = w.is_flat() && !lambda.secondary_terminated();
     Rgb direct(0.0f);
-    Spectrum sum(0.0f);
     for (int k = 0; k < n; ++k) {
         float u_choose;
         Vec2 u;
@@ -43,16 +50,10 @@ Rgb direct_light_colour(const Prepared& P, const accel::SurfaceHit& hit, const B
             u_choose = sampler.next();
             u = sampler.next2();
         }
-        if (own_wavelengths) {
-            const int step = spectrum::kWavelengthCodes / (spectrum::kSpectrumSamples * n);
-            const Wavelengths lk = Wavelengths::from_code(uint16_t(int(lambda.code()) + k * step));
-            direct += spectrum::to_srgb(
-                sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, lk, rays, false, medium) * w[0], lk);
-        } else {
-            sum += sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, lambda, rays, false, medium);
-        }
+        const Wavelengths lk = estimate_wavelengths(lambda, w, k, n);
+        direct += spectrum::to_srgb(
+            w * sample_one_light(P, hit, bsdf, wo, u_choose, u, sampler, lk, rays, false, medium), lk);
     }
-    if (!own_wavelengths) direct = spectrum::to_srgb(sum * w, lambda);
     return direct * (1.0f / float(n));
 }
 
@@ -138,15 +139,10 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         // then decides whether the path stops in the medium (a volume visible point, for multiple
         // scattering) or goes on.
         const auto stretch = [&](const shading::Medium&, Vec3 o, Vec3 d, float t_end) {
-            // (Each estimate at its own shifted wavelengths while beta is flat, as direct_light_colour.)
             const int n = std::max(1, direct_samples);
-            const bool own_wavelengths = beta.is_flat() && !lambda.secondary_terminated();
-            const int step = spectrum::kWavelengthCodes / (spectrum::kSpectrumSamples * n);
             Rgb sum(0.0f);
             for (int k = 0; k < n; ++k) {
-                const Wavelengths lk = own_wavelengths
-                                           ? Wavelengths::from_code(uint16_t(int(lambda.code()) + k * step))
-                                           : lambda;
+                const Wavelengths lk = estimate_wavelengths(lambda, beta, k, n);
                 sum += spectrum::to_srgb(
                     beta * single_scattering(P, walk.medium(), o, d, t_end, sampler, lk, rays), lk);
             }
