@@ -92,6 +92,17 @@ inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volum
                                                       : Rgb(0.0f);
     return contribution_evaluated(g, vp, wi, power, lambda);
 }
+// The same for a binned surface arrival (the BSDF only evaluated at its wavelengths' values); the
+// colour is read only when the direction and bounces let the photon count.
+inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, const ArrivalDirection& d,
+                        const ArrivalColour& c) {
+    if (d.bounces > g.max_bounces || g.kind == GatherPoint::kVolume) return Rgb(0.0f);
+    if (g.kind == GatherPoint::kLambert)
+        return dot(d.wi, g.ng) > 0 && dot(d.wi, g.ns) > 0
+                   ? c.power.of(g.kd.sample(c.lambda)) * float(1 / M_PI)
+                   : Rgb(0.0f);
+    return contribution_evaluated(g, vp, d.wi, c.power, Wavelengths::at_values(c.lambda));
+}
 }  // namespace
 
 PhotonAccumulator::LocalSlot* PhotonAccumulator::local_slots() {
@@ -196,9 +207,12 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
             // Surface photons wait for the binned gather.
             const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
-                hits.push_back(
-                    {h.hit.p, h.wi, spectrum::colour_weights(h.power, h.lambda), h.lambda, h.bounces});
-                if (trace_count_) record(idx, h.hit.p, -1, h.wi, hits.back().power, h.lambda, h.bounces);
+                hits.push_back({{spectrum::colour_weights(h.power, h.lambda), h.lambda.lambdas()},
+                                h.hit.p,
+                                0,
+                                {h.wi, h.bounces}});
+                if (trace_count_)
+                    record(idx, h.hit.p, -1, h.wi, hits.back().colour.power, h.lambda, h.bounces);
             };
             return photon::Visitor{on_surface, on_volume};
         };
@@ -226,7 +240,8 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
     for (uint32_t b = 0; b < buckets; ++b) bin_start_[b + 1] += bin_start_[b];
     const size_t binned = bin_start_[buckets];
     for (auto* v : {&bin_x_, &bin_y_, &bin_z_}) v->resize(binned);
-    binned_.resize(binned);
+    bin_direction_.resize(binned);
+    bin_colour_.resize(binned);
     {
         std::vector<uint32_t> fill(bin_start_.begin(), bin_start_.end() - 1);
         for (size_t blk = 0; blk < pending_blocks_; ++blk)
@@ -234,7 +249,8 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                 if (h.bucket == photon::HitPointGrid::kNoBucket) continue;
                 const uint32_t to = fill[h.bucket]++;
                 bin_x_[to] = h.p.x, bin_y_[to] = h.p.y, bin_z_[to] = h.p.z;
-                binned_[to] = {h.wi, h.power, h.lambda, h.bounces};
+                bin_direction_[to] = h.direction;
+                bin_colour_[to] = h.colour;
             }
     }
     // Each bucket's entries against its hits: a point's sums are added up in registers and
@@ -253,10 +269,8 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
                     if (g.kind == GatherPoint::kVolume) continue;
                     int64_t sum[3] = {0, 0, 0};
                     uint64_t m = 0;
-                    const auto match = [&](uint32_t h) {
-                        const BinnedHit& bh = binned_[h];
-                        const Rgb c =
-                            contribution(g, vps[en->index], false, bh.wi, bh.power, bh.lambda, bh.bounces);
+                    const auto match = [&](uint32_t h) __attribute__((always_inline)) {
+                        const Rgb c = contribution(g, vps[en->index], bin_direction_[h], bin_colour_[h]);
                         int64_t q[3];
                         if (!quantize(c, scale, q)) return;
                         for (int k = 0; k < 3; ++k) sum[k] += q[k];

@@ -9,6 +9,8 @@
 // order-independent, so the result is bit-identical for any thread count.
 #pragma once
 
+#include <immintrin.h>
+
 #include <algorithm>
 #include <atomic>
 #include <functional>
@@ -67,6 +69,18 @@ struct GatherPoint {
     static constexpr uint32_t kSurface = 0, kLambert = 1, kVolume = 2;
 };
 
+// What the gather reads of a photon's surface hit, in two parts: the direction and bounces (16
+// bytes, read for every hit within a point's radius) and the colour (one 64-byte cache line,
+// read when those let the photon count).
+struct ArrivalDirection {
+    Vec3 wi;
+    int bounces;
+};
+struct alignas(64) ArrivalColour {
+    spectrum::ColourWeights power;  // the photon's power, wavelength by wavelength, as colour
+    std::array<float, spectrum::kSpectrumSamples> lambda;  // the photon's wavelengths
+};
+
 // Per-hit-point photon statistics of one iteration, summed in 64-bit fixed point: per-thread
 // arrays reduced in update() (no atomics in the photon loop), or integer atomics when per-thread
 // copies would take too much memory. Integer sums are exact, so both are order-independent.
@@ -97,7 +111,8 @@ public:
     // assumed), each held pending and again binned.
     static double pending_bytes(uint64_t photons_per_pass) {
         return double(std::min(photons_per_pass, kChunk)) * 2 *
-               double(sizeof(PendingHit) + 3 * sizeof(float) + sizeof(BinnedHit));
+               double(sizeof(PendingHit) + 3 * sizeof(float) + sizeof(ArrivalDirection) +
+                      sizeof(ArrivalColour));
     }
     // --trace-pixel: the photons slots [first, first + count) gather also go to `trace`.
     void record(PathRecorder* trace, size_t first, size_t count) {
@@ -119,12 +134,10 @@ private:
     };
     // A photon's surface hit after at least one bounce, waiting for the binned gather.
     struct PendingHit {
+        ArrivalColour colour;
         Vec3 p;
-        Vec3 wi;
-        spectrum::ColourWeights power;  // the photon's power, wavelength by wavelength, as colour
-        Wavelengths lambda;             // the photon's
-        int bounces;
         uint32_t bucket = 0;  // in the grid level being gathered
+        ArrivalDirection direction;
     };
     // Photons are traced in chunks (bounding the pending hits' memory), in blocks of kBlock.
     static constexpr uint64_t kChunk = uint64_t(1) << 19, kBlock = 4096;
@@ -141,22 +154,18 @@ private:
     // (A photon's colour can have a negative component: a spectrum outside the sRGB gamut.)
     static bool quantize(const Rgb& c, double scale, int64_t q[3]) {
         if (c.is_black() || !c.is_finite()) return false;
+        // Rounded to nearest (ties to even) by the conversion instruction itself.
         for (int k = 0; k < 3; ++k)
-            q[k] = int64_t(std::floor(std::clamp(double(c[k]) * scale, -0x1p52, 0x1p52) + 0.5));
+            q[k] = _mm_cvtsd_si64(_mm_set_sd(std::clamp(double(c[k]) * scale, -0x1p52, 0x1p52)));
         return true;
     }
     std::vector<std::vector<PendingHit>> pending_;  // per block of the chunk
     size_t pending_blocks_ = 0;
-    struct BinnedHit {
-        Vec3 wi;
-        spectrum::ColourWeights power;
-        Wavelengths lambda;
-        int bounces;
-    };
     // The chunk's hits in bucket order: positions (one array per axis) and the rest.
     std::vector<float> bin_x_, bin_y_, bin_z_;
-    std::vector<BinnedHit> binned_;
-    std::vector<uint32_t> bin_start_;  // bucket b's hits: binned_[bin_start_[b], bin_start_[b + 1])
+    std::vector<ArrivalDirection> bin_direction_;
+    std::vector<ArrivalColour> bin_colour_;
+    std::vector<uint32_t> bin_start_;  // bucket b's hits: [bin_start_[b], bin_start_[b + 1]) in each
     struct Locals;                     // per-thread LocalSlot arrays (tbb::enumerable_thread_specific)
     std::unique_ptr<Slot[]> slots_;
     std::unique_ptr<Locals> locals_;  // null: atomics

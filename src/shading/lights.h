@@ -11,6 +11,7 @@
 #include "core/vec.h"
 #include "scene/scene.h"
 #include "shading/distribution1d.h"
+#include "spectrum/dense_spectrum.h"
 #include "spectrum/distribution.h"
 #include "spectrum/sampled_spectrum.h"
 
@@ -89,7 +90,7 @@ protected:
     Spectrum emission(const Wavelengths& lambda) const { return emission_.sample(lambda); }
 
 private:
-    spectrum::Distribution emission_;
+    spectrum::DenseSpectrum emission_;
 };
 
 // All lights of a scene, with a power-proportional distribution for choosing one. Light i is built

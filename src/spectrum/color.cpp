@@ -1,6 +1,9 @@
 // Colour-matching, and the sRGB matrices from the primaries (see color.h).
 #include "spectrum/color.h"
 
+#include <immintrin.h>
+
+#include <algorithm>
 #include <cmath>
 
 #include "spectrum/blackbody.h"
@@ -59,6 +62,60 @@ Vec3 cie_xyz(float lambda) { return {lookup(kCieX, lambda), lookup(kCieY, lambda
 
 float d65(float lambda) { return lookup(kCieD65, lambda); }
 
+namespace {
+
+// Per nanometre: the linear sRGB matching functions xyz_to_srgb() (x̄, ȳ, z̄) / (n ∫ȳ) and D65 at
+// luminance 1, a row of four floats, so that one SSE interpolation gives what the film adds per
+// unit of L / p at a wavelength and the colour space's illuminant there. (The matrix is linear,
+// so interpolating its products is interpolating x̄, ȳ, z̄ and applying it.)
+struct MatchingTable {
+    alignas(16) float row[kCieSamples][4];
+    MatchingTable() {
+        const Mat3& m = xyz_to_srgb();
+        const double s = 1.0 / (kSpectrumSamples * kCieYIntegral);
+        double y = 0;
+        for (int i = 0; i < kCieSamples; ++i) y += double(kCieD65[i]) * kCieY[i];
+        const double d65_scale = kCieYIntegral / y;
+        for (int i = 0; i < kCieSamples; ++i) {
+            const double xyz[3] = {kCieX[i], kCieY[i], kCieZ[i]};
+            for (size_t c = 0; c < 3; ++c)
+                row[i][c] = float((m[c][0] * xyz[0] + m[c][1] * xyz[1] + m[c][2] * xyz[2]) * s);
+            row[i][3] = float(kCieD65[i] * d65_scale);
+        }
+    }
+};
+const MatchingTable& matching_table() {
+    static const MatchingTable t;
+    return t;
+}
+
+// The table's row at `lambda`, linear between nanometres; 0 outside [kCieMin, kCieMax].
+inline __m128 matching_at(const MatchingTable& t, float lambda) {
+    const float x = lambda - float(kCieMin);
+    if (!(x >= 0 && x <= float(kCieSamples - 1))) return _mm_setzero_ps();
+    const int i = std::min(int(x), kCieSamples - 2);
+    const __m128 f = _mm_set1_ps(x - float(i));
+    const __m128 a = _mm_load_ps(t.row[i]), b = _mm_load_ps(t.row[i + 1]);
+    return _mm_add_ps(a, _mm_mul_ps(f, _mm_sub_ps(b, a)));
+}
+
+}  // namespace
+
+float d65_luminance_1(float lambda) {
+    const __m128 r = matching_at(matching_table(), lambda);
+    return _mm_cvtss_f32(_mm_shuffle_ps(r, r, _MM_SHUFFLE(3, 3, 3, 3)));
+}
+
+SampledSpectrum d65_luminance_1(const std::array<float, kSpectrumSamples>& w) {
+    const MatchingTable& t = matching_table();
+    SampledSpectrum s;
+    for (int i = 0; i < kSpectrumSamples; ++i) {
+        const __m128 r = matching_at(t, w[size_t(i)]);
+        s[i] = _mm_cvtss_f32(_mm_shuffle_ps(r, r, _MM_SHUFFLE(3, 3, 3, 3)));
+    }
+    return s;
+}
+
 Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w) {
     double X = 0, Y = 0, Z = 0;
     for (int i = 0; i < kSpectrumSamples; ++i) {
@@ -72,36 +129,32 @@ Vec3 to_xyz(const SampledSpectrum& L, const SampledWavelengths& w) {
 }
 
 Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w) {
-    static const std::array<float, 9> m = [] {
-        std::array<float, 9> f;
-        for (size_t i = 0; i < 9; ++i)
-            f[i] = float(xyz_to_srgb()[i / 3][i % 3] / (kSpectrumSamples * kCieYIntegral));
-        return f;
-    }();
-    float X = 0, Y = 0, Z = 0;
+    const MatchingTable& t = matching_table();
+    __m128 sum = _mm_setzero_ps();
     for (int i = 0; i < kSpectrumSamples; ++i) {
         if (!(w.pdf(i) > 0) || L[i] == 0) continue;
-        const Vec3 c = cie_xyz(w[i]);
-        const float v = L[i] / w.pdf(i);
-        X += c.x * v, Y += c.y * v, Z += c.z * v;
+        sum = _mm_add_ps(sum, _mm_mul_ps(matching_at(t, w[i]), _mm_set1_ps(L[i] / w.pdf(i))));
     }
-    return {m[0] * X + m[1] * Y + m[2] * Z, m[3] * X + m[4] * Y + m[5] * Z, m[6] * X + m[7] * Y + m[8] * Z};
+    alignas(16) float c[4];
+    _mm_store_ps(c, sum);
+    return {c[0], c[1], c[2]};
 }
 
 ColourWeights colour_weights(const SampledSpectrum& L, const SampledWavelengths& w) {
     static_assert(kSpectrumSamples == 4);
-    const Mat3& m = xyz_to_srgb();
-    ColourWeights cw;
+    const MatchingTable& t = matching_table();
+    alignas(16) float c[kSpectrumSamples][4];  // wavelength i's (r, g, b, D65) weighed by L / p
     for (int i = 0; i < kSpectrumSamples; ++i) {
-        if (!(w.pdf(i) > 0) || L[i] == 0) {
-            cw.w[size_t(i)] = Rgb(0.0f);
-            continue;
-        }
-        const Vec3 c =
-            cie_xyz(w[i]) * float(double(L[i]) / (double(w.pdf(i)) * kSpectrumSamples * kCieYIntegral));
-        const Vec3 rgb = apply(m, c);
-        cw.w[size_t(i)] = Rgb(rgb.x, rgb.y, rgb.z);
+        const bool adds = w.pdf(i) > 0 && L[i] != 0;
+        _mm_store_ps(
+            c[i], adds ? _mm_mul_ps(matching_at(t, w[i]), _mm_set1_ps(L[i] / w.pdf(i))) : _mm_setzero_ps());
     }
+    __m128 r0 = _mm_load_ps(c[0]), r1 = _mm_load_ps(c[1]), r2 = _mm_load_ps(c[2]), r3 = _mm_load_ps(c[3]);
+    _MM_TRANSPOSE4_PS(r0, r1, r2, r3);
+    ColourWeights cw;
+    _mm_store_ps(cw.rows[0].data(), r0);
+    _mm_store_ps(cw.rows[1].data(), r1);
+    _mm_store_ps(cw.rows[2].data(), r2);
     return cw;
 }
 

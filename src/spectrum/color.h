@@ -4,6 +4,8 @@
 // from the primaries' and white's chromaticities (IEC 61966-2-1).
 #pragma once
 
+#include <immintrin.h>
+
 #include <array>
 #include <functional>
 
@@ -18,6 +20,9 @@ using Mat3 = std::array<std::array<double, 3>, 3>;
 Vec3 cie_xyz(float lambda);
 // D65's relative power at `lambda` (100 at 560 nm; linear between samples, 0 outside).
 float d65(float lambda);
+// D65 scaled to luminance 1 (Y = 1 through to_xyz): the illuminant RgbSpectrum multiplies by.
+float d65_luminance_1(float lambda);
+SampledSpectrum d65_luminance_1(const std::array<float, kSpectrumSamples>& lambda);
 
 // The XYZ the film adds for one path: (1/n) sum_i L(λi) (x̄, ȳ, z̄)(λi) / p(λi), over ∫ȳ (so that
 // a constant spectrum 1 has Y = 1). Wavelengths with p = 0 (terminated) add nothing.
@@ -28,13 +33,34 @@ Rgb to_srgb(const SampledSpectrum& L, const SampledWavelengths& w);
 // for any f (a BSDF's value at those wavelengths), computed once for many f (SPPM's photons meet
 // many visible points).
 struct ColourWeights {
-    std::array<Rgb, kSpectrumSamples> w;
+    // Row c holds channel c of the four wavelengths' colours (lanes = wavelengths), so that of()
+    // is three products and a horizontal sum in SSE registers (SPPM and VCM run it per photon and
+    // point met).
+    alignas(16) std::array<std::array<float, kSpectrumSamples>, 3> rows{};
     Rgb of(const SampledSpectrum& f) const {
-        Rgb c(0.0f);
-        for (int i = 0; i < kSpectrumSamples; ++i) c += w[size_t(i)] * f[i];
-        return c;
+        static_assert(kSpectrumSamples == 4);
+        const __m128 v = _mm_loadu_ps(f.v.data());
+        const __m128 r = _mm_mul_ps(_mm_load_ps(rows[0].data()), v);
+        const __m128 g = _mm_mul_ps(_mm_load_ps(rows[1].data()), v);
+        const __m128 b = _mm_mul_ps(_mm_load_ps(rows[2].data()), v);
+        return horizontal_sums(r, g, b);
     }
-    Rgb total() const { return w[0] + w[1] + w[2] + w[3]; }
+    Rgb total() const {
+        return horizontal_sums(_mm_load_ps(rows[0].data()), _mm_load_ps(rows[1].data()),
+                               _mm_load_ps(rows[2].data()));
+    }
+    Rgb at(int i) const { return {rows[0][size_t(i)], rows[1][size_t(i)], rows[2][size_t(i)]}; }
+
+private:
+    // (Σ r, Σ g, Σ b) over the lanes, each summed as (l0 + l2) + (l1 + l3).
+    static Rgb horizontal_sums(__m128 r, __m128 g, __m128 b) {
+        const __m128 rg = _mm_add_ps(_mm_unpacklo_ps(r, g), _mm_unpackhi_ps(r, g));  // r01 g01 r23 g23
+        const __m128 bb = _mm_add_ps(_mm_unpacklo_ps(b, b), _mm_unpackhi_ps(b, b));  // b02 b02 b13 b13
+        alignas(16) float x[4], y[4];
+        _mm_store_ps(x, rg);
+        _mm_store_ps(y, bb);
+        return {x[0] + x[2], x[1] + x[3], y[0] + y[2]};
+    }
 };
 ColourWeights colour_weights(const SampledSpectrum& L, const SampledWavelengths& w);
 

@@ -108,8 +108,17 @@ public:
     static uint16_t code_of(float u) { return uint16_t(std::fmin(u, 0.99999994f) * float(kWavelengthCodes)); }
     // The tabulated density at `lambda` (what visible() samples with).
     static float visible_sampling_pdf(float lambda);
+    // Wavelengths with these values and density 1 each: where spectra are only evaluated (a BSDF
+    // at a photon's wavelengths), never for an estimate's division by the densities.
+    static SampledWavelengths at_values(const std::array<float, kSpectrumSamples>& lambda) {
+        SampledWavelengths w;
+        w.lambda_ = lambda;
+        w.pdf_.fill(1.0f);
+        return w;
+    }
 
     float operator[](int i) const { return lambda_[size_t(i)]; }
+    const std::array<float, kSpectrumSamples>& lambdas() const { return lambda_; }
     float pdf(int i) const { return pdf_[size_t(i)]; }
     SampledSpectrum pdf() const {
         SampledSpectrum p;

@@ -33,7 +33,7 @@ SpectralStat irradiance(const Light& light, Vec3 x, Vec3 n, int N, uint64_t seed
 }
 
 // What a light of RGB colour L emits at kLambda, times `factor` (a closed form per unit radiance).
-Spectrum emitted(float L, double factor = 1) { return spectral::illuminant(Rgb(L), kLambda) * float(factor); }
+Spectrum emitted(float L, double factor = 1) { return spectral::emitted(Rgb(L), kLambda) * float(factor); }
 
 std::vector<Vec3> world_vertices(const scene::Shape& s) {
     std::vector<Vec3> v;

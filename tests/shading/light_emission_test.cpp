@@ -52,7 +52,7 @@ std::vector<Case> cases() {
 TEST(AreaLightEmission, MeanWeightIsPowerAndPowerIsPiLA) {
     const Rgb L(2, 1, 0.5f);
     const Wavelengths& lambda = spectral::fixed_lambda();
-    const Spectrum Le = spectral::illuminant(L, lambda);  // what the light emits at `lambda`
+    const Spectrum Le = spectral::emitted(L, lambda);  // what the light emits at `lambda`
     int seed = 0;
     for (const Case& c : cases()) {
         const AreaLight light(test::area_light_record(L, c.two_sided), c.shape);

@@ -76,7 +76,7 @@ TEST(AreaLightPdf, SampledConePointsLieOnTheVisibleCap) {
     const Vec3 ref{3, 2.5f, 2};
     Sampler rng(8);
     const Wavelengths& lambda = spectral::fixed_lambda();
-    const Spectrum white = spectral::illuminant(Rgb(1.0f), lambda);  // RGB white read as an illuminant
+    const Spectrum white = spectral::emitted(Rgb(1.0f), lambda);  // RGB white read as an illuminant
     for (int i = 0; i < 2000; ++i) {
         const LightLiSample ls = s.sample_Li(ref, rng.next2(), lambda);
         ASSERT_NEAR(length(ls.p_light - c), 0.7f, 1e-4f);

@@ -20,7 +20,7 @@ using test::SpectralStat;
 const Wavelengths& kLambda = spectral::fixed_lambda();
 
 // What a light of RGB colour c emits at kLambda.
-Spectrum emitted(Rgb c) { return spectral::illuminant(c, kLambda); }
+Spectrum emitted(Rgb c) { return spectral::emitted(c, kLambda); }
 
 scene::Light point_record(Vec3 p, Rgb I) {
     scene::Light l;

@@ -124,7 +124,7 @@ TEST(LightSet, BadReferencesAndNonPhysicalAttenuation) {
     log::set_quiet(false);
     // The default colour, RGB white, read as an illuminant: I(lambda) / d^2 without the .scn terms.
     const Wavelengths& lambda = spectral::fixed_lambda();
-    const Spectrum I = spectral::illuminant(Rgb(1.0f), lambda);
+    const Spectrum I = spectral::emitted(Rgb(1.0f), lambda);
     EXPECT_TRUE(spectral::spectra_near(physical[0].sample_Li({0, 2, 0}, {}, lambda).L, I * 0.25f, 1e-6));
     const LightSet legacy(t, unit_bounds(), {.legacy_attenuation = true});
     EXPECT_TRUE(spectral::spectra_near(legacy[0].sample_Li({0, 2, 0}, {}, lambda).L, I, 1e-6));

@@ -10,6 +10,7 @@
 
 #include "core/vec.h"
 #include "spectrum/color.h"
+#include "spectrum/dense_spectrum.h"
 #include "spectrum/rgb_spectrum.h"
 #include "spectrum/sampled_spectrum.h"
 
@@ -40,6 +41,11 @@ inline Spectrum unbounded(Rgb c, const Wavelengths& w) {
 }
 inline Spectrum illuminant(Rgb c, const Wavelengths& w) {
     return RgbSpectrum(c, RgbSpectrum::Use::Illuminant).sample(w);
+}
+// What a light of colour c emits at w: the illuminant spectrum as lights hold it, tabulated at
+// every nanometre (spectrum::DenseSpectrum).
+inline Spectrum emitted(Rgb c, const Wavelengths& w) {
+    return spectrum::DenseSpectrum(spectrum::Distribution::rgb(c, RgbSpectrum::Use::Illuminant)).sample(w);
 }
 
 inline std::string describe(const Spectrum& s) {
