@@ -1,8 +1,6 @@
 // Conductors' and oxides' measured optical constants as pbrt-v4 scenes name them
-// ("metal-Au-eta" / "metal-Au-k" for Ag, Al, Au, Cu, MgO, TiO2): the complex index η + ik over
-// wavelength, tabulated (named_metals_data.cpp has the sources) and interpolated linearly.
-// Brass (pbrt-v4's "metal-CuZn-*") is not among them: the public-domain database they come from
-// has no brass.
+// ("metal-Au-eta" / "metal-Au-k" for Ag, Al, Au, Cu, CuZn, MgO, TiO2): the complex index η + ik
+// over wavelength, tabulated (named_metals_data.cpp has the sources) and interpolated linearly.
 #pragma once
 
 #include <optional>

@@ -1,9 +1,9 @@
 // Measured optical constants of the named metals and oxides (see named_metals.h), from the
 // refractiveindex.info database (public domain, CC0): the tabulated points that cover [360, 830]
-// nm (one beyond each end) for Ag, Au, Cu (Johnson & Christy 1972) and Al (Rakic 1995); MgO
-// (Stephens & Malitson 1952) and TiO2 (rutile, ordinary ray, Devore 1951) from their dispersion
-// formulas at every 10 nm, with k = 0 (Devore's formula is fitted from 430 nm: below it the
-// table extrapolates it).
+// nm (one beyond each end) for Ag, Au, Cu (Johnson & Christy 1972), Al (Rakic 1995) and brass
+// (Querry 1985); MgO (Stephens & Malitson 1952) and TiO2 (rutile, ordinary ray, Devore 1951) from
+// their dispersion formulas at every 10 nm, with k = 0 (Devore's formula is fitted from 430 nm:
+// below it the table extrapolates it).
 #include "spectrum/named_metals.h"
 
 namespace phos::spectrum {
@@ -43,6 +43,24 @@ const OpticalConstant kCu[] = {
     {495.9f, 1.22f, 2.564f}, {520.9f, 1.18f, 2.608f}, {548.6f, 1.02f, 2.577f}, {582.1f, 0.7f, 2.704f},
     {616.8f, 0.3f, 3.205f},  {659.5f, 0.22f, 3.747f}, {704.5f, 0.21f, 4.205f}, {756.0f, 0.24f, 4.665f},
     {821.1f, 0.26f, 5.18f},  {892.0f, 0.3f, 5.768f},
+};
+
+// CuZn (brass, 70 % Cu and 30 % Zn): M. R. Querry, "Optical constants", Contractor Report
+// CRDC-CR-85034 (1985); lambda (nm), eta, k at every 10 nm (pbrt-v4's "metal-CuZn-*" data).
+const OpticalConstant kCuZn[] = {
+    {350.0f, 1.504f, 1.815f}, {360.0f, 1.503f, 1.815f}, {370.0f, 1.497f, 1.818f}, {380.0f, 1.487f, 1.818f},
+    {390.0f, 1.471f, 1.813f}, {400.0f, 1.445f, 1.805f}, {410.0f, 1.405f, 1.794f}, {420.0f, 1.35f, 1.786f},
+    {430.0f, 1.278f, 1.784f}, {440.0f, 1.191f, 1.797f}, {450.0f, 1.094f, 1.829f}, {460.0f, 0.994f, 1.883f},
+    {470.0f, 0.9f, 1.957f},   {480.0f, 0.816f, 2.046f}, {490.0f, 0.745f, 2.145f}, {500.0f, 0.686f, 2.25f},
+    {510.0f, 0.639f, 2.358f}, {520.0f, 0.602f, 2.464f}, {530.0f, 0.573f, 2.568f}, {540.0f, 0.549f, 2.668f},
+    {550.0f, 0.527f, 2.765f}, {560.0f, 0.505f, 2.86f},  {570.0f, 0.484f, 2.958f}, {580.0f, 0.468f, 3.059f},
+    {590.0f, 0.46f, 3.159f},  {600.0f, 0.45f, 3.253f},  {610.0f, 0.452f, 3.345f}, {620.0f, 0.449f, 3.434f},
+    {630.0f, 0.445f, 3.522f}, {640.0f, 0.444f, 3.609f}, {650.0f, 0.444f, 3.695f}, {660.0f, 0.445f, 3.778f},
+    {670.0f, 0.444f, 3.86f},  {680.0f, 0.444f, 3.943f}, {690.0f, 0.445f, 4.025f}, {700.0f, 0.446f, 4.106f},
+    {710.0f, 0.448f, 4.186f}, {720.0f, 0.45f, 4.266f},  {730.0f, 0.452f, 4.346f}, {740.0f, 0.455f, 4.424f},
+    {750.0f, 0.457f, 4.501f}, {760.0f, 0.458f, 4.579f}, {770.0f, 0.46f, 4.657f},  {780.0f, 0.464f, 4.737f},
+    {790.0f, 0.469f, 4.814f}, {800.0f, 0.473f, 4.89f},  {810.0f, 0.478f, 4.965f}, {820.0f, 0.481f, 5.039f},
+    {830.0f, 0.483f, 5.115f}, {840.0f, 0.486f, 5.192f},
 };
 
 // MgO: R. E. Stephens and I. H. Malitson, J. Res. NBS 49, 249 (1952); lambda (nm), eta, k.
@@ -85,6 +103,7 @@ const std::vector<NamedMetal>& named_metals() {
         {"Al", std::vector<OpticalConstant>(std::begin(kAl), std::end(kAl))},
         {"Au", std::vector<OpticalConstant>(std::begin(kAu), std::end(kAu))},
         {"Cu", std::vector<OpticalConstant>(std::begin(kCu), std::end(kCu))},
+        {"CuZn", std::vector<OpticalConstant>(std::begin(kCuZn), std::end(kCuZn))},
         {"MgO", std::vector<OpticalConstant>(std::begin(kMgO), std::end(kMgO))},
         {"TiO2", std::vector<OpticalConstant>(std::begin(kTiO2), std::end(kTiO2))},
     };

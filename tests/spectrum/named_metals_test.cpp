@@ -1,6 +1,6 @@
 // Tests of the named metals (spectrum/named_metals.h): the tables interpolate through their
 // points, cover the visible range, and give each metal its colour at normal incidence (gold and
-// copper reflect red far more than blue, silver and aluminium are bright and nearly flat); the
+// copper (and brass) reflect red far more than blue, silver and aluminium are bright and nearly flat); the
 // oxides' indices match their dispersion formulas at 550 nm; pbrt-v4's names find them.
 #include "spectrum/named_metals.h"
 
@@ -29,13 +29,18 @@ TEST(NamedMetals, TablesCoverTheVisibleAndInterpolateThroughTheirPoints) {
 
 TEST(NamedMetals, EachHasItsColourAtNormalIncidence) {
     const auto R = [](const char* name, float l) { return named_metal(name)->normal_reflectance(l); };
-    for (const char* name : {"Au", "Cu", "Ag", "Al"})
+    for (const char* name : {"Au", "Cu", "CuZn", "Ag", "Al"})
         std::printf("[ measured ] %s: R(450) %.3f, R(550) %.3f, R(650) %.3f\n", name, R(name, 450),
                     R(name, 550), R(name, 650));
     EXPECT_GT(R("Au", 650), 0.9f);
     EXPECT_LT(R("Au", 450), 0.45f);
     EXPECT_GT(R("Cu", 650), 0.9f);
     EXPECT_LT(R("Cu", 450), 0.65f);
+    // Brass (Querry's Cu70Zn30, η 0.527 and k 2.765 at 550 nm): yellow, between gold and silver.
+    EXPECT_FLOAT_EQ(named_metal("CuZn")->eta(550), 0.527f);
+    EXPECT_FLOAT_EQ(named_metal("CuZn")->k(550), 2.765f);
+    EXPECT_GT(R("CuZn", 650), 0.85f);
+    EXPECT_LT(R("CuZn", 450), 0.6f);
     for (const char* name : {"Ag", "Al"}) {
         EXPECT_GT(R(name, 450), 0.85f) << name;
         EXPECT_NEAR(R(name, 450), R(name, 650), 0.06f) << name;
@@ -54,7 +59,7 @@ TEST(NamedMetals, PbrtNamesFindThem) {
     EXPECT_EQ(named_metal("metal-Au-eta")->name, "Au");
     EXPECT_EQ(named_metal("metal-Cu-k")->name, "Cu");
     EXPECT_EQ(named_metal("Ag")->name, "Ag");
-    EXPECT_FALSE(named_metal("metal-CuZn-eta").has_value());
+    EXPECT_EQ(named_metal("metal-CuZn-eta")->name, "CuZn");
     EXPECT_FALSE(named_metal("metal-Xx-k").has_value());
 }
 

@@ -62,8 +62,6 @@ std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::strin
         if (!p->strings.empty()) {
             const std::string& n = p->strings[0];
             if (const auto named = named_spectrum_rgb(n, use)) {
-                if (n.rfind("stdillum-F", 0) == 0)
-                    warn_once("spectrum " + n, p->loc, "spectrum \"" + n + "\" is approximated as white");
                 if (spectrum_out) {
                     if (illuminant) {
                         if (const auto d = named_illuminant(n)) *spectrum_out = luminance_1(*d);

@@ -12,6 +12,7 @@
 #include "spectrum/dispersion.h"
 #include "spectrum/named_metals.h"
 #include "spectrum/piecewise_linear.h"
+#include "spectrum/standard_illuminants.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -57,6 +58,13 @@ std::optional<float> glass_index(const std::string& name) {
     return std::nullopt;
 }
 
+// pbrt-v4's names for the standard illuminants other than D65 ("stdillum-A", "stdillum-F11",
+// "illum-acesD60"); nullopt for any other name.
+std::optional<spectrum::StandardIlluminant> standard_illuminant_of(const std::string& name) {
+    if (name.rfind("stdillum-", 0) != 0 && name != "illum-acesD60") return std::nullopt;
+    return spectrum::standard_illuminant(name);
+}
+
 }  // namespace
 
 Rgb blackbody_rgb(float kelvin) {
@@ -90,10 +98,8 @@ std::optional<Rgb> named_spectrum_rgb(const std::string& name, SpectrumUse use) 
     // serves for any use, since pbrt normalises emission spectra to 1 nit anyway.
     (void)use;
     if (name == "stdillum-D65") return Rgb(1.0f);
-    if (name == "stdillum-A") return blackbody_rgb(2856.0f);
-    if (name == "stdillum-D50") return blackbody_rgb(5003.0f);  // D50 is close to a 5003 K Planckian
-    if (name == "illum-acesD60") return blackbody_rgb(6000.0f);
-    if (name.rfind("stdillum-F", 0) == 0) return Rgb(1.0f);  // fluorescent lamps: white approximation
+    if (const auto s = standard_illuminant_of(name))
+        return sampled_spectrum_rgb(s->wavelengths(), s->value, SpectrumUse::Illuminant);
     return std::nullopt;
 }
 
@@ -119,10 +125,8 @@ std::optional<spectrum::Distribution> named_illuminant(const std::string& name) 
         return Distribution::tabulated(std::move(lambda), std::move(value));
     }();
     if (name == "stdillum-D65") return d65;
-    if (name == "stdillum-A") return Distribution::blackbody(2856.0f);
-    if (name == "stdillum-D50") return Distribution::blackbody(5003.0f);
-    if (name == "illum-acesD60") return Distribution::blackbody(6000.0f);
-    if (name.rfind("stdillum-F", 0) == 0) return d65;  // fluorescent lamps: white approximation
+    if (const auto s = standard_illuminant_of(name))
+        return Distribution::tabulated(s->wavelengths(), s->value);
     return std::nullopt;
 }
 

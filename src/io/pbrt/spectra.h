@@ -38,13 +38,13 @@ std::optional<float> named_spectrum_value(const std::string& name);
 // sRGB is the Illuminant colour above); the constant 0 when its luminance is not positive.
 spectrum::Distribution luminance_1(const spectrum::Distribution& d);
 // pbrt-v4's named illuminants as the spectra whose colours named_spectrum_rgb gives (not yet
-// normalised): "stdillum-D65" the CIE D65 table; "stdillum-A", "stdillum-D50" and "illum-acesD60"
-// Planckians of 2856 K, 5003 K and 6000 K; the fluorescent "stdillum-F*" D65 (white). nullopt for
-// other names.
+// normalised): "stdillum-D65" the CIE D65 table; "stdillum-A", "stdillum-D50", the fluorescent
+// "stdillum-F1" to "stdillum-F12" and "illum-acesD60" their tables (spectrum/
+// standard_illuminants.h). nullopt for other names.
 std::optional<spectrum::Distribution> named_illuminant(const std::string& name);
 // The measured spectra of pbrt-v4's named metals ("metal-Au-eta", "metal-Au-k": spectrum/
-// named_metals.h's tables) and glasses ("glass-BK7": the Sellmeier index); nullopt for other names
-// and for the metals phos has no measured data of ("metal-CuZn-*", RGB only).
+// named_metals.h's tables) and glasses ("glass-BK7": the Sellmeier index); nullopt for other
+// names.
 std::optional<spectrum::Distribution> named_material_spectrum(const std::string& name);
 
 }  // namespace phos::io::pbrt

@@ -12,6 +12,7 @@
 #include "spectrum/color.h"
 #include "spectrum/dispersion.h"
 #include "spectrum/named_metals.h"
+#include "spectrum/standard_illuminants.h"
 
 namespace phos::io::test {
 namespace {
@@ -108,11 +109,11 @@ TEST(PbrtSpectralLights, NamedIlluminantsInlineListsAndSpdFiles) {
     for (size_t i = 0; i < l.scene.lights.size(); ++i)
         expect_spectrum_is_colour(l.scene.lights[i], "light " + std::to_string(i));
     EXPECT_EQ(l.scene.lights[0].color, Rgb(4.0f));  // D65 is the sRGB white
-    // stdillum-A: a 2856 K Planckian of luminance 1.
-    const spectrum::Blackbody a(2856);
+    // stdillum-A: the CIE table (spectrum/standard_illuminants.h), scaled to luminance 1.
+    const auto a = spectrum::standard_illuminant("A");
     const spectrum::Distribution& A = *l.scene.lights[1].spectrum;
     EXPECT_NEAR(A.xyz().y, 1.0f, 1e-4f);
-    EXPECT_NEAR(A(450) / A(650), a(450) / a(650), 1e-4f);
+    EXPECT_NEAR(A(450) / A(650), a->value[30] / a->value[70], 1e-5f);  // 450 and 650 nm
     // The inline list and the file are the same table: linear between the points, luminance 3.
     for (size_t i : {2u, 3u}) {
         const spectrum::Distribution& s = *l.scene.lights[i].spectrum;
@@ -172,9 +173,8 @@ TEST(PbrtSpectralMaterials, NamedMetalsKeepTheirMeasuredEtaAndK) {
     EXPECT_FALSE(mixed.conductor_eta_spectrum.has_value());
     ASSERT_TRUE(mixed.conductor_k_spectrum.has_value());
     EXPECT_FLOAT_EQ((*mixed.conductor_k_spectrum)(550), 3.5f);
-    // Brass has no measured data in phos: RGB only.
-    EXPECT_FALSE(material_of(l, 4).conductor_eta_spectrum.has_value());
-    EXPECT_FALSE(material_of(l, 4).conductor_k_spectrum.has_value());
+    expect_table(material_of(l, 4).conductor_eta_spectrum, "CuZn", true);
+    expect_table(material_of(l, 4).conductor_k_spectrum, "CuZn", false);
     // eta given, k defaulted: aluminium's eta with copper's k, as pbrt-v4 reads it.
     expect_table(material_of(l, 5).conductor_eta_spectrum, "Al", true);
     expect_table(material_of(l, 5).conductor_k_spectrum, "Cu", false);
