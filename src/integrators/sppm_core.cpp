@@ -182,8 +182,10 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
         });
     };
     tbb::parallel_for(uint64_t(0), blocks, [&](uint64_t blk) {
-        std::vector<PendingHit>& hits = pending_[blk];
+        std::vector<PendingHit>& hits = pending_[blk].hits;
+        std::vector<ArrivalColour>& colours = pending_[blk].colours;
         hits.clear();
+        colours.clear();
         LocalSlot* local = nullptr;
         const uint64_t block_first = first + blk * kBlock;
         // Photon block_first + j's visitor (16 photons in flight where only surfaces stop them).
@@ -207,12 +209,9 @@ uint64_t PhotonAccumulator::trace_chunk(const Prepared& P, const std::vector<Vis
             // Surface photons wait for the binned gather.
             const auto on_surface = [&, idx](const photon::PhotonHit& h) {
                 if (h.bounces == 0) return;  // direct light: shadow rays at the visible points
-                hits.push_back({{spectrum::colour_weights(h.power, h.lambda), h.lambda.lambdas()},
-                                h.hit.p,
-                                0,
-                                {h.wi, h.bounces}});
-                if (trace_count_)
-                    record(idx, h.hit.p, -1, h.wi, hits.back().colour.power, h.lambda, h.bounces);
+                hits.push_back({h.hit.p, 0, {h.wi, h.bounces}});
+                colours.push_back({spectrum::colour_weights(h.power, h.lambda), h.lambda.lambdas()});
+                if (trace_count_) record(idx, h.hit.p, -1, h.wi, colours.back().power, h.lambda, h.bounces);
             };
             return photon::Visitor{on_surface, on_volume};
         };
@@ -232,10 +231,10 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
     const uint32_t buckets = grid.bucket_count(level);
     bin_start_.assign(size_t(buckets) + 1, 0);
     tbb::parallel_for(size_t(0), pending_blocks_, [&](size_t blk) {
-        for (PendingHit& h : pending_[blk]) h.bucket = grid.bucket_of(level, h.p);
+        for (PendingHit& h : pending_[blk].hits) h.bucket = grid.bucket_of(level, h.p);
     });
     for (size_t blk = 0; blk < pending_blocks_; ++blk)
-        for (const PendingHit& h : pending_[blk])
+        for (const PendingHit& h : pending_[blk].hits)
             if (h.bucket != photon::HitPointGrid::kNoBucket) ++bin_start_[h.bucket + 1];
     for (uint32_t b = 0; b < buckets; ++b) bin_start_[b + 1] += bin_start_[b];
     const size_t binned = bin_start_[buckets];
@@ -243,15 +242,23 @@ void PhotonAccumulator::gather_level(const std::vector<VisiblePoint>& vps, const
     bin_direction_.resize(binned);
     bin_colour_.resize(binned);
     {
+        // Each hit's place in bucket order (serial: the order is the hits'), then the moves in
+        // parallel (a hit's bucket field now holds its place).
         std::vector<uint32_t> fill(bin_start_.begin(), bin_start_.end() - 1);
         for (size_t blk = 0; blk < pending_blocks_; ++blk)
-            for (const PendingHit& h : pending_[blk]) {
+            for (PendingHit& h : pending_[blk].hits)
+                if (h.bucket != photon::HitPointGrid::kNoBucket) h.bucket = fill[h.bucket]++;
+        tbb::parallel_for(size_t(0), pending_blocks_, [&](size_t blk) {
+            const PendingBlock& block = pending_[blk];
+            for (size_t j = 0; j < block.hits.size(); ++j) {
+                const PendingHit& h = block.hits[j];
                 if (h.bucket == photon::HitPointGrid::kNoBucket) continue;
-                const uint32_t to = fill[h.bucket]++;
+                const uint32_t to = h.bucket;
                 bin_x_[to] = h.p.x, bin_y_[to] = h.p.y, bin_z_[to] = h.p.z;
                 bin_direction_[to] = h.direction;
-                bin_colour_[to] = h.colour;
+                bin_colour_[to] = block.colours[j];
             }
+        });
     }
     // Each bucket's entries against its hits: a point's sums are added up in registers and
     // written once per bucket, and the bucket's entries are read once for all its hits.

@@ -111,8 +111,8 @@ public:
     // assumed), each held pending and again binned.
     static double pending_bytes(uint64_t photons_per_pass) {
         return double(std::min(photons_per_pass, kChunk)) * 2 *
-               double(sizeof(PendingHit) + 3 * sizeof(float) + sizeof(ArrivalDirection) +
-                      sizeof(ArrivalColour));
+               double(sizeof(PendingHit) + sizeof(ArrivalColour) + 3 * sizeof(float) +
+                      sizeof(ArrivalDirection) + sizeof(ArrivalColour));
     }
     // --trace-pixel: the photons slots [first, first + count) gather also go to `trace`.
     void record(PathRecorder* trace, size_t first, size_t count) {
@@ -134,10 +134,14 @@ private:
     };
     // A photon's surface hit after at least one bounce, waiting for the binned gather.
     struct PendingHit {
-        ArrivalColour colour;
         Vec3 p;
         uint32_t bucket = 0;  // in the grid level being gathered
         ArrivalDirection direction;
+    };
+    // A block's pending hits: what binning reads (32 bytes a hit) apart from the colours it moves.
+    struct PendingBlock {
+        std::vector<PendingHit> hits;
+        std::vector<ArrivalColour> colours;
     };
     // Photons are traced in chunks (bounding the pending hits' memory), in blocks of kBlock.
     static constexpr uint64_t kChunk = uint64_t(1) << 19, kBlock = 4096;
@@ -159,7 +163,7 @@ private:
             q[k] = _mm_cvtsd_si64(_mm_set_sd(std::clamp(double(c[k]) * scale, -0x1p52, 0x1p52)));
         return true;
     }
-    std::vector<std::vector<PendingHit>> pending_;  // per block of the chunk
+    std::vector<PendingBlock> pending_;  // per block of the chunk
     size_t pending_blocks_ = 0;
     // The chunk's hits in bucket order: positions (one array per axis) and the rest.
     std::vector<float> bin_x_, bin_y_, bin_z_;
