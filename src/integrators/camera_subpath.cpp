@@ -250,8 +250,7 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
             const MergeVertex& l = lights[i];
             const float cos_i = dot(l.wo, ns) * side;
             if (l.length > max_length || !(dot(l.wo, ng) * side > 0) || !(cos_i > 0)) return;
-            const Wavelengths lambda = l.wavelengths();
-            add(l, kd.sample(lambda) * kInvPi, cos_i * kInvPi, pdf_rev);
+            add(l, kd.sample(l.lambda) * kInvPi, cos_i * kInvPi, pdf_rev);
         });
         return;
     }

@@ -59,10 +59,10 @@ struct MergeVertex {
     int length;
     Part part;      // part_at_first_vertex
     uint32_t path;  // the light subpath it belongs to: the order every rank count agrees on
-    // Its subpath's wavelengths (SampledWavelengths::from_code).
-    uint16_t lambda_code = 0;
-    bool lambda_terminated = false;
-    Wavelengths wavelengths() const { return Wavelengths::from_code(lambda_code, lambda_terminated); }
+    // Its subpath's wavelengths, the values only: merging evaluates the camera vertex's BSDF there
+    // (the densities are in beta's colours already).
+    std::array<float, spectrum::kSpectrumSamples> lambda{};
+    Wavelengths wavelengths() const { return Wavelengths::at_values(lambda); }
 };
 
 // Light arriving at light vertex `l`, seen at the camera's first vertex x1 = l.

@@ -81,7 +81,7 @@ public:
                         if (v.mergeable)
                             mergeable.push_back({v.p, v.wo, spectrum::colour_weights(v.beta, v.lambda), v.mis,
                                                  v.length, part_at_first_vertex(v), uint32_t(i),
-                                                 v.lambda.code(), v.lambda.secondary_terminated()});
+                                                 v.lambda.lambdas()});
                     }
                 }
                 if (i < pixels_) end_[i] = uint32_t(kept.size());
