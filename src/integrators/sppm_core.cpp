@@ -80,6 +80,15 @@ Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi
     return power.of(vp.bsdf->eval(vp.wo, wi, lambda));
 }
 
+// Bsdf::eval of a Lambert lobe times the photon's power: kd/π for wi on wo's side of ng and ns,
+// kd at the photon's wavelengths `lambda`. (Always inlined: the gather's innermost loop runs it.)
+[[gnu::always_inline]] inline Rgb lambert_contribution(
+    const GatherPoint& g, Vec3 wi, const spectrum::ColourWeights& power,
+    const std::array<float, spectrum::kSpectrumSamples>& lambda) {
+    return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? power.of(g.kd.sample(lambda)) * float(1 / M_PI)
+                                                  : Rgb(0.0f);
+}
+
 // What a photon arriving along wi with `power` at its wavelengths `lambda` after `bounces` adds to
 // point i's sums, as colour (f(wo, wi) × power; phase(wo, wi) × power for a volume point: the BSDF
 // at the photon's own wavelengths), or black when it adds nothing. Small, so the gather's loop
@@ -87,9 +96,7 @@ Rgb contribution_evaluated(const GatherPoint& g, const VisiblePoint& vp, Vec3 wi
 inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volume_photon, Vec3 wi,
                         const spectrum::ColourWeights& power, const Wavelengths& lambda, int bounces) {
     if (bounces > g.max_bounces || (g.kind == GatherPoint::kVolume) != volume_photon) return Rgb(0.0f);
-    if (g.kind == GatherPoint::kLambert)  // Bsdf::eval of a Lambert lobe: kd/π for wi on wo's side
-        return dot(wi, g.ng) > 0 && dot(wi, g.ns) > 0 ? power.of(g.kd.sample(lambda)) * float(1 / M_PI)
-                                                      : Rgb(0.0f);
+    if (g.kind == GatherPoint::kLambert) return lambert_contribution(g, wi, power, lambda.lambdas());
     return contribution_evaluated(g, vp, wi, power, lambda);
 }
 // The same for a binned surface arrival (the BSDF only evaluated at its wavelengths' values); the
@@ -97,10 +104,7 @@ inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, bool volum
 inline Rgb contribution(const GatherPoint& g, const VisiblePoint& vp, const ArrivalDirection& d,
                         const ArrivalColour& c) {
     if (d.bounces > g.max_bounces || g.kind == GatherPoint::kVolume) return Rgb(0.0f);
-    if (g.kind == GatherPoint::kLambert)
-        return dot(d.wi, g.ng) > 0 && dot(d.wi, g.ns) > 0
-                   ? c.power.of(g.kd.sample(c.lambda)) * float(1 / M_PI)
-                   : Rgb(0.0f);
+    if (g.kind == GatherPoint::kLambert) return lambert_contribution(g, d.wi, c.power, c.lambda);
     return contribution_evaluated(g, vp, d.wi, c.power, Wavelengths::at_values(c.lambda));
 }
 }  // namespace

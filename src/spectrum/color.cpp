@@ -99,20 +99,20 @@ inline __m128 matching_at(const MatchingTable& t, float lambda) {
     return _mm_add_ps(a, _mm_mul_ps(f, _mm_sub_ps(b, a)));
 }
 
-}  // namespace
-
-float d65_luminance_1(float lambda) {
-    const __m128 r = matching_at(matching_table(), lambda);
+// The table's D65 (luminance 1) at `lambda`: its row's last lane.
+inline float d65_at(const MatchingTable& t, float lambda) {
+    const __m128 r = matching_at(t, lambda);
     return _mm_cvtss_f32(_mm_shuffle_ps(r, r, _MM_SHUFFLE(3, 3, 3, 3)));
 }
+
+}  // namespace
+
+float d65_luminance_1(float lambda) { return d65_at(matching_table(), lambda); }
 
 SampledSpectrum d65_luminance_1(const std::array<float, kSpectrumSamples>& w) {
     const MatchingTable& t = matching_table();
     SampledSpectrum s;
-    for (int i = 0; i < kSpectrumSamples; ++i) {
-        const __m128 r = matching_at(t, w[size_t(i)]);
-        s[i] = _mm_cvtss_f32(_mm_shuffle_ps(r, r, _MM_SHUFFLE(3, 3, 3, 3)));
-    }
+    for (int i = 0; i < kSpectrumSamples; ++i) s[i] = d65_at(t, w[size_t(i)]);
     return s;
 }
 

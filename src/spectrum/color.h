@@ -49,7 +49,6 @@ struct ColourWeights {
         return horizontal_sums(_mm_load_ps(rows[0].data()), _mm_load_ps(rows[1].data()),
                                _mm_load_ps(rows[2].data()));
     }
-    Rgb at(int i) const { return {rows[0][size_t(i)], rows[1][size_t(i)], rows[2][size_t(i)]}; }
 
 private:
     // (Σ r, Σ g, Σ b) over the lanes, each summed as (l0 + l2) + (l1 + l3).

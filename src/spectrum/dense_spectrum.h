@@ -5,9 +5,6 @@
 // constant; anything else differs from its source by the interpolation between nanometres only.
 #pragma once
 
-#include <immintrin.h>
-
-#include <algorithm>
 #include <array>
 
 #include "spectrum/distribution.h"
