@@ -8,7 +8,8 @@
 namespace phos::integrators::vcm {
 
 Wavelengths subpath_wavelengths(uint64_t seed, uint64_t j, uint64_t iteration) {
-    return Wavelengths::visible(Sampler(seed, 0x7761766573ULL, j, iteration).next());
+    return Wavelengths::visible(spectrum::wavelength_sequence_point(
+        uint32_t(iteration), Sampler(seed, 0x7761766573ULL, j).next_bits()));
 }
 
 Scattering evaluate(const Prepared& P, const Vertex& v, Vec3 wi, shading::TransportMode mode,

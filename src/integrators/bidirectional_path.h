@@ -78,7 +78,8 @@ struct SubpathState {
     Wavelengths lambda;
 };
 // The wavelengths of subpath j of an iteration, light or camera: pixel j's light subpath and its
-// first camera subpath draw the same.
+// first camera subpath draw the same, the hero at point `iteration` of a padded 1D sequence of
+// pixel j (core/low_discrepancy.h), so a pixel's wavelengths are stratified over the iterations.
 Wavelengths subpath_wavelengths(uint64_t seed, uint64_t j, uint64_t iteration);
 // The wavelengths a connection of a camera and a light subpath at the same wavelengths counts:
 // the camera's, with the secondary ones terminated if either subpath terminated them.

@@ -461,7 +461,9 @@ void render_pixel(const Prepared& P, const Iteration& it, const LightVertexGrid*
         const Vec2 jitter = padded_point2(C.sample, hash_combine(key, 1));
         const Vec2 lens = padded_point2(C.sample, hash_combine(key, 2));
         const Wavelengths lambda =
-            j == 0 ? subpath_wavelengths(ro.seed, i, iteration) : Wavelengths::visible(s.next());
+            j == 0
+                ? subpath_wavelengths(ro.seed, i, iteration)
+                : Wavelengths::visible(spectrum::wavelength_sequence_point(C.sample, hash_combine(key, 3)));
         camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, s, lambda, j == 0);
     };
     camera_sample(0, sampler);

@@ -33,19 +33,19 @@ Wavelengths estimate_wavelengths(const Wavelengths& lambda, const Spectrum& w, i
 }
 
 // The average of n light samples at a surface visible point (from the pixel's sequences with
-// `light_sequence`, else from `sampler`), times the path's throughput `w`, as colour, each at
+// `sequences`, else from `sampler`), times the path's throughput `w`, as colour, each at
 // estimate_wavelengths.
 Rgb direct_light_colour(const Prepared& P, const accel::SurfaceHit& hit, const Bsdf& bsdf, Vec3 wo, int n,
-                        const LightSampleSequence* light_sequence, Sampler& sampler,
-                        const Wavelengths& lambda, const Spectrum& w, RayCounts& rays, int medium) {
+                        const PixelSequences* sequences, Sampler& sampler, const Wavelengths& lambda,
+                        const Spectrum& w, RayCounts& rays, int medium) {
     Rgb direct(0.0f);
     for (int k = 0; k < n; ++k) {
         float u_choose;
         Vec2 u;
-        if (light_sequence) {  // sample iteration × n + k of the pixel's sequences
-            const uint32_t s = light_sequence->iteration * uint32_t(n) + uint32_t(k);
-            u_choose = padded_point1(s, hash_combine(light_sequence->key, 0));
-            u = padded_point2(s, hash_combine(light_sequence->key, 1));
+        if (sequences) {  // sample iteration × n + k of the pixel's sequences
+            const uint32_t s = sequences->iteration * uint32_t(n) + uint32_t(k);
+            u_choose = padded_point1(s, hash_combine(sequences->key, 0));
+            u = padded_point2(s, hash_combine(sequences->key, 1));
         } else {
             u_choose = sampler.next();
             u = sampler.next2();
@@ -108,10 +108,12 @@ bool follow_lobes(const Bsdf& followed, float p_estimated, const accel::SurfaceH
 }  // namespace
 
 Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
-                   RayCounts& rays, const LightSampleSequence* light_sequence) {
+                   RayCounts& rays, const PixelSequences* sequences) {
     vp.bsdf.reset();
     vp.medium = -1;
-    Wavelengths lambda = camera_wavelengths(sampler);
+    Wavelengths lambda = sequences ? camera_wavelengths(spectrum::wavelength_sequence_point(
+                                         sequences->iteration, hash_combine(sequences->key, 2)))
+                                   : camera_wavelengths(sampler);
     Rgb L(0.0f);
     Spectrum beta(1.0f);
     // Adds a contribution (at the path's wavelengths) to the path's radiance (and to the trace as
@@ -181,9 +183,9 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
             const Bsdf est = bsdf.only(split.estimated);
             const Spectrum w = beta * (1 / p_est);
             const int n = std::max(1, direct_samples);
-            add_colour(direct_light_colour(P, hit, est, wo, n, light_sequence, sampler, lambda, w, rays,
-                                           walk.medium()),
-                       TraceTerm::Light);
+            add_colour(
+                direct_light_colour(P, hit, est, wo, n, sequences, sampler, lambda, w, rays, walk.medium()),
+                TraceTerm::Light);
             stop_on_surface(hit, est, wo, w, lambda, depth, walk, vp);
             break;
         }

@@ -32,12 +32,13 @@ struct VisiblePoint {
     bool volume() const { return medium >= 0; }
 };
 
-// Light sample k of iteration i's eye path (n samples per path) as point i × n + k of two padded
-// dimensions of its pixel (core/low_discrepancy.h), keyed by `key`: the light choice (1D) and the
-// point on the light (2D). A pixel's light samples over all iterations are then one stratified
-// sequence: soft shadows converge faster than with independent samples while every iteration
-// stays unbiased.
-struct LightSampleSequence {
+// The stratified per-pixel sequences of iteration i's eye path (n light samples per path), as
+// padded dimensions of its pixel (core/low_discrepancy.h) keyed by `key`: light sample k is point
+// i × n + k of the light choice (1D) and of the point on the light (2D), the path's hero
+// wavelength point i of a third (1D). A pixel's light samples and wavelengths over all iterations
+// are then stratified sequences: soft shadows and colour converge faster than with independent
+// samples while every iteration stays unbiased.
+struct PixelSequences {
     uint32_t iteration = 0;
     uint64_t key = 0;
 };
@@ -47,9 +48,9 @@ struct LightSampleSequence {
 // between their non-specular part (visible point) and specular part (continue) at random, in
 // proportion to the lobes' albedos. Returns emission + direct light (throughput included), as
 // colour: the path draws its wavelengths first from `sampler` (render::camera_wavelengths).
-// With `light_sequence`, the light samples come from stratified per-pixel sequences instead of
-// `sampler` (see LightSampleSequence).
+// With `sequences`, the wavelengths and the light samples come from stratified per-pixel
+// sequences instead of `sampler` (see PixelSequences).
 Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samples, VisiblePoint& vp,
-                   RayCounts& rays, const LightSampleSequence* light_sequence = nullptr);
+                   RayCounts& rays, const PixelSequences* sequences = nullptr);
 
 }  // namespace phos::integrators

@@ -35,9 +35,9 @@ PilotRadius pilot_for(const ProgressiveOptions& o) {
 }
 
 // Pixel (x, y)'s eye path of iteration `it`, keyed by (seed, pixel, iteration). Its position in the
-// pixel, on the lens and its light samples are points `it` (`it` × direct_samples + k) of the
-// pixel's padded stratified sequences (core/low_discrepancy.h): over the iterations they cover the
-// pixel, the lens and the lights evenly; the rest is independent random.
+// pixel, on the lens, its wavelengths and its light samples are points `it` (`it` × direct_samples
+// + k) of the pixel's padded stratified sequences (core/low_discrepancy.h): over the iterations they
+// cover the pixel, the lens, the spectrum and the lights evenly; the rest is independent random.
 Rgb pixel_eye_path(const Prepared& P, int x, int y, uint64_t it, int direct_samples, VisiblePoint& vp,
                    RayCounts& rays) {
     const RenderOptions& ro = P.options;
@@ -48,8 +48,8 @@ Rgb pixel_eye_path(const Prepared& P, int x, int y, uint64_t it, int direct_samp
     const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
     const Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
     ++rays.camera;
-    const LightSampleSequence lights{uint32_t(it), hash_combine(key, 3)};
-    return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &lights);
+    const PixelSequences sequences{uint32_t(it), hash_combine(key, 3)};
+    return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &sequences);
 }
 
 // The eye pass of iteration `it`: one stochastic camera path per pixel of this rank's

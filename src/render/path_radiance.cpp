@@ -2,6 +2,7 @@
 #include "render/path_radiance.h"
 
 #include "render/path_recorder.h"
+#include "render/pixel_loop.h"
 #include "spectrum/color.h"
 
 namespace phos::render {
@@ -72,10 +73,15 @@ void PathRadiance::light(const Spectrum& s, bool widened) {
     add(c, Component::Indirect, false);
 }
 
-Wavelengths camera_wavelengths(Sampler& sampler) {
-    const Wavelengths lambda = Wavelengths::visible(sampler.next());
+Wavelengths camera_wavelengths(float u) {
+    const Wavelengths lambda = Wavelengths::visible(u);
     if (auto* r = recorder()) r->wavelengths(lambda);
     return lambda;
+}
+
+Wavelengths camera_wavelengths(Sampler& sampler) {
+    const float u = current_wavelength_sample();
+    return camera_wavelengths(u >= 0 ? u : sampler.next());
 }
 
 void follow_dispersion(const shading::BsdfSample& s, Wavelengths& lambda, Spectrum& beta) {

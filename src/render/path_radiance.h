@@ -70,8 +70,11 @@ private:
     Stage stage_ = Stage::Camera;
 };
 
-// The wavelengths of a camera path, drawn first from its sampler (hero wavelength, the others
-// stratified from it: sampled_spectrum.h) and recorded for --trace-pixel.
+// The wavelengths of a camera path (hero wavelength at `u`, the others stratified from it:
+// sampled_spectrum.h), recorded for --trace-pixel.
+Wavelengths camera_wavelengths(float u);
+// The same for a camera sample traced by the pixel loop: its pixel's stratified wavelength sample
+// (pixel_loop.h's current_wavelength_sample) inside render_tile_samples, else `sampler`'s next value.
 Wavelengths camera_wavelengths(Sampler& sampler);
 // After BSDF sample `s` at a vertex of a camera path: a sample through a dispersive interface
 // terminates the path's secondary wavelengths, and its throughput `beta` there.

@@ -13,9 +13,11 @@ namespace phos::render {
 
 namespace {
 constinit thread_local uint32_t t_sample_index = 0;
+constinit thread_local float t_wavelength_sample = -1;
 }  // namespace
 
 uint32_t current_sample_index() { return t_sample_index; }
+float current_wavelength_sample() { return t_wavelength_sample; }
 
 void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
                          const SampleFn& sample, RayCounts& rays) {
@@ -31,8 +33,10 @@ void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint3
                 const Ray ray = prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
                 ++rays.camera;
                 t_sample_index = s;
+                t_wavelength_sample = spectrum::wavelength_sequence_point(s, hash_combine(scramble, 0x776c));
                 sample(x, y, ray, sampler, rays);
                 t_sample_index = 0;
+                t_wavelength_sample = -1;
             }
         }
 }

@@ -51,6 +51,11 @@ void for_each_sample(const Prepared& prepared, int samples, const SampleFn& samp
 // render_tile_samples around each sample function call it makes (0 elsewhere): what schedules that
 // change with the sample count read (path regularisation, integrators/path.cpp).
 uint32_t current_sample_index();
+// The wavelength sample (in [0, 1)) of that camera sample: sample s of a padded 1D dimension of
+// its pixel (core/low_discrepancy.h), so a pixel's hero wavelengths over its samples are one
+// stratified sequence and its colour noise falls faster than with independent wavelengths; -1
+// outside render_tile_samples. render::camera_wavelengths reads it.
+float current_wavelength_sample();
 // Samples [s0, s1) of every pixel of `tile`, in pixel order, each sample's camera ray built here.
 void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint32_t s0, uint32_t s1,
                          const SampleFn& sample, RayCounts& rays);

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/low_discrepancy.h"
+
 namespace phos::spectrum {
 
 inline constexpr int kSpectrumSamples = 4;
@@ -137,6 +139,18 @@ private:
     std::array<float, kSpectrumSamples> lambda_{}, pdf_{};
     uint16_t code_ = 0;
 };
+
+// Point s of a stratified sequence of wavelength samples keyed by `key` (one per pixel), as the u of
+// SampledWavelengths::visible(u). The four wavelengths of visible(u) repeat with period 1/4 in u
+// (u and u + 1/4 give the same four, only the hero differs), so the sequence stratifies u within a
+// quarter (a padded 1D dimension: core/low_discrepancy.h) and picks the quarter, which wavelength
+// is the hero, at random: over a pixel's samples the wavelengths then cover the spectrum evenly,
+// while each sample's u stays uniform on [0, 1).
+inline float wavelength_sequence_point(uint32_t s, uint64_t key) {
+    const float v = padded_point1(s, key);
+    const uint32_t hero = uint32_t(mix64(hash_combine(key, s)) >> 62);
+    return (float(hero) + v) * 0.25f;
+}
 
 // Terminates `lambda`'s secondary wavelengths and zeroes `s` at them (a photon's power, a path's
 // throughput: what is carried on with the hero alone).

@@ -121,6 +121,36 @@ TEST(Wavelengths, CodesRebuildTheSetAndTheTabulatedDensityIsTheOneSampled) {
     }
 }
 
+// A pixel's wavelength sequence: its first 2^k points give 2^k wavelength sets that, the four of
+// each together, cover 4 × 2^k equal strata of the sampling CDF once each (what independent
+// samples leave to chance: colour noise), whichever the pixel's key; the hero's quarter is the one
+// each point falls in, uniform over the four across pixels.
+TEST(Wavelengths, APixelsSequenceCoversTheSpectrumInEqualStrata) {
+    int hero_quarters[4] = {0, 0, 0, 0};
+    for (uint64_t key = 0; key < 64; ++key) {
+        const uint64_t k = mix64(key + 99);
+        for (int log_n : {0, 2, 4, 6}) {
+            const int n = 1 << log_n;
+            std::vector<int> strata(size_t(4 * n), 0);
+            for (int s = 0; s < n; ++s) {
+                const float u = wavelength_sequence_point(uint32_t(s), k);
+                ASSERT_GE(u, 0.0f);
+                ASSERT_LT(u, 1.0f);
+                const uint16_t code = SampledWavelengths::code_of(u);
+                for (int i = 0; i < kSpectrumSamples; ++i) {
+                    const int c =
+                        (int(code) + i * (kWavelengthCodes / kSpectrumSamples)) & (kWavelengthCodes - 1);
+                    ++strata[size_t(c / (kWavelengthCodes / (4 * n)))];
+                }
+            }
+            for (size_t b = 0; b < strata.size(); ++b)
+                EXPECT_EQ(strata[b], 1) << "n " << n << " stratum " << b;
+        }
+        for (int s = 0; s < 16; ++s) ++hero_quarters[int(4 * wavelength_sequence_point(uint32_t(s), k))];
+    }
+    for (int q = 0; q < 4; ++q) EXPECT_NEAR(hero_quarters[q], 256, 64) << "quarter " << q;  // 1024 draws
+}
+
 // The film's estimate (1/n) sum L(λi) x̄(λi) / p(λi) averages to the integral: a smooth spectrum's
 // XYZ by Monte Carlo over visible wavelengths against the 1 nm sum, and the same with the
 // secondary wavelengths terminated (the hero alone, weighted n times).
