@@ -5,6 +5,7 @@
 # SHARED (the bench material), each scene with the files it names appended as "#@file" sections.
 # Usage: fuzz/make_seeds.py OUT REPO SHARED   (called by scripts/fuzz.sh)
 import glob
+import gzip
 import os
 import re
 import struct
@@ -250,6 +251,15 @@ for target, patterns in (("ply", ["scenes/**/*.ply", "bench/**/*.ply", "tests/**
                          ("obj", ["scenes/**/*.obj", "bench/**/*.obj", "tests/**/*.obj"])):
     for path in shipped(patterns):
         put(target, seed_name(path), read(path))
+
+# gzip: every PLY seed compressed (mtime 0, so the seeds are the same every run), and one as two
+# members one after the other (as `cat a.gz b.gz` makes).
+ply_dir = os.path.join(out, "ply")
+for name in sorted(os.listdir(ply_dir)):
+    data = read(os.path.join(ply_dir, name))
+    put("gzip", name + ".gz", gzip.compress(data, mtime=0))
+    if name == "ascii.ply":
+        put("gzip", "two-members.ply.gz", gzip.compress(data[:40], mtime=0) + gzip.compress(data[40:], mtime=0))
 
 # .scn and pbrt scenes: includes are appended as sections named by their base name, the main file's
 # references rewritten to match (fuzz inputs are one directory).

@@ -3,7 +3,7 @@
 # build-fuzz with clang-14 (-fsanitize=fuzzer,address,undefined), assembles the seed corpora and
 # runs each target in turn, then prints executions, coverage and findings per target.
 # Usage: scripts/fuzz.sh [--smoke] [--runs N] [SECONDS] [TARGET...]
-#   SECONDS  fuzzing time per target (default 60); TARGET: scn pbrt scene_format off ply obj image
+#   SECONDS  fuzzing time per target (default 60); TARGET: scn pbrt scene_format off ply obj gzip image
 #            volume checkpoint photon_maps (default: all). --smoke (CI): every seed plus a few seconds per target.
 #   --runs N also stops a target after N executions (whichever comes first: `--runs 10000000 3600`
 #            is the "10 M executions or one hour" campaign of docs/testing.md).
@@ -15,7 +15,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$here/build-fuzz"
 shared="${PHOS_SHARED_DIR:-$here/../shared}"
-all_targets=(scn pbrt scene_format off ply obj image volume checkpoint photon_maps)
+all_targets=(scn pbrt scene_format off ply obj gzip image volume checkpoint photon_maps)
 
 smoke=0
 seconds=60

@@ -1,4 +1,5 @@
-// Mesh-file dispatch: picks the reader from the file extension (case-insensitive).
+// Mesh-file dispatch: picks the reader from the file extension (case-insensitive; "name.ply.gz" by
+// ".ply").
 #include "io/mesh/mesh_io.h"
 
 #include <algorithm>
@@ -13,6 +14,13 @@ LoadedMesh read_mesh(const std::string& path) {
     std::string ext = std::filesystem::path(path).extension().string();
     std::transform(ext.begin(), ext.end(), ext.begin(),
                    [](unsigned char c) { return char(std::tolower(c)); });
+    // A compressed mesh (mesh.ply.gz) is read by the reader of the extension before ".gz" (each
+    // reader decompresses by the file's gzip magic).
+    if (ext == ".gz") {
+        ext = std::filesystem::path(path).stem().extension().string();
+        std::transform(ext.begin(), ext.end(), ext.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+    }
     if (ext == ".off") {
         LoadedMesh m;
         m.mesh = read_off(path);

@@ -13,6 +13,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "io/gzip/gzip_file.h"
 #include "io/mesh/mesh_io.h"
 
 namespace phos::io {
@@ -55,9 +56,9 @@ std::string trim(std::string s) {
 }  // namespace
 
 LoadedMesh read_obj(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ParseError(path, 0, 0, "cannot open OBJ file");
-    std::istringstream text(without_skin_weights(std::string(std::istreambuf_iterator<char>(in), {})));
+    std::string bytes;
+    if (!read_maybe_gzip(path, bytes)) throw ParseError(path, 0, 0, "cannot open OBJ file");
+    std::istringstream text(without_skin_weights(std::move(bytes)));
     // Material libraries are looked up beside the OBJ file, as tinyobjloader's own file loader does.
     const size_t slash = path.find_last_of('/');
     tinyobj::MaterialFileReader material_reader(slash == std::string::npos ? "" : path.substr(0, slash + 1));

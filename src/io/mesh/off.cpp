@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/format.h"
+#include "io/gzip/gzip_file.h"
 #include "io/mesh/mesh_io.h"
 
 namespace phos::io {
@@ -84,11 +85,8 @@ bool parse_count(const std::string& s, long long& out) {
 }  // namespace
 
 scene::TriangleMesh read_off(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ParseError(path, 0, 0, "cannot open OFF file");
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    const std::string bytes = ss.str();
+    std::string bytes;
+    if (!read_maybe_gzip(path, bytes)) throw ParseError(path, 0, 0, "cannot open OFF file");
     int last_line = 1;
     const std::vector<Line> lines = split_lines(path, bytes, last_line);
     const auto fail = [&](int line, int col, const std::string& msg) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/gzip/gzip_file.h"
 #include "io/mesh/mesh_io.h"
 
 namespace phos::io {
@@ -260,8 +261,9 @@ private:
 }  // namespace
 
 scene::TriangleMesh read_ply(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw ParseError(path, 0, 0, "cannot open PLY file");
+    const std::unique_ptr<std::istream> stream = open_maybe_gzip(path);  // .ply or .ply.gz
+    if (!stream) throw ParseError(path, 0, 0, "cannot open PLY file");
+    std::istream& in = *stream;
 
     // ---- header ----
     std::string line;

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "io/gzip/gzip_file.h"
 
 namespace phos::io::pbrt {
 
@@ -47,14 +48,17 @@ std::shared_ptr<const SourceFile> source_file(const std::string& path, const Loc
 
 Tokenizer::Tokenizer(const std::string& path, const Loc* included_from)
     : file_(source_file(path, included_from)) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
+    bool opened = false;
+    try {
+        opened = read_maybe_gzip(path, src_);  // a .pbrt.gz file is decompressed whole
+    } catch (ParseError& e) {                  // a corrupt stream: say where it was included
+        if (included_from) included_from->add_to(e);
+        throw;
+    }
+    if (!opened) {
         if (included_from) included_from->fail("cannot open included file '" + path + "'");
         throw ParseError(path, 0, 0, "cannot open scene file");
     }
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    src_ = ss.str();
 }
 
 const Token& Tokenizer::peek() {

@@ -9,7 +9,9 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "io/mesh/mesh_io.h"
+#include "support/gzip_writer.h"
 #include "support/mesh_writers.h"
+#include "test_util.h"
 
 namespace phos::io {
 namespace {
@@ -236,6 +238,34 @@ TEST(Obj, MissingMaterialLibraryWarns) {
     EXPECT_EQ(l.mesh.triangle_count(), 1u);
     EXPECT_GT(log::warning_count(), before);
     log::set_quiet(false);
+}
+
+// A gzip-compressed mesh (name.ply.gz, name.obj.gz, and a compressed file under its plain name) reads
+// as the uncompressed file does: same positions, normals, uvs and indices.
+TEST(MeshIo, GzippedMeshesReadAsTheUncompressedOnes) {
+    const scene::TriangleMesh m = sample_mesh(true, true);
+    for (const bool binary : {false, true}) {
+        const std::string ply = temp_dir() / (binary ? "gz_bin.ply" : "gz_ascii.ply");
+        phos::testing::write_ply(ply, m, binary);
+        const std::string packed = phos::testing::gzip_bytes(phos::testing::read_bytes(ply));
+        for (const std::string& name : {std::string(binary ? "gz_bin" : "gz_ascii") + ".ply.gz",
+                                        std::string(binary ? "gz_bin_named" : "gz_ascii_named") + ".ply"}) {
+            const scene::TriangleMesh back = read_mesh(write_file(name, packed)).mesh;
+            EXPECT_EQ(back.positions, m.positions) << name;
+            EXPECT_EQ(back.normals, m.normals) << name;
+            EXPECT_EQ(back.uvs, m.uvs) << name;
+            EXPECT_EQ(back.indices, m.indices) << name;
+        }
+    }
+    const std::string obj = temp_dir() / "gz.obj";
+    phos::testing::write_obj(obj, m);
+    const LoadedMesh plain = read_mesh(obj);
+    const LoadedMesh packed =
+        read_mesh(write_file("gz.obj.gz", phos::testing::gzip_bytes(phos::testing::read_bytes(obj))));
+    EXPECT_EQ(packed.mesh.positions, plain.mesh.positions);
+    EXPECT_EQ(packed.mesh.indices, plain.mesh.indices);
+    EXPECT_THROW(read_mesh(write_file("cut.ply.gz", phos::testing::gzip_bytes("ply\n").substr(0, 8))),
+                 ParseError);
 }
 
 }  // namespace

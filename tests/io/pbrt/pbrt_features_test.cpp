@@ -10,10 +10,13 @@
 
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 
 #include "io/pbrt/spectra.h"
 #include "pbrt_test_util.h"
 #include "spectrum/color.h"
+#include "support/gzip_writer.h"
 #include "support/mesh_writers.h"
 
 namespace phos::io::test {
@@ -284,6 +287,43 @@ TEST(PbrtShapes, PlyMeshIsReadRelativeToTheFileAndTransformed) {
     ASSERT_EQ(s.shapes.size(), 1u);
     EXPECT_EQ(s.shapes[0].mesh.triangle_count(), 2u);
     expect_vec(s.shapes[0].mesh.positions[2], {1, 1, 2});
+}
+
+// Compressed files: an Include of a .pbrt.gz file and a .ply.gz mesh load as their uncompressed
+// forms do; a damaged stream is an error at the compressed file, with the places that led to it.
+TEST(PbrtShapes, GzippedIncludesAndPlyMeshesLoadAsTheirUncompressedForms) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    scene::TriangleMesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    const std::string ply = dir.write("geo/quad.ply", "");
+    phos::testing::write_ply(ply, quad, true);
+    std::ifstream in(ply, std::ios::binary);
+    const std::string ply_bytes((std::istreambuf_iterator<char>(in)), {});
+    dir.write("geo/quad.ply.gz", phos::testing::gzip_bytes(ply_bytes));
+    const std::string part = "Translate 0 0 2\nShape \"plymesh\" \"string filename\" \"quad.ply.gz\"\n";
+    dir.write("geo/part.pbrt.gz", phos::testing::gzip_bytes(part));
+    const std::string main = dir.write("main.pbrt", "WorldBegin\nInclude \"geo/part.pbrt.gz\"\n");
+    const scene::Scene s = load_pbrt(main);
+    ASSERT_EQ(s.shapes.size(), 1u);
+    EXPECT_EQ(s.shapes[0].mesh.triangle_count(), 2u);
+    expect_vec(s.shapes[0].mesh.positions[2], {1, 1, 2});
+
+    const std::string gz = phos::testing::gzip_bytes(part);
+    dir.write("geo/cut.pbrt.gz", gz.substr(0, gz.size() / 2));
+    const std::string cut = dir.write("cut.pbrt", "WorldBegin\n\nInclude \"geo/cut.pbrt.gz\"\n");
+    expect_pbrt_error(cut, 0, 0, "corrupt gzip stream", dir.file("geo/cut.pbrt.gz"));
+    try {
+        load_pbrt(cut);
+    } catch (const ParseError& e) {
+        ASSERT_EQ(e.included_from.size(), 1u);
+        EXPECT_NE(e.included_from[0].find("cut.pbrt:3:1"), std::string::npos) << e.included_from[0];
+    }
+    dir.write("geo/cut.ply.gz", gz.substr(0, 10));
+    const std::string cut_mesh =
+        dir.write("cut_mesh.pbrt", "WorldBegin\nShape \"plymesh\" \"string filename\" \"geo/cut.ply.gz\"\n");
+    expect_pbrt_error(cut_mesh, 0, 0, "corrupt gzip stream", dir.file("geo/cut.ply.gz"));
 }
 
 TEST(PbrtShapes, QuadricsKeepTheirTransform) {
