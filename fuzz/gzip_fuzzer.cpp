@@ -5,7 +5,8 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     static phos::fuzz::Scratch scratch;
-    const std::string path = scratch.write("m.ply.gz", std::string(reinterpret_cast<const char*>(data), size));
+    const std::string path =
+        scratch.write("m.ply.gz", std::string(reinterpret_cast<const char*>(data), size));
     phos::fuzz::expect_reader_errors([&] {
         const phos::scene::TriangleMesh m = phos::io::read_mesh(path).mesh;
         phos::fuzz::check_mesh(m);

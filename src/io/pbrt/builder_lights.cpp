@@ -79,7 +79,8 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         light.color = emitted("I");
         const Vec3 from = params.get_point3("from", {0, 0, 0}), to = params.get_point3("to", {0, 0, 1});
         if (!(length(to - from) > 0)) loc.fail(d + ": \"from\" and \"to\" coincide");
-        const float cone = params.get_float("coneangle", 30.0f), delta = params.get_float("conedelta", 5.0f);
+        const float cone = params.get_float("coneangle", 30.0f),
+                    delta = params.get_float("conedeltaangle", 5.0f);
         if (!(cone > 0 && cone <= 180)) loc.fail(d + ": coneangle must be in (0, 180]");
         light.position = t.point(from);
         light.direction = normalize(t.vector(to - from));

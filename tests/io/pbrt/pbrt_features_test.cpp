@@ -471,7 +471,7 @@ TEST(PbrtLights, PointSpotDistantInfiniteAndPower) {
         "WorldBegin\nLightSource \"point\" \"point3 from\" [1 2 3] \"float power\" 100\n"
         "Translate 0 1 0\nLightSource \"spot\" \"point3 from\" [0 0 0] \"point3 to\" [0 -1 0] \"float "
         "coneangle\" 30 "
-        "\"float conedelta\" 10 \"rgb I\" [2 2 2] \"float scale\" 3\n"
+        "\"float conedeltaangle\" 10 \"rgb I\" [2 2 2] \"float scale\" 3\n"
         "LightSource \"distant\" \"point3 from\" [0 0 0] \"point3 to\" [0 0 -1] \"rgb L\" [1 1 1] \"float "
         "illuminance\" 5\nLightSource \"infinite\" \"rgb L\" [0.1 0.2 0.3]\n");
     ASSERT_EQ(l.scene.lights.size(), 4u);
