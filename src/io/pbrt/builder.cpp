@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/option_table.h"
+#include "io/pbrt/upgrade_v3.h"
 
 namespace phos::io {
 
@@ -182,8 +183,11 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
     camera_ = c;
 }
 
-void SceneBuilder::film(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::film(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
     require_world(false, "Film", loc);
+    std::string type = type_in;
+    ParamList params = params_in;
+    upgrade_film(type, params);  // pbrt-v3's Film "image" (upgrade_v3.h)
     const std::string d = "Film \"" + type + "\"";
     if (type != "rgb" && type != "gbuffer" && type != "spectral")
         warn(loc, d + " is not a pbrt-v4 film type; treated as \"rgb\"");

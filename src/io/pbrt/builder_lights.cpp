@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/pbrt/upgrade_v3.h"
 #include "io/text/image_texture.h"
 #include "io/volume/volume_grid.h"
 
@@ -38,8 +39,11 @@ const std::map<std::string, Preset>& presets() {
 
 }  // namespace
 
-void SceneBuilder::light_source(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
     require_world(true, "LightSource", loc);
+    std::string type = type_in;
+    ParamList params = params_in;
+    upgrade_light(type, params, loc, false);  // pbrt-v3 light parameters (upgrade_v3.h)
     const std::string d = "LightSource \"" + type + "\"";
     if (object_ >= 0) {
         warn(loc, d + ": lights inside ObjectBegin/ObjectEnd are not supported (skipped)");
@@ -154,8 +158,11 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     scene_.lights.push_back(std::move(light));
 }
 
-void SceneBuilder::area_light_source(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::area_light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
     require_world(true, "AreaLightSource", loc);
+    std::string type = type_in;
+    ParamList params = params_in;
+    upgrade_light(type, params, loc, true);  // pbrt-v3's "area" and light parameters (upgrade_v3.h)
     const std::string d = "AreaLightSource \"" + type + "\"";
     if (type != "diffuse") {
         warn(loc, d + " is not supported (the shapes that follow do not emit)");

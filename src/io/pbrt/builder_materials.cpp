@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/pbrt/upgrade_v3.h"
 #include "io/text/image_texture.h"
 #include "spectrum/dispersion.h"
 
@@ -388,20 +389,25 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
     return m;
 }
 
-void SceneBuilder::material(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::material(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
     require_world(true, "Material", loc);
+    std::string type = type_in;
+    ParamList params = params_in;
+    upgrade_material(type, params, loc);  // pbrt-v3 materials (upgrade_v3.h)
     scene::Material m = make_material(type, params, loc, "Material \"" + type + "\"");
     m.name = type + "@" + std::to_string(loc.line);
     gs_.material = int(scene_.materials.size());
     scene_.materials.push_back(std::move(m));
 }
 
-void SceneBuilder::make_named_material(const std::string& name, const ParamList& params, const Loc& loc) {
+void SceneBuilder::make_named_material(const std::string& name, const ParamList& params_in, const Loc& loc) {
     require_world(true, "MakeNamedMaterial", loc);
     if (named_materials_.count(name)) loc.fail("named material \"" + name + "\" defined twice");
-    const Param* tp = params.find("type");
+    const Param* tp = params_in.find("type");
     if (!tp) loc.fail("MakeNamedMaterial \"" + name + "\": missing \"string type\"");
-    const std::string type = params.get_string("type", "");
+    std::string type = params_in.get_string("type", "");
+    ParamList params = params_in;
+    upgrade_material(type, params, loc);  // pbrt-v3 materials (upgrade_v3.h)
     scene::Material m = make_material(type, params, loc, "MakeNamedMaterial \"" + name + "\"");
     m.name = name;
     named_materials_[name] = int(scene_.materials.size());

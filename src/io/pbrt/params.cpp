@@ -95,6 +95,38 @@ const Param* ParamList::find(const std::string& name) const {
     return nullptr;
 }
 
+const Param* ParamList::peek(const std::string& name) const {
+    for (const Param& p : params_)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+Param* ParamList::edit(const std::string& name) {
+    for (Param& p : params_)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+std::optional<Param> ParamList::take(const std::string& name) {
+    for (auto it = params_.begin(); it != params_.end(); ++it)
+        if (it->name == name) {
+            Param p = std::move(*it);
+            params_.erase(it);
+            return p;
+        }
+    return std::nullopt;
+}
+
+void ParamList::rename(const std::string& from, const std::string& to) {
+    for (Param& p : params_)
+        if (p.name == from) {
+            if (const Param* q = peek(to))
+                p.loc.fail("parameter '" + to + "' given twice (first at " + q->loc.str() + ")");
+            p.name = to;
+            return;
+        }
+}
+
 bool ParamList::has(const std::string& name) const {
     for (const Param& p : params_)
         if (p.name == name) return true;

@@ -2,6 +2,7 @@
 // and mark a parameter as used, so the builder can report every parameter nothing read.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,12 @@ public:
     std::vector<Vec3> get_point3s(const std::string& name) const;  // point3 / vector3 / normal3
     std::vector<Vec2> get_point2s(const std::string& name) const;  // point2 / vector2
 
+    // Editing, for the pbrt-v3 rules (upgrade_v3.h): the parameter called `name` (not marked used),
+    // or nullptr; removes it and returns it; renames it (keeping its type and values).
+    const Param* peek(const std::string& name) const;
+    Param* edit(const std::string& name);
+    std::optional<Param> take(const std::string& name);
+    void rename(const std::string& from, const std::string& to);
     // Marks everything used (after one warning covering a whole unsupported directive).
     void mark_all_used() const;
     // One warning (or, if `strict`, a ParseError) per parameter that no lookup read.

@@ -1,0 +1,31 @@
+// pbrt-v3 files read directly: each directive's type and parameters are rewritten to their pbrt-v4
+// form before the builder reads them, by the rules pbrt-v4's own `pbrt --upgrade` applies (listed in
+// docs/formats/pbrt.md, "pbrt-v3 files"). A rule applies where a pbrt-v3 name or parameter type
+// appears (`Material "matte"`, `"rgb scale"` on a light, `AreaLightSource "area"`, `Film "image"`),
+// none of which pbrt-v4 defines, so a pbrt-v4 file passes unchanged and no flag is needed.
+// Something pbrt-v4's upgrade also refuses (a coloured light "scale" on a spectral emission, two
+// "rgb" values for one "scale" texture) is an error at its parameter.
+#pragma once
+
+#include <string>
+
+#include "io/pbrt/params.h"
+
+namespace phos::io::pbrt {
+
+// Material types and their parameters (Material, and MakeNamedMaterial's "type"): matte, plastic,
+// metal, glass, mirror, uber, substrate, translucent, kdsubsurface, disney, mix's namedmaterial1/2
+// and RGB amount, glass/uber "index", "bumpmap"; "" and "none" become "interface".
+void upgrade_material(std::string& type, ParamList& params, const Loc& loc);
+
+// LightSource and AreaLightSource: a spectrum-valued "scale" (pbrt-v3: "rgb"/"color"/"spectrum")
+// becomes the float "scale" (a grey value multiplies it; a coloured one multiplies an "rgb" L or I),
+// "mapname" becomes "filename" (with an infinite light's constant L folded into "scale"),
+// "samples"/"nsamples" are dropped, and AreaLightSource "area" is "diffuse".
+void upgrade_light(std::string& type, ParamList& params, const Loc& loc, bool area);
+
+// Film "image" is "rgb"; its "scale" multiplies the image (pbrt-v4: "iso" = 100 × scale) and
+// "maxsampleluminance" is "maxcomponentvalue".
+void upgrade_film(std::string& type, ParamList& params);
+
+}  // namespace phos::io::pbrt
