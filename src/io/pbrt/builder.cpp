@@ -219,8 +219,10 @@ void SceneBuilder::film(const std::string& type_in, const ParamList& params_in, 
     done(params, d);
 }
 
-void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params_in, const Loc& loc) {
     require_world(false, "PixelFilter", loc);
+    ParamList params = params_in;
+    upgrade_filter(type, params);  // pbrt-v3 parameters (upgrade_v3.h)
     const std::string d = "PixelFilter \"" + type + "\"";
     if (type != "box") {
         warn(loc, d + " is not supported; phos uses a box filter of radius 0.5 pixel");
@@ -267,8 +269,11 @@ constexpr PbrtIntegrator kPbrtIntegrators[] = {
 };
 }  // namespace
 
-void SceneBuilder::integrator(const std::string& type, const ParamList& params, const Loc& loc) {
+void SceneBuilder::integrator(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
     require_world(false, "Integrator", loc);
+    std::string type = type_in;
+    ParamList params = params_in;
+    sppm_iterations_ = upgrade_integrator(type, params, loc);  // pbrt-v3 integrators (upgrade_v3.h)
     // Parameters are kept as written; the renderer maps them onto its option tables by name
     // (maxdepth, radius, photonsperiteration, seed...) and warns about the ones it does not use.
     for (const Param& p : params.all()) {
@@ -385,6 +390,11 @@ void SceneBuilder::end_of_files(const Loc& loc) {
     if (!stack_.empty())
         warn(stack_.back().loc, "AttributeBegin without AttributeEnd at the end of the input");
     if (!world_) warn(loc, "no WorldBegin in the scene");
+    if (scene_.lights.empty() && skipped_light_)
+        skipped_light_->fail(
+            "none of the scene's lights can be used (this one is the first that cannot): its "
+            "image would be black");
+    if (sppm_iterations_ > 0) scene_.settings.spp = sppm_iterations_;
     scene_.film_response.exposure = (camera_ ? camera_->exposure_time : 1.0f) * film_iso_ / 100;
     if (!camera_) return;  // the renderer frames the scene itself
     const CameraSpec& c = *camera_;

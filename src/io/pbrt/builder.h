@@ -134,6 +134,11 @@ private:
     std::map<std::string, Transform> coord_systems_;
     std::map<std::string, int> named_materials_, float_textures_, spectrum_textures_, media_, objects_;
     std::optional<CameraSpec> camera_;
+    // pbrt-v3 SPPM's "numiterations" (0: not given): the iterations, whatever the Sampler says.
+    int sppm_iterations_ = 0;
+    // The first light directive that could not be used: if no light could, the scene is refused
+    // there (its image would be black) rather than rendered.
+    std::optional<Loc> skipped_light_;
     float film_iso_ = 100;  // Film "iso": with the camera's exposure time, scene_.film_response
     bool world_ = false;
     Loc world_loc_;

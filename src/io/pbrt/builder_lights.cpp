@@ -47,6 +47,7 @@ void SceneBuilder::light_source(const std::string& type_in, const ParamList& par
     const std::string d = "LightSource \"" + type + "\"";
     if (object_ >= 0) {
         warn(loc, d + ": lights inside ObjectBegin/ObjectEnd are not supported (skipped)");
+        if (!skipped_light_) skipped_light_ = loc;
         params.mark_all_used();
         return;
     }
@@ -146,6 +147,7 @@ void SceneBuilder::light_source(const std::string& type_in, const ParamList& par
         }
     } else {
         warn(loc, d + " is not supported (the light is skipped)");
+        if (!skipped_light_) skipped_light_ = loc;
         params.mark_all_used();
         return;
     }
@@ -166,6 +168,7 @@ void SceneBuilder::area_light_source(const std::string& type_in, const ParamList
     const std::string d = "AreaLightSource \"" + type + "\"";
     if (type != "diffuse") {
         warn(loc, d + " is not supported (the shapes that follow do not emit)");
+        if (!skipped_light_) skipped_light_ = loc;
         params.mark_all_used();
         gs_.area_light.reset();
         return;
@@ -186,7 +189,9 @@ void SceneBuilder::area_light_source(const std::string& type_in, const ParamList
     gs_.area_light = al;
 }
 
-void SceneBuilder::make_named_medium(const std::string& name, const ParamList& params, const Loc& loc) {
+void SceneBuilder::make_named_medium(const std::string& name, const ParamList& params_in, const Loc& loc) {
+    ParamList params = params_in;
+    upgrade_medium(params);  // pbrt-v3's "heterogeneous" (upgrade_v3.h)
     if (media_.count(name)) loc.fail("medium \"" + name + "\" defined twice");
     if (!params.has("type")) loc.fail("MakeNamedMedium \"" + name + "\": missing \"string type\"");
     const std::string type = params.get_string("type", "");

@@ -133,9 +133,11 @@ int SceneBuilder::constant_texture(Rgb value) {
 // ---- textures ----
 
 void SceneBuilder::texture(const std::string& name, const std::string& type_in, const std::string& cls,
-                           const ParamList& params, const Loc& loc) {
+                           const ParamList& params_in, const Loc& loc) {
     require_world(true, "Texture", loc);
     const std::string type = type_in == "color" ? "spectrum" : type_in;
+    ParamList params = params_in;
+    upgrade_texture(type, cls, params);  // pbrt-v3 parameters (upgrade_v3.h)
     if (type != "float" && type != "spectrum")
         loc.fail("Texture \"" + name + "\": type must be \"float\" or \"spectrum\", not \"" + type_in + "\"");
     auto& names = type == "float" ? float_textures_ : spectrum_textures_;

@@ -1,6 +1,8 @@
 // The pbrt-v3 rules (see upgrade_v3.h); each follows what pbrt-v4's --upgrade writes.
 #include "io/pbrt/upgrade_v3.h"
 
+#include <cmath>
+
 #include "core/log.h"
 
 namespace phos::io::pbrt {
@@ -181,6 +183,93 @@ void upgrade_film(std::string& type, ParamList& params) {
         s->name = "iso";
         params.add(std::move(*s));
     }
+}
+
+void upgrade_texture(const std::string& type, const std::string& cls, ParamList& params) {
+    if (cls == "scale" && (params.peek("tex1") || params.peek("tex2"))) {
+        if (type == "float") {
+            params.rename("tex1", "tex");
+            params.rename("tex2", "scale");
+        } else {
+            // One of the two must be a grey "rgb" (the scale), the other the texture.
+            const Param* a = params.peek("tex1");
+            const Param* b = params.peek("tex2");
+            const bool a_grey = a && grey(*a), b_grey = b && grey(*b);
+            if (a_grey && b_grey)
+                b->loc.fail("\"scale\" texture: two \"rgb\" values (pbrt-v4 needs one texture)");
+            const std::string scale_name = a_grey ? "tex1" : b_grey ? "tex2" : "";
+            const std::string tex_name = scale_name == "tex1" ? "tex2" : "tex1";
+            if (scale_name.empty()) {
+                const Param* c = (a && a->type == "rgb") ? a : b;
+                if (c && c->type == "rgb")
+                    c->loc.fail("\"scale\" texture: a coloured " + c->declaration() +
+                                " cannot become pbrt-v4's float \"scale\"");
+                params.rename("tex1", "tex");
+                params.rename("tex2", "scale");
+            } else {
+                Param scale = *params.take(scale_name);
+                params.rename(tex_name, "tex");
+                params.add(float_param("scale", scale.numbers[0], scale.loc));
+            }
+        }
+    }
+    if (cls == "imagemap" || cls == "ptex") {
+        if (const Param* g = params.peek("gamma")) {
+            const Param gamma = *params.take("gamma");
+            std::string encoding;
+            if (gamma.type == "bool")
+                encoding = gamma.bools.at(0) ? "sRGB" : "linear";
+            else if (gamma.type == "float")
+                encoding = "gamma " + std::to_string(gamma.numbers.at(0));
+            else
+                g->loc.fail("\"gamma\" must be a bool or a float");
+            params.add(string_param("encoding", {encoding}, gamma.loc));
+        }
+        if (const std::optional<Param> t = params.take("trilinear"); t && t->type == "bool")
+            params.add(string_param("filter", {t->bools.at(0) ? "trilinear" : "bilinear"}, t->loc));
+    }
+}
+
+void upgrade_shape(const std::string& type, ParamList& params) {
+    if (type == "loopsubdiv") params.rename("nlevels", "levels");
+    params.take("discarddegenerateUVs");
+    params.take("shadowalpha");
+}
+
+int upgrade_integrator(std::string& type, ParamList& params, const Loc& loc) {
+    params.take("rrthreshold");
+    int iterations = 0;
+    if (type == "sppm") {
+        params.take("imagewritefrequency");
+        if (const std::optional<Param> n = params.take("numiterations"); n && n->type == "integer")
+            iterations = int(n->numbers.at(0));
+    }
+    if (const Param* l = params.peek("lightsamplestrategy");
+        l && l->strings == std::vector<std::string>{"spatial"})
+        params.edit("lightsamplestrategy")->strings = {"bvh"};
+    if (type == "directlighting") {
+        type = "path";
+        params.take("maxdepth");
+        params.take("strategy");
+        Param depth = float_param("maxdepth", 1, loc);
+        depth.type = "integer";
+        params.add(std::move(depth));
+    }
+    return iterations;
+}
+
+void upgrade_medium(ParamList& params) {
+    if (Param* t = params.edit("type"); t && t->strings == std::vector<std::string>{"heterogeneous"})
+        t->strings = {"uniformgrid"};
+}
+
+void upgrade_filter(const std::string& type, ParamList& params) {
+    params.rename("xwidth", "xradius");
+    params.rename("ywidth", "yradius");
+    if (type == "gaussian")
+        if (const std::optional<Param> a = params.take("alpha");
+            a && a->type == "float" && a->numbers.at(0) > 0)
+            params.add(float_param("sigma", 1 / std::sqrt(2 * a->numbers[0]), a->loc));
 }
 
 }  // namespace phos::io::pbrt

@@ -28,4 +28,25 @@ void upgrade_light(std::string& type, ParamList& params, const Loc& loc, bool ar
 // "maxsampleluminance" is "maxcomponentvalue".
 void upgrade_film(std::string& type, ParamList& params);
 
+// Texture: the "scale" texture's "tex1"/"tex2" become "tex"/"scale" (a spectrum "scale" texture
+// takes its one grey "rgb" as the float scale); imagemap's "gamma" (a bool or a float) becomes
+// "encoding" and "trilinear" becomes "filter".
+void upgrade_texture(const std::string& type, const std::string& cls, ParamList& params);
+
+// Shape: loopsubdiv's "nlevels" is "levels"; "discarddegenerateUVs" and "shadowalpha" are dropped
+// (pbrt-v4 has neither).
+void upgrade_shape(const std::string& type, ParamList& params);
+
+// Integrator: "directlighting" is "path" with "maxdepth" 1; "rrthreshold" and SPPM's
+// "imagewritefrequency" are dropped, SPPM's "numiterations" becomes the pixel samples it is in
+// pbrt-v4 (returned: 0 when absent), "lightsamplestrategy" "spatial" is "bvh".
+int upgrade_integrator(std::string& type, ParamList& params, const Loc& loc);
+
+// MakeNamedMedium: "heterogeneous" is "uniformgrid" (the same parameters).
+void upgrade_medium(ParamList& params);
+
+// PixelFilter: "xwidth"/"ywidth" are "xradius"/"yradius"; the Gaussian's "alpha" is
+// "sigma" = 1 / sqrt(2 alpha).
+void upgrade_filter(const std::string& type, ParamList& params);
+
 }  // namespace phos::io::pbrt

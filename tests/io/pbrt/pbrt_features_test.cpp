@@ -138,14 +138,29 @@ TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
         "Integrator \"mlt\" \"integer mutationsperpixel\" 10\nWorldBegin\n"
         "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3] \"float width\" 0.1\n"
         "LightSource \"goniometric\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
-        "2\nWorldEnd\n");
+        "2\nLightSource \"point\"\nWorldEnd\n");
     EXPECT_EQ(l.warnings, 5);  // the mlt integrator is reported by `phos render` (it may be overridden)
     EXPECT_EQ(l.scene.settings.integrator, "bdpt");  // mlt explores bdpt's paths: bdpt, with a warning
     EXPECT_EQ(l.scene.settings.unavailable_integrator, "mlt");
     EXPECT_EQ(l.scene.settings.integrator_location.substr(l.scene.settings.integrator_location.size() - 4),
               ":2:1");
     EXPECT_TRUE(l.scene.shapes.empty());
-    EXPECT_TRUE(l.scene.lights.empty());
+    EXPECT_EQ(l.scene.lights.size(), 1u);  // the point light; the goniometric one is skipped
+}
+
+// A scene none of whose lights can be used is refused at the first of them (it would render black,
+// exit 0, before): an unsupported light type, an unsupported area light.
+TEST(PbrtSettings, ASceneWhoseLightsAllFailIsAnError) {
+    PbrtTempDir dir;
+    QuietLog quiet;
+    expect_pbrt_error(dir.write("a.pbrt",
+                                "WorldBegin\nShape \"sphere\"\nLightSource \"goniometric\" \"string "
+                                "filename\" \"x.exr\"\nLightSource \"projection\"\n"),
+                      3, 1, "none of the scene's lights can be used");
+    expect_pbrt_error(dir.write("b.pbrt", "WorldBegin\nAreaLightSource \"glow\"\nShape \"sphere\"\n"), 2, 1,
+                      "none of the scene's lights can be used");
+    // A scene with no light directive at all is not this error (the renderer says it has no light).
+    EXPECT_NO_THROW(load_pbrt(dir.write("c.pbrt", "WorldBegin\nShape \"sphere\"\n")));
 }
 
 // ---- unused parameters ----

@@ -161,5 +161,65 @@ TEST(PbrtV3, ImageFilmScaleIsTheExposure) {
     EXPECT_FLOAT_EQ(s.film_response.exposure, 2.5f);
 }
 
+// Textures: the "scale" texture's tex1/tex2 (a spectrum one with its grey "rgb" as the float scale)
+// and imagemap's "gamma" as an encoding load as their pbrt-v4 forms.
+TEST(PbrtV3, TexturesFollowTheRules) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    dir.write("t.pfm", std::string("PF\n2 1\n-1\n") + std::string(24, '\0'));
+    const std::string v3 =
+        "WorldBegin\nTexture \"c\" \"color\" \"checkerboard\" \"color tex1\" [1 0 0] \"color tex2\" [0 0 1]\n"
+        "Texture \"s\" \"color\" \"scale\" \"texture tex1\" \"c\" \"color tex2\" [0.5 0.5 0.5]\n"
+        "Texture \"f\" \"float\" \"scale\" \"float tex1\" 2 \"float tex2\" 3\n"
+        "Texture \"i\" \"color\" \"imagemap\" \"string filename\" \"t.pfm\" \"bool gamma\" false\n";
+    const std::string v4 =
+        "WorldBegin\nTexture \"c\" \"spectrum\" \"checkerboard\" \"rgb tex1\" [1 0 0] \"rgb tex2\" [0 0 1]\n"
+        "Texture \"s\" \"spectrum\" \"scale\" \"texture tex\" \"c\" \"float scale\" 0.5\n"
+        "Texture \"f\" \"float\" \"scale\" \"float tex\" 2 \"float scale\" 3\n"
+        "Texture \"i\" \"spectrum\" \"imagemap\" \"string filename\" \"t.pfm\" \"string encoding\" "
+        "\"linear\"\n";
+    const int before = log::warning_count();
+    const scene::Scene a = load_pbrt(dir.write("a.pbrt", v3));
+    EXPECT_EQ(log::warning_count(), before);  // every v3 parameter read (none left unused)
+    const scene::Scene b = load_pbrt(dir.write("b.pbrt", v4));
+    ASSERT_EQ(a.textures.size(), b.textures.size());
+    for (size_t i = 0; i < a.textures.size(); ++i) {
+        SCOPED_TRACE(i);
+        EXPECT_EQ(a.textures[i].kind, b.textures[i].kind);
+        EXPECT_EQ(a.textures[i].value, b.textures[i].value);
+        EXPECT_EQ(a.textures[i].tex1, b.textures[i].tex1);
+        EXPECT_EQ(a.textures[i].tex2, b.textures[i].tex2);
+    }
+    const std::string two = dir.write(
+        "two.pbrt",
+        "WorldBegin\nTexture \"s\" \"color\" \"scale\" \"color tex1\" [1 1 1] \"color tex2\" [2 2 2]\n");
+    test::expect_pbrt_error(two, 2, 50, "two \"rgb\" values");
+}
+
+// Integrators, media and filters: directlighting is path with maxdepth 1, SPPM's numiterations its
+// iterations (whatever the Sampler says), "heterogeneous" a uniform grid, xwidth the filter radius.
+TEST(PbrtV3, IntegratorMediumAndFilterFollowTheRules) {
+    const scene::Scene d = load("Integrator \"directlighting\" \"integer maxdepth\" 5\n" + world(""));
+    EXPECT_EQ(d.settings.integrator, "path");
+    ASSERT_EQ(d.settings.integrator_parameters.size(), 1u);
+    EXPECT_EQ(d.settings.integrator_parameters[0].name, "maxdepth");
+    EXPECT_EQ(d.settings.integrator_parameters[0].values, std::vector<std::string>{"1"});
+    const scene::Scene s = load(
+        "Integrator \"sppm\" \"integer numiterations\" 70 \"float rrthreshold\" 0.5\n"
+        "Sampler \"lowdiscrepancy\" \"integer pixelsamples\" 4\n" +
+        world(""));
+    EXPECT_EQ(s.settings.integrator, "sppm");
+    EXPECT_EQ(s.settings.spp, 70);
+    const scene::Scene m = load(world(
+        "MakeNamedMedium \"smoke\" \"string type\" \"heterogeneous\" \"integer nx\" 1 \"integer ny\" 1 "
+        "\"integer nz\" 2 \"float density\" [0.5 1] \"rgb sigma_a\" [1 1 1] \"rgb sigma_s\" [2 2 2]\n"));
+    ASSERT_EQ(m.media.size(), 1u);
+    EXPECT_EQ(m.media[0].kind, scene::Medium::Kind::UniformGrid);
+    QuietLog quiet;
+    const int before = log::warning_count();
+    load("PixelFilter \"box\" \"float xwidth\" 0.5 \"float ywidth\" 0.5\n" + world(""));
+    EXPECT_EQ(log::warning_count(), before);  // read as xradius/yradius: nothing unused
+}
+
 }  // namespace
 }  // namespace phos::io::pbrt
