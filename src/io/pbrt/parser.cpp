@@ -267,9 +267,9 @@ private:
             target_.object_instance(string_arg(loc, d), loc);
         else if (d == "Include" || d == "Import")
             include(loc, d);
-        else if (d == "WorldEnd")
-            target_.ignored_directive(d, loc);
-        else if (d == "TransformTimes") {
+        else if (d == "WorldEnd") {
+            // pbrt-v3's end of the world block: nothing to do (pbrt-v4 ends it at the end of input).
+        } else if (d == "TransformTimes") {
             number(loc, d);
             number(loc, d);
             target_.ignored_directive(d, loc);
