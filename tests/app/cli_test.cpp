@@ -265,5 +265,35 @@ TEST(Cli, DefaultSceneRenders) {
     EXPECT_TRUE(std::filesystem::exists(dir.file("d.png")));
 }
 
+// `phos upgrade IN OUT` writes the pbrt-v4 form (which phos renders); it refuses to overwrite its
+// input, and a malformed input is a located error with nothing written.
+TEST(Cli, UpgradeWritesThePbrtV4FormAndNothingOnError) {
+    TempDir dir;
+    const std::string v3 = dir.write(
+        "v3.pbrt",
+        "Film \"image\" \"integer xresolution\" 8 \"integer yresolution\" 8\nWorldBegin\n"
+        "AttributeBegin\nAreaLightSource \"area\" \"color L\" [1 1 1]\nShape \"sphere\"\nAttributeEnd\n"
+        "Material \"matte\"\nShape \"disk\"\nWorldEnd\n");
+    const CommandResult r = run_phos("upgrade " + v3 + " " + dir.file("v4.pbrt"));
+    ASSERT_EQ(r.exit_code, 0) << r.output;
+    const std::string text = read_bytes(dir.file("v4.pbrt"));
+    EXPECT_NE(text.find("AreaLightSource \"diffuse\""), std::string::npos) << text;
+    EXPECT_NE(text.find("Material \"diffuse\""), std::string::npos) << text;
+    const CommandResult rendered =
+        run_phos("render " + dir.file("v4.pbrt") + " --spp 1 -o " + dir.file("v4.pfm"));
+    EXPECT_EQ(rendered.exit_code, 0) << rendered.output;
+
+    const CommandResult same = run_phos("upgrade " + v3 + " " + v3);
+    EXPECT_EQ(same.exit_code, 2) << same.output;
+    EXPECT_NE(same.output.find("is the input"), std::string::npos) << same.output;
+    EXPECT_EQ(read_bytes(v3).find("Film \"image\""), 0u);  // untouched
+
+    const std::string bad = dir.write("bad.pbrt", "WorldBegin\nShape \"sphere\" \"float radius\" [ 1\n");
+    const CommandResult failed = run_phos("upgrade " + bad + " " + dir.file("bad-v4.pbrt"));
+    EXPECT_EQ(failed.exit_code, 2) << failed.output;
+    EXPECT_NE(failed.output.find("bad.pbrt:"), std::string::npos) << failed.output;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("bad-v4.pbrt")));
+}
+
 }  // namespace
 }  // namespace phos::testing

@@ -20,6 +20,7 @@
 #include "app/lib/photons_command.h"  // phos photons
 #include "app/lib/render_command.h"
 #include "app/lib/seed_flags.h"
+#include "app/lib/upgrade_command.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "core/spelling.h"
@@ -31,8 +32,8 @@ namespace phos::app {
 namespace {
 
 constexpr const char* kVersion = "0.2.0";
-const std::vector<std::string> kCommands{"render",  "diff",    "info",  "montage",
-                                         "options", "photons", "agree", "help"};
+const std::vector<std::string> kCommands{"render",  "diff",  "info",    "montage", "options",
+                                         "photons", "agree", "upgrade", "help"};
 
 std::string version_text() {
     std::string s = std::string("phos ") + kVersion + "\n";
@@ -205,9 +206,8 @@ int run_cli(int argc, char** argv) {
     app.require_subcommand(1);
     app.set_version_flag("-V,--version", version_text());
     app.footer(
-        "Commands: phos render SCENE [options] | phos diff IMAGE REFERENCE | phos agree SCENE | phos options "
-        "| "
-        "phos help [COMMAND]");
+        "Commands: phos render SCENE [options] | phos diff IMAGE REFERENCE | phos agree SCENE | phos upgrade "
+        "IN.pbrt OUT.pbrt | phos options | phos help [COMMAND]");
 
     RenderCommand rc;
     CLI::App* render = app.add_subcommand("render", "render a scene file (.scn, .pbrt, .scene) to an image");
@@ -260,13 +260,21 @@ int run_cli(int argc, char** argv) {
     AgreeCommand agree_cmd;
     CLI::App* agree = add_agree_command(app, agree_cmd, register_table);
 
+    std::string upgrade_in, upgrade_out;
+    CLI::App* upgrade = app.add_subcommand(
+        "upgrade",
+        "write a pbrt scene (pbrt-v3 or pbrt-v4, its includes inlined) as one pbrt-v4 file, as pbrt "
+        "--upgrade does (phos also renders pbrt-v3 files directly)");
+    upgrade->add_option("input", upgrade_in, "pbrt scene file")->required();
+    upgrade->add_option("output", upgrade_out, "the pbrt-v4 file to write (not the input)")->required();
+
     CLI::App* opts = app.add_subcommand("options", "print every render option (markdown: docs/options.md)");
     bool markdown = false;
     opts->add_flag("--markdown", markdown, "markdown table (the default; kept for scripts)");
 
     CLI::App* help = app.add_subcommand("help", "help on phos or on one command: phos help render");
     std::string help_topic;
-    help->add_option("command", help_topic, "render, diff, agree or options");
+    help->add_option("command", help_topic, "render, diff, agree, upgrade or options");
 
     std::set<std::string> long_names;
     for (const CLI::Option* o : render->get_options())
@@ -282,9 +290,10 @@ int run_cli(int argc, char** argv) {
             args.insert(args.begin(), "render");  // the seed's `photonmap in.scn out.png`
         } else {
             const std::string guess = nearest_name(args[0], kCommands);
-            return print_error("unknown command '" + args[0] + "'" +
-                               (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
-                               " (commands: render, diff, info, montage, options, photons, agree, help)");
+            return print_error(
+                "unknown command '" + args[0] + "'" +
+                (guess.empty() ? "" : "; did you mean 'phos " + guess + "'?") +
+                " (commands: render, diff, info, montage, options, photons, agree, upgrade, help)");
         }
     }
 
@@ -352,6 +361,10 @@ int run_cli(int argc, char** argv) {
         }
         if (photons->parsed()) return run_photons(photons_cmd);  // phos photons
         if (agree->parsed()) return run_agree(agree_cmd);
+        if (upgrade->parsed()) {
+            run_upgrade(upgrade_in, upgrade_out);
+            return 0;
+        }
         if (opts->parsed()) {
             std::fputs(options_markdown().c_str(), stdout);
             return 0;

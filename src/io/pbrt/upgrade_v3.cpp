@@ -152,6 +152,13 @@ void upgrade_light(std::string& type, ParamList& params, const Loc& loc, bool ar
             for (int c = 0; c < 3; ++c) target->numbers[size_t(c)] *= scale.numbers[size_t(c)];
         }
     }
+    // pbrt-v3's blackbody [T s]: the temperature, s moving into the scale.
+    for (const char* n : {"L", "I"})
+        if (Param* e = params.edit(n); e && e->type == "blackbody" && e->numbers.size() == 2) {
+            if (!(e->numbers[1] >= 0)) e->loc.fail("blackbody scale (the second value) must not be negative");
+            factor *= e->numbers[1];
+            e->numbers.resize(1);
+        }
     if (!area) {
         if (std::optional<Param> map = params.take("mapname")) {
             if (type == "infinite") {

@@ -20,6 +20,7 @@ void upgrade_material(std::string& type, ParamList& params, const Loc& loc);
 
 // LightSource and AreaLightSource: a spectrum-valued "scale" (pbrt-v3: "rgb"/"color"/"spectrum")
 // becomes the float "scale" (a grey value multiplies it; a coloured one multiplies an "rgb" L or I),
+// a two-value blackbody [T s] keeps T and multiplies "scale" by s,
 // "mapname" becomes "filename" (with an infinite light's constant L folded into "scale"),
 // "samples"/"nsamples" are dropped, and AreaLightSource "area" is "diffuse".
 void upgrade_light(std::string& type, ParamList& params, const Loc& loc, bool area);

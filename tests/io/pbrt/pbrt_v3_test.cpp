@@ -3,10 +3,13 @@
 // the rules refuse, located at their parameter.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
+#include "io/pbrt/upgrade_writer.h"
 #include "pbrt_test_util.h"
 #include "scene/scene.h"
+#include "support/mesh_writers.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -219,6 +222,58 @@ TEST(PbrtV3, IntegratorMediumAndFilterFollowTheRules) {
     const int before = log::warning_count();
     load("PixelFilter \"box\" \"float xwidth\" 0.5 \"float ywidth\" 0.5\n" + world(""));
     EXPECT_EQ(log::warning_count(), before);  // read as xradius/yradius: nothing unused
+}
+
+// `phos upgrade`'s writer: a pbrt-v3 scene with an include in another folder naming a PLY mesh,
+// written as one pbrt-v4 file elsewhere, loads to the same scene as the original (materials, lights,
+// meshes, film), with the mesh path rewritten for the new folder and no pbrt-v3 construct left;
+// writing the result again changes nothing.
+TEST(PbrtV3, UpgradeWritesOnePbrtV4FileThatLoadsToTheSameScene) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    scene::TriangleMesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    phos::testing::write_ply(dir.write("in/geo/quad.ply", ""), quad, false);
+    dir.write("in/geo/part.pbrt",
+              "AttributeBegin\nMaterial \"plastic\" \"color Kd\" [0.5 0.2 0.1] \"color Ks\" "
+              "[0.3 0.3 0.3]\nTranslate 0 0 2.5\nShape \"plymesh\" \"string filename\" "
+              "\"quad.ply\"\nAttributeEnd\n");
+    const std::string v3 =
+        dir.write("in/scene.pbrt",
+                  "Film \"image\" \"integer xresolution\" 32 \"integer yresolution\" 16 \"float scale\" 2\n"
+                  "LookAt 0 0.3 1.9  0 0.5 0  0 1 0\nCamera \"perspective\" \"float fov\" 40\nWorldBegin\n"
+                  "Include \"geo/part.pbrt\"\nMaterial \"matte\" \"rgb Kd\" [0.1 0.6 0.2]\n"
+                  "AttributeBegin\nAreaLightSource \"area\" \"color L\" [2 2 2] \"rgb scale\" [3 3 3]\n"
+                  "Shape \"sphere\" \"float radius\" 0.25\nAttributeEnd\nLightSource \"point\" \"blackbody "
+                  "I\" [3000 2]\n"
+                  "WorldEnd\n");
+    const std::string out = dir.file("out/v4.pbrt");
+    std::filesystem::create_directories(dir.file("out"));
+    const std::string text = upgrade_pbrt(v3, out);
+    dir.write("out/v4.pbrt", text);
+    for (const char* v3_only :
+         {"matte", "plastic", "\"area\"", "\"image\"", "Kd", "color", "WorldEnd", "Include"})
+        EXPECT_EQ(text.find(v3_only), std::string::npos) << v3_only << " left in:\n" << text;
+    EXPECT_NE(text.find("\"../in/geo/quad.ply\""), std::string::npos) << text;
+
+    const scene::Scene a = load_pbrt(v3), b = load_pbrt(out);
+    ASSERT_EQ(a.materials.size(), b.materials.size());
+    for (size_t i = 0; i < a.materials.size(); ++i) expect_same_material(a.materials[i], b.materials[i]);
+    ASSERT_EQ(a.lights.size(), b.lights.size());
+    for (size_t i = 0; i < a.lights.size(); ++i) {
+        EXPECT_EQ(a.lights[i].color, b.lights[i].color) << i;
+        EXPECT_EQ(a.lights[i].spectrum.has_value(), b.lights[i].spectrum.has_value()) << i;
+    }
+    ASSERT_EQ(a.shapes.size(), b.shapes.size());
+    EXPECT_EQ(a.shapes[0].mesh.positions, b.shapes[0].mesh.positions);
+    EXPECT_EQ(a.film_response.exposure, b.film_response.exposure);
+    EXPECT_EQ(a.settings.width, b.settings.width);
+    ASSERT_TRUE(a.camera && b.camera);
+    EXPECT_EQ(a.camera->eye, b.camera->eye);
+
+    const std::string again = upgrade_pbrt(out, dir.file("out/v4-again.pbrt"));
+    EXPECT_EQ(again.substr(again.find('\n')), text.substr(text.find('\n')));  // but the first (comment) line
 }
 
 }  // namespace
