@@ -13,6 +13,14 @@
 
 namespace phos::testing {
 
+// The unit square in the plane z = 0 as two triangles (counter-clockwise about +z).
+inline scene::TriangleMesh unit_quad() {
+    scene::TriangleMesh quad;
+    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    quad.indices = {0, 1, 2, 0, 2, 3};
+    return quad;
+}
+
 inline void write_ply(const std::string& path, const scene::TriangleMesh& mesh, bool binary) {
     std::ofstream out(path, std::ios::binary);
     if (!out) throw InputError("cannot write PLY file '" + path + "'");

@@ -109,22 +109,10 @@ public:
     }
 
     void world_begin(const Loc&) override { line("WorldBegin"); }
-    void attribute_begin(const Loc&) override {
-        line("AttributeBegin");
-        ++depth_;
-    }
-    void attribute_end(const Loc&) override {
-        depth_ = depth_ > 0 ? depth_ - 1 : 0;
-        line("AttributeEnd");
-    }
-    void transform_begin(const Loc&) override {
-        line("TransformBegin");
-        ++depth_;
-    }
-    void transform_end(const Loc&) override {
-        depth_ = depth_ > 0 ? depth_ - 1 : 0;
-        line("TransformEnd");
-    }
+    void attribute_begin(const Loc&) override { open_block("AttributeBegin"); }
+    void attribute_end(const Loc&) override { close_block("AttributeEnd"); }
+    void transform_begin(const Loc&) override { open_block("TransformBegin"); }
+    void transform_end(const Loc&) override { close_block("TransformEnd"); }
     void attribute(const std::string& target, const ParamList& params, const Loc&) override {
         directive("Attribute", target, params);
     }
@@ -171,13 +159,9 @@ public:
         directive("Shape", type, params);
     }
     void object_begin(const std::string& name, const Loc&) override {
-        line("ObjectBegin " + pbrt_string(name));
-        ++depth_;
+        open_block("ObjectBegin " + pbrt_string(name));
     }
-    void object_end(const Loc&) override {
-        depth_ = depth_ > 0 ? depth_ - 1 : 0;
-        line("ObjectEnd");
-    }
+    void object_end(const Loc&) override { close_block("ObjectEnd"); }
     void object_instance(const std::string& name, const Loc&) override {
         line("ObjectInstance " + pbrt_string(name));
     }
@@ -193,6 +177,15 @@ private:
 
     std::string indent(int extra) const { return std::string(size_t(4 * (depth_ + extra)), ' '); }
     void line(const std::string& s) { out_ << indent(0) << s << "\n"; }
+    // A block's first and last lines: what is between them is indented one step more.
+    void open_block(const std::string& s) {
+        line(s);
+        ++depth_;
+    }
+    void close_block(const std::string& s) {
+        depth_ = depth_ > 0 ? depth_ - 1 : 0;
+        line(s);
+    }
     static std::string vec(Vec3 v) { return num(v.x) + " " + num(v.y) + " " + num(v.z); }
     static std::string matrix(const float m[16]) {
         std::string s = "[";

@@ -291,9 +291,7 @@ TEST(PbrtShapes, BilinearMeshBecomesTwoTrianglesPerPatch) {
 TEST(PbrtShapes, PlyMeshIsReadRelativeToTheFileAndTransformed) {
     QuietLog quiet;
     PbrtTempDir dir;
-    scene::TriangleMesh quad;
-    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const scene::TriangleMesh quad = phos::testing::unit_quad();
     const std::string ply = dir.write("geo/quad.ply", "");
     phos::testing::write_ply(ply, quad, true);
     dir.write("geo/part.pbrt", "Translate 0 0 2\nShape \"plymesh\" \"string filename\" \"quad.ply\"\n");
@@ -309,9 +307,7 @@ TEST(PbrtShapes, PlyMeshIsReadRelativeToTheFileAndTransformed) {
 TEST(PbrtShapes, GzippedIncludesAndPlyMeshesLoadAsTheirUncompressedForms) {
     QuietLog quiet;
     PbrtTempDir dir;
-    scene::TriangleMesh quad;
-    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const scene::TriangleMesh quad = phos::testing::unit_quad();
     const std::string ply = dir.write("geo/quad.ply", "");
     phos::testing::write_ply(ply, quad, true);
     std::ifstream in(ply, std::ios::binary);

@@ -231,9 +231,7 @@ TEST(PbrtV3, IntegratorMediumAndFilterFollowTheRules) {
 TEST(PbrtV3, UpgradeWritesOnePbrtV4FileThatLoadsToTheSameScene) {
     QuietLog quiet;
     PbrtTempDir dir;
-    scene::TriangleMesh quad;
-    quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-    quad.indices = {0, 1, 2, 0, 2, 3};
+    const scene::TriangleMesh quad = phos::testing::unit_quad();
     phos::testing::write_ply(dir.write("in/geo/quad.ply", ""), quad, false);
     dir.write("in/geo/part.pbrt",
               "AttributeBegin\nMaterial \"plastic\" \"color Kd\" [0.5 0.2 0.1] \"color Ks\" "
