@@ -42,7 +42,7 @@ void drop(ParamList& params, const std::string& name, double expected, const std
                   material + "\" (ignored, as pbrt-v4's upgrade does)");
 }
 
-// True when `name` is absent or a constant grey `value` (pbrt-v3 plastic/uber with Ks = 0: diffuse).
+// True when `name` is given as the constant grey `value` (pbrt-v3 plastic/uber with Ks = 0: diffuse).
 bool is_constant(const ParamList& params, const std::string& name, double value) {
     const Param* p = params.peek(name);
     return p && ((grey(*p) && p->numbers[0] == value) || (p->type == "float" && p->numbers[0] == value));
