@@ -84,9 +84,10 @@ std::unique_ptr<std::istream> open_maybe_gzip(const std::string& path) {
     file->clear();
     file->seekg(0);
     if (!gz) return file;
-    std::string bytes;
-    if (!read_maybe_gzip(path, bytes)) return nullptr;
-    return std::make_unique<std::istringstream>(std::move(bytes));
+    std::ostringstream compressed;
+    compressed << file->rdbuf();
+    if (file->bad()) return nullptr;
+    return std::make_unique<std::istringstream>(gunzip(std::move(compressed).str(), path));
 }
 
 }  // namespace phos::io

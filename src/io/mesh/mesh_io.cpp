@@ -11,16 +11,15 @@
 namespace phos::io {
 
 LoadedMesh read_mesh(const std::string& path) {
-    std::string ext = std::filesystem::path(path).extension().string();
-    std::transform(ext.begin(), ext.end(), ext.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    const auto lowered_extension = [](const std::filesystem::path& p) {
+        std::string e = p.extension().string();
+        std::transform(e.begin(), e.end(), e.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+        return e;
+    };
+    std::string ext = lowered_extension(path);
     // A compressed mesh (mesh.ply.gz) is read by the reader of the extension before ".gz" (each
     // reader decompresses by the file's gzip magic).
-    if (ext == ".gz") {
-        ext = std::filesystem::path(path).stem().extension().string();
-        std::transform(ext.begin(), ext.end(), ext.begin(),
-                       [](unsigned char c) { return char(std::tolower(c)); });
-    }
+    if (ext == ".gz") ext = lowered_extension(std::filesystem::path(path).stem());
     if (ext == ".off") {
         LoadedMesh m;
         m.mesh = read_off(path);

@@ -9,7 +9,6 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/option_table.h"
-#include "io/pbrt/upgrade_v3.h"
 
 namespace phos::io {
 
@@ -183,11 +182,8 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
     camera_ = c;
 }
 
-void SceneBuilder::film(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::film(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "Film", loc);
-    std::string type = type_in;
-    ParamList params = params_in;
-    upgrade_film(type, params);  // pbrt-v3's Film "image" (upgrade_v3.h)
     const std::string d = "Film \"" + type + "\"";
     if (type != "rgb" && type != "gbuffer" && type != "spectral")
         warn(loc, d + " is not a pbrt-v4 film type; treated as \"rgb\"");
@@ -219,10 +215,8 @@ void SceneBuilder::film(const std::string& type_in, const ParamList& params_in, 
     done(params, d);
 }
 
-void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "PixelFilter", loc);
-    ParamList params = params_in;
-    upgrade_filter(type, params);  // pbrt-v3 parameters (upgrade_v3.h)
     const std::string d = "PixelFilter \"" + type + "\"";
     if (type != "box") {
         warn(loc, d + " is not supported; phos uses a box filter of radius 0.5 pixel");
@@ -269,14 +263,16 @@ constexpr PbrtIntegrator kPbrtIntegrators[] = {
 };
 }  // namespace
 
-void SceneBuilder::integrator(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::integrator(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "Integrator", loc);
-    std::string type = type_in;
-    ParamList params = params_in;
-    sppm_iterations_ = upgrade_integrator(type, params, loc);  // pbrt-v3 integrators (upgrade_v3.h)
+    // pbrt-v3 SPPM's "numiterations" (upgrade_v3.h): the iterations, whatever the Sampler says.
+    sppm_iterations_ = 0;
+    if (const Param* n = type == "sppm" ? params.find("numiterations") : nullptr; n && n->type == "integer")
+        sppm_iterations_ = int(n->numbers.at(0));
     // Parameters are kept as written; the renderer maps them onto its option tables by name
     // (maxdepth, radius, photonsperiteration, seed...) and warns about the ones it does not use.
     for (const Param& p : params.all()) {
+        if (sppm_iterations_ > 0 && p.name == "numiterations") continue;
         scene::IntegratorParameter ip;
         ip.name = p.name;
         ip.type = p.type;

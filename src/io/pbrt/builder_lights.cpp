@@ -8,7 +8,6 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
-#include "io/pbrt/upgrade_v3.h"
 #include "io/text/image_texture.h"
 #include "io/volume/volume_grid.h"
 
@@ -39,11 +38,8 @@ const std::map<std::string, Preset>& presets() {
 
 }  // namespace
 
-void SceneBuilder::light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::light_source(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "LightSource", loc);
-    std::string type = type_in;
-    ParamList params = params_in;
-    upgrade_light(type, params, loc, false);  // pbrt-v3 light parameters (upgrade_v3.h)
     const std::string d = "LightSource \"" + type + "\"";
     if (object_ >= 0) {
         warn(loc, d + ": lights inside ObjectBegin/ObjectEnd are not supported (skipped)");
@@ -160,11 +156,8 @@ void SceneBuilder::light_source(const std::string& type_in, const ParamList& par
     scene_.lights.push_back(std::move(light));
 }
 
-void SceneBuilder::area_light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::area_light_source(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "AreaLightSource", loc);
-    std::string type = type_in;
-    ParamList params = params_in;
-    upgrade_light(type, params, loc, true);  // pbrt-v3's "area" and light parameters (upgrade_v3.h)
     const std::string d = "AreaLightSource \"" + type + "\"";
     if (type != "diffuse") {
         warn(loc, d + " is not supported (the shapes that follow do not emit)");
@@ -189,9 +182,7 @@ void SceneBuilder::area_light_source(const std::string& type_in, const ParamList
     gs_.area_light = al;
 }
 
-void SceneBuilder::make_named_medium(const std::string& name, const ParamList& params_in, const Loc& loc) {
-    ParamList params = params_in;
-    upgrade_medium(params);  // pbrt-v3's "heterogeneous" (upgrade_v3.h)
+void SceneBuilder::make_named_medium(const std::string& name, const ParamList& params, const Loc& loc) {
     if (media_.count(name)) loc.fail("medium \"" + name + "\" defined twice");
     if (!params.has("type")) loc.fail("MakeNamedMedium \"" + name + "\": missing \"string type\"");
     const std::string type = params.get_string("type", "");

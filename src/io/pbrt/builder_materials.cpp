@@ -8,7 +8,6 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
-#include "io/pbrt/upgrade_v3.h"
 #include "io/text/image_texture.h"
 #include "spectrum/dispersion.h"
 
@@ -132,14 +131,11 @@ int SceneBuilder::constant_texture(Rgb value) {
 
 // ---- textures ----
 
-void SceneBuilder::texture(const std::string& name, const std::string& type_in, const std::string& cls,
-                           const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::texture(const std::string& name, const std::string& type, const std::string& cls,
+                           const ParamList& params, const Loc& loc) {
     require_world(true, "Texture", loc);
-    const std::string type = type_in == "color" ? "spectrum" : type_in;
-    ParamList params = params_in;
-    upgrade_texture(type, cls, params);  // pbrt-v3 parameters (upgrade_v3.h)
-    if (type != "float" && type != "spectrum")
-        loc.fail("Texture \"" + name + "\": type must be \"float\" or \"spectrum\", not \"" + type_in + "\"");
+    if (type != "float" && type != "spectrum")  // pbrt-v3's "color" arrives as "spectrum" (upgrade_v3.h)
+        loc.fail("Texture \"" + name + "\": type must be \"float\" or \"spectrum\", not \"" + type + "\"");
     auto& names = type == "float" ? float_textures_ : spectrum_textures_;
     if (names.count(name)) loc.fail("Texture \"" + name + "\" defined twice");
     const std::string d = "Texture \"" + name + "\" \"" + type + "\" \"" + cls + "\"";
@@ -391,25 +387,20 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
     return m;
 }
 
-void SceneBuilder::material(const std::string& type_in, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::material(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "Material", loc);
-    std::string type = type_in;
-    ParamList params = params_in;
-    upgrade_material(type, params, loc);  // pbrt-v3 materials (upgrade_v3.h)
     scene::Material m = make_material(type, params, loc, "Material \"" + type + "\"");
     m.name = type + "@" + std::to_string(loc.line);
     gs_.material = int(scene_.materials.size());
     scene_.materials.push_back(std::move(m));
 }
 
-void SceneBuilder::make_named_material(const std::string& name, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::make_named_material(const std::string& name, const ParamList& params, const Loc& loc) {
     require_world(true, "MakeNamedMaterial", loc);
     if (named_materials_.count(name)) loc.fail("named material \"" + name + "\" defined twice");
-    const Param* tp = params_in.find("type");
+    const Param* tp = params.find("type");
     if (!tp) loc.fail("MakeNamedMaterial \"" + name + "\": missing \"string type\"");
-    std::string type = params_in.get_string("type", "");
-    ParamList params = params_in;
-    upgrade_material(type, params, loc);  // pbrt-v3 materials (upgrade_v3.h)
+    const std::string type = params.get_string("type", "");
     scene::Material m = make_material(type, params, loc, "MakeNamedMaterial \"" + name + "\"");
     m.name = name;
     named_materials_[name] = int(scene_.materials.size());

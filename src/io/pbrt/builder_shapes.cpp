@@ -8,7 +8,6 @@
 #include "core/log.h"
 #include "io/mesh/mesh_io.h"
 #include "io/pbrt/builder.h"
-#include "io/pbrt/upgrade_v3.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -99,10 +98,8 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     light.origin = loc.str();  // the Shape that emits
 }
 
-void SceneBuilder::shape(const std::string& type, const ParamList& params_in, const Loc& loc) {
+void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "Shape", loc);
-    ParamList params = params_in;
-    upgrade_shape(type, params);  // pbrt-v3 parameters (upgrade_v3.h)
     const std::string d = "Shape \"" + type + "\"";
     scene::Shape s;
     s.material = current_material();

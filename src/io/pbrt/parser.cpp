@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "io/pbrt/upgrade_v3.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -175,8 +176,9 @@ private:
         const std::string& d = t.text;
         const Loc& loc = t.loc;
         auto typed = [&](auto method) {
-            const std::string type = string_arg(loc, d);
-            const ParamList pl = params();
+            std::string type = string_arg(loc, d);
+            ParamList pl = params();
+            upgrade_directive(d, type, pl, loc);  // pbrt-v3's names and parameters (upgrade_v3.h)
             (target_.*method)(type, pl, loc);
         };
         if (d == "AttributeBegin")
@@ -217,8 +219,11 @@ private:
         else if (d == "NamedMaterial")
             target_.named_material(string_arg(loc, d), loc);
         else if (d == "Texture") {
-            const std::string name = string_arg(loc, d), type = string_arg(loc, d), cls = string_arg(loc, d);
-            const ParamList pl = params();
+            const std::string name = string_arg(loc, d);
+            std::string type = string_arg(loc, d);
+            const std::string cls = string_arg(loc, d);
+            ParamList pl = params();
+            upgrade_texture(type, cls, pl);
             target_.texture(name, type, cls, pl, loc);
         } else if (d == "LightSource")
             typed(&ParserTarget::light_source);

@@ -48,8 +48,6 @@ bool is_constant(const ParamList& params, const std::string& name, double value)
     return p && ((grey(*p) && p->numbers[0] == value) || (p->type == "float" && p->numbers[0] == value));
 }
 
-}  // namespace
-
 void upgrade_material(std::string& type, ParamList& params, const Loc& loc) {
     if ((type == "glass" || type == "uber") && params.peek("index")) {
         if (params.peek("eta"))
@@ -192,7 +190,7 @@ void upgrade_film(std::string& type, ParamList& params) {
     }
 }
 
-void upgrade_texture(const std::string& type, const std::string& cls, ParamList& params) {
+void upgrade_texture_params(const std::string& type, const std::string& cls, ParamList& params) {
     if (cls == "scale" && (params.peek("tex1") || params.peek("tex2"))) {
         if (type == "float") {
             params.rename("tex1", "tex");
@@ -243,14 +241,9 @@ void upgrade_shape(const std::string& type, ParamList& params) {
     params.take("shadowalpha");
 }
 
-int upgrade_integrator(std::string& type, ParamList& params, const Loc& loc) {
+void upgrade_integrator(std::string& type, ParamList& params, const Loc& loc) {
     params.take("rrthreshold");
-    int iterations = 0;
-    if (type == "sppm") {
-        params.take("imagewritefrequency");
-        if (const std::optional<Param> n = params.take("numiterations"); n && n->type == "integer")
-            iterations = int(n->numbers.at(0));
-    }
+    if (type == "sppm") params.take("imagewritefrequency");  // its "numiterations" stays (upgrade_v3.h)
     if (const Param* l = params.peek("lightsamplestrategy");
         l && l->strings == std::vector<std::string>{"spatial"})
         params.edit("lightsamplestrategy")->strings = {"bvh"};
@@ -262,7 +255,6 @@ int upgrade_integrator(std::string& type, ParamList& params, const Loc& loc) {
         depth.type = "integer";
         params.add(std::move(depth));
     }
-    return iterations;
 }
 
 void upgrade_medium(ParamList& params) {
@@ -277,6 +269,45 @@ void upgrade_filter(const std::string& type, ParamList& params) {
         if (const std::optional<Param> a = params.take("alpha");
             a && a->type == "float" && a->numbers.at(0) > 0)
             params.add(float_param("sigma", 1 / std::sqrt(2 * a->numbers[0]), a->loc));
+}
+
+}  // namespace
+
+void upgrade_directive(const std::string& directive, std::string& type, ParamList& params, const Loc& loc) {
+    if (directive == "Material") {
+        upgrade_material(type, params, loc);
+    } else if (directive == "MakeNamedMaterial") {
+        // `type` is the material's name here; its type is the "type" parameter.
+        if (const Param* t = params.peek("type"); t && t->type == "string" && t->strings.size() == 1) {
+            std::string material = t->strings[0];
+            upgrade_material(material, params, loc);
+            params.edit("type")->strings = {material};
+        }
+    } else if (directive == "LightSource" || directive == "AreaLightSource") {
+        upgrade_light(type, params, loc, directive == "AreaLightSource");
+    } else if (directive == "Film") {
+        upgrade_film(type, params);
+    } else if (directive == "PixelFilter") {
+        upgrade_filter(type, params);
+    } else if (directive == "Integrator") {
+        upgrade_integrator(type, params, loc);
+    } else if (directive == "MakeNamedMedium") {
+        upgrade_medium(params);
+    } else if (directive == "Shape") {
+        upgrade_shape(type, params);
+    } else if (directive == "Sampler") {
+        if (type == "lowdiscrepancy" || type == "02sequence")
+            type = "paddedsobol";
+        else if (type == "maxmindist")
+            type = "pmj02bn";
+        else if (type == "random")
+            type = "independent";
+    }
+}
+
+void upgrade_texture(std::string& type, const std::string& cls, ParamList& params) {
+    if (type == "color") type = "spectrum";
+    upgrade_texture_params(type, cls, params);
 }
 
 }  // namespace phos::io::pbrt

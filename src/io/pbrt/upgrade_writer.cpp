@@ -1,5 +1,5 @@
 // The pbrt-v4 writer behind `phos upgrade` (see upgrade_writer.h): a ParserTarget that prints each
-// directive it receives, after the pbrt-v3 rules.
+// directive it receives (the parser has already applied the pbrt-v3 rules, upgrade_v3.h).
 #include "io/pbrt/upgrade_writer.h"
 
 #include <filesystem>
@@ -8,7 +8,6 @@
 #include "core/option_table.h"
 #include "io/pbrt/parser.h"
 #include "io/pbrt/spectra.h"
-#include "io/pbrt/upgrade_v3.h"
 
 namespace phos::io {
 namespace pbrt {
@@ -63,33 +62,21 @@ public:
     void camera(const std::string& type, const ParamList& params, const Loc&) override {
         directive("Camera", type, params);
     }
-    void film(const std::string& type_in, const ParamList& params_in, const Loc&) override {
-        std::string type = type_in;
-        ParamList params = params_in;
-        upgrade_film(type, params);
+    void film(const std::string& type, const ParamList& params, const Loc&) override {
         directive("Film", type, params, /*output_names=*/true);
     }
-    void pixel_filter(const std::string& type, const ParamList& params_in, const Loc&) override {
-        ParamList params = params_in;
-        upgrade_filter(type, params);
+    void pixel_filter(const std::string& type, const ParamList& params, const Loc&) override {
         directive("PixelFilter", type, params);
     }
     void sampler(const std::string& type, const ParamList& params, const Loc&) override {
-        // pbrt-v4's names for pbrt-v3's samplers.
-        const std::string t = type == "lowdiscrepancy" || type == "02sequence" ? "paddedsobol"
-                              : type == "maxmindist"                           ? "pmj02bn"
-                              : type == "random"                               ? "independent"
-                                                                               : type;
-        directive("Sampler", t, params);
+        directive("Sampler", type, params);
     }
-    void integrator(const std::string& type_in, const ParamList& params_in, const Loc& loc) override {
-        std::string type = type_in;
+    void integrator(const std::string& type, const ParamList& params_in, const Loc&) override {
         ParamList params = params_in;
-        const int iterations = upgrade_integrator(type, params, loc);
+        const std::optional<Param> iterations = params.take("numiterations");  // pbrt-v3 sppm (upgrade_v3.h)
         directive("Integrator", type, params);
-        // pbrt-v4's SPPM takes its iterations from the sampler's pixel samples.
-        if (iterations > 0)
-            line("# pbrt-v3 sppm \"numiterations\" " + std::to_string(iterations) +
+        if (iterations && iterations->type == "integer")  // pbrt-v4's SPPM: the Sampler's pixel samples
+            line("# pbrt-v3 sppm \"numiterations\" " + std::to_string(int(iterations->numbers.at(0))) +
                  ": give it as the Sampler's \"pixelsamples\"");
     }
     void accelerator(const std::string& type, const ParamList& params, const Loc&) override {
@@ -99,9 +86,7 @@ public:
         line("ColorSpace " + pbrt_string(name));
     }
     void option(const Param& param, const Loc&) override { line("Option " + param_text(param, false)); }
-    void make_named_medium(const std::string& name, const ParamList& params_in, const Loc&) override {
-        ParamList params = params_in;
-        upgrade_medium(params);
+    void make_named_medium(const std::string& name, const ParamList& params, const Loc&) override {
         directive("MakeNamedMedium", name, params);
     }
     void medium_interface(const std::string& inside, const std::string& outside, const Loc&) override {
@@ -116,46 +101,27 @@ public:
     void attribute(const std::string& target, const ParamList& params, const Loc&) override {
         directive("Attribute", target, params);
     }
-    void texture(const std::string& name, const std::string& type_in, const std::string& cls,
-                 const ParamList& params_in, const Loc&) override {
-        const std::string type = type_in == "color" ? "spectrum" : type_in;
-        ParamList params = params_in;
-        upgrade_texture(type, cls, params);
+    void texture(const std::string& name, const std::string& type, const std::string& cls,
+                 const ParamList& params, const Loc&) override {
         line("Texture " + pbrt_string(name) + " " + pbrt_string(type) + " " + pbrt_string(cls) +
              params_text(params, false));
     }
-    void material(const std::string& type_in, const ParamList& params_in, const Loc& loc) override {
-        std::string type = type_in;
-        ParamList params = params_in;
-        upgrade_material(type, params, loc);
+    void material(const std::string& type, const ParamList& params, const Loc&) override {
         directive("Material", type, params);
     }
-    void make_named_material(const std::string& name, const ParamList& params_in, const Loc& loc) override {
-        ParamList params = params_in;
-        std::optional<Param> t = params.take("type");
-        std::string type = t && !t->strings.empty() ? t->strings[0] : "";
-        upgrade_material(type, params, loc);
-        line("MakeNamedMaterial " + pbrt_string(name) + "\n" + indent(1) + "\"string type\" " +
-             pbrt_string(type) + params_text(params, false));
+    void make_named_material(const std::string& name, const ParamList& params, const Loc&) override {
+        directive("MakeNamedMaterial", name, params);
     }
     void named_material(const std::string& name, const Loc&) override {
         line("NamedMaterial " + pbrt_string(name));
     }
-    void light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) override {
-        std::string type = type_in;
-        ParamList params = params_in;
-        upgrade_light(type, params, loc, false);
+    void light_source(const std::string& type, const ParamList& params, const Loc&) override {
         directive("LightSource", type, params);
     }
-    void area_light_source(const std::string& type_in, const ParamList& params_in, const Loc& loc) override {
-        std::string type = type_in;
-        ParamList params = params_in;
-        upgrade_light(type, params, loc, true);
+    void area_light_source(const std::string& type, const ParamList& params, const Loc&) override {
         directive("AreaLightSource", type, params);
     }
-    void shape(const std::string& type, const ParamList& params_in, const Loc&) override {
-        ParamList params = params_in;
-        upgrade_shape(type, params);
+    void shape(const std::string& type, const ParamList& params, const Loc&) override {
         directive("Shape", type, params);
     }
     void object_begin(const std::string& name, const Loc&) override {
