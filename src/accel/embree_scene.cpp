@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "accel/analytic.h"
+#include "accel/curves.h"
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/log.h"
@@ -24,6 +25,7 @@ namespace phos::accel {
 using detail::Affine;
 using detail::Analytic;
 using detail::CanonicalHit;
+using detail::CurveGeom;
 using detail::D3;
 
 namespace {
@@ -64,8 +66,8 @@ TriangleFacts triangle_facts(const MeshGeom& m, unsigned prim);
 
 // What an Embree geomID stands for.
 struct Geom {
-    enum Kind { Mesh, Analytic, Instance } kind = Mesh;
-    int index = 0;  // into Impl::meshes / analytics / instances
+    enum Kind { Mesh, Analytic, Instance, Curves } kind = Mesh;
+    int index = 0;  // into Impl::meshes / analytics / instances / curves
 };
 
 struct InstanceData {
@@ -167,6 +169,7 @@ struct EmbreeScene::Impl {
     size_t cached_triangles = 0;
     std::deque<Analytic> analytics;  // a deque: Embree keeps pointers to the Analytic records
     std::vector<InstanceData> instances;
+    std::vector<CurveGeom> curves;                // pbrt curve shapes
     std::vector<Geom> top_geoms;                  // by geomID in `top`
     std::vector<std::vector<Geom>> object_geoms;  // by object, by geomID in its scene
     Bounds bounds;
@@ -324,6 +327,19 @@ struct EmbreeScene::Impl {
         attach(s, g, ids, {Geom::Analytic, int(analytics.size() - 1)});
     }
 
+    void add_curves(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        CurveGeom c;
+        std::string why;
+        RTCGeometry g = detail::new_curve_geometry(device, shape, index, c, why);
+        if (!g) {
+            check();
+            log::warn(where(shape) + ": curves ignored (" + why + ")");
+            return;
+        }
+        curves.push_back(c);
+        attach(s, g, ids, {Geom::Curves, int(curves.size() - 1)});
+    }
+
     void add_shape(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
         using Kind = scene::Shape::Kind;
         switch (shape.kind) {
@@ -332,6 +348,9 @@ struct EmbreeScene::Impl {
                 break;
             case Kind::Box:
                 add_box(s, ids, shape, index);
+                break;
+            case Kind::Curves:
+                add_curves(s, ids, shape, index);
                 break;
             default:
                 add_analytic(s, ids, shape, index);
@@ -614,8 +633,9 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->top, &qc.ctx, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    finish_hit({rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar}, canonical,
-               hit);
+    const Vec3 ng(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
+    finish_hit({rh.hit.geomID, rh.hit.primID, rh.hit.instID[0], rh.hit.u, rh.hit.v, rh.ray.tfar, ng, &ray},
+               canonical, hit);
     return true;
 }
 
@@ -679,10 +699,11 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
     if (any) rtcIntersect16(valid, impl_->top, &qc.ctx, &rh);
     for (int k = 0; k < n; ++k) {
         found[k] = valid[k] != 0 && rh.hit.geomID[k] != RTC_INVALID_GEOMETRY_ID;
-        if (found[k])
-            finish_hit({rh.hit.geomID[k], rh.hit.primID[k], rh.hit.instID[0][k], rh.hit.u[k], rh.hit.v[k],
-                        rh.ray.tfar[k]},
-                       canonical[k], hits[k]);
+        if (!found[k]) continue;
+        const Vec3 ng(rh.hit.Ng_x[k], rh.hit.Ng_y[k], rh.hit.Ng_z[k]);
+        finish_hit({rh.hit.geomID[k], rh.hit.primID[k], rh.hit.instID[0][k], rh.hit.u[k], rh.hit.v[k],
+                    rh.ray.tfar[k], ng, &rays[k]},
+                   canonical[k], hits[k]);
     }
 }
 
@@ -731,6 +752,21 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
         L = mesh_local(m, raw.prim, raw.u, raw.v);
         shape = m.source;
         shape_index = m.shape;
+        hit.shading = nullptr;
+    } else if (g->kind == Geom::Curves) {
+        const CurveGeom& c = im.curves[size_t(g->index)];
+        // The ray in the geometry's space (Embree's ng already is).
+        D3 o(raw.ray->origin), d(raw.ray->dir);
+        if (inst) o = inst->to_object.point(o), d = inst->to_object.vector(d);
+        const detail::CurveSurface cs = detail::curve_surface(c, raw.prim, raw.u, D3(raw.ng), o, d, raw.t);
+        L.p = cs.p;
+        L.ng = L.ns = cs.n;
+        L.dpdu = cs.dpdu;
+        L.uv = cs.uv;
+        L.error = cs.error;
+        shape = c.source;
+        shape_index = c.shape;
+        hit.primitive = int(raw.prim);
         hit.shading = nullptr;
     } else {
         const Analytic& a = im.analytics[size_t(g->index)];

@@ -26,6 +26,10 @@ struct CanonicalHit;  // accel/analytic.h
 //   a +z axis), v = theta / pi from the +axis pole. Disk: u = phi / 2pi, v = (r_out - r) /
 //   (r_out - r_in). Cylinder/cone side: v = 0 at the base (centre - axis h/2) to 1 at the top;
 //   caps: v = r / radius. Cone apex at centre + axis h/2; Shape::capped closes cylinder and cone.
+// - Curves (pbrt `curve`, accel/curves.h): u along each cubic segment, v across it (0.5 on the
+//   centre curve); cylinders' outward normal, ribbons' normal on the side of their normal spline,
+//   flat curves' normal facing the ray; each flipped if reverse_orientation XOR to_world swaps
+//   handedness. `primitive` is the segment.
 // - Instances: the instance transform carries p, normals and dpdu to world without any flip;
 //   `shape` is the index within the object and `instance` the index in Scene::instances.
 // - Degenerate shapes (zero radius, ...) are skipped with a warning; malformed meshes (index out of
@@ -62,6 +66,8 @@ private:
     struct RawHit {  // what Embree reports for one ray
         unsigned geom, prim, inst;
         float u, v, t;
+        Vec3 ng;         // Embree's unnormalised geometric normal (curves read it)
+        const Ray* ray;  // the ray traced
     };
     // The SurfaceHit of an Embree hit (exact hit point, normals, tangent, error bound).
     void finish_hit(const RawHit& raw, const detail::CanonicalHit& canonical, SurfaceHit& hit) const;

@@ -31,6 +31,16 @@ Bounds object_bounds(const scene::Shape& s) {
             b.extend(s.center + Vec3(e));
             break;
         }
+        case K::Curves: {
+            // A segment lies in the hull of its control points; the tube adds its radius.
+            float r = 0;
+            for (float x : s.curves.radii) r = std::max(r, std::fabs(x));
+            for (const Vec3& p : s.curves.points) {
+                b.extend(p - Vec3(r));
+                b.extend(p + Vec3(r));
+            }
+            break;
+        }
     }
     return b;
 }

@@ -8,6 +8,7 @@
 
 #include "core/transform.h"
 #include "core/vec.h"
+#include "scene/curves.h"
 #include "scene/medium.h"
 
 namespace phos::scene {
@@ -28,9 +29,11 @@ struct Shape {
         Disk,      // centre, normal, radius (inner_radius for an annulus)
         Cylinder,  // centre of the axis segment, unit `axis`, radius, height; caps if `capped`
         Cone,      // centre of the axis segment, unit `axis` towards the apex, base radius, height
+        Curves,    // `curves` (pbrt `curve`), in the space of to_world
     };
     Kind kind = Kind::Mesh;
     TriangleMesh mesh;
+    CurveSet curves;
     Vec3 center{0.0f};
     float radius = 1.0f;
     float inner_radius = 0.0f;

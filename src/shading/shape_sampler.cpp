@@ -77,6 +77,8 @@ ShapeSampler::ShapeSampler(const scene::Shape& s) : to_world_(s.to_world) {
             }
             break;
         }
+        case K::Curves:  // never emits (pbrt-v4 cannot sample curves): no parts
+            break;
     }
     if (!std::isfinite(area_)) throw InputError("area light on shape " + s.origin + ": non-finite area");
     by_area_ = Distribution1D(areas_);

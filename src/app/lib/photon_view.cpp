@@ -81,6 +81,13 @@ void shape_lines(std::vector<Vec3>& out, const scene::Shape& s, const Transform&
             }
             break;
         }
+        case Kind::Curves:  // each segment's control polygon
+            for (uint32_t first : s.curves.segments)
+                for (uint32_t k = first; k < first + 3 && k + 1 < s.curves.points.size(); ++k) {
+                    out.push_back(t.point(s.curves.points[k]));
+                    out.push_back(t.point(s.curves.points[k + 1]));
+                }
+            break;
     }
 }
 

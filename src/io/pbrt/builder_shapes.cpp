@@ -8,6 +8,7 @@
 #include "core/log.h"
 #include "io/mesh/mesh_io.h"
 #include "io/pbrt/builder.h"
+#include "io/pbrt/curves.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -58,7 +59,7 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
         scene_.objects[size_t(object_)].shapes.push_back(std::move(shape));
         return;
     }
-    if (!gs_.area_light) {
+    if (!gs_.area_light || shape.kind == scene::Shape::Kind::Curves) {
         scene_.shapes.push_back(std::move(shape));
         return;
     }
@@ -223,6 +224,15 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
         s.to_world = t;
         s.reverse_orientation = gs_.reverse_orientation;
         area = 2 * kPi * s.radius * s.height * ls * ls;
+    } else if (type == "curve") {
+        s.kind = scene::Shape::Kind::Curves;
+        s.curves = read_curves(params, loc, d, [&](const Loc& l, const std::string& m) { warn(l, m); });
+        s.to_world = t;
+        s.reverse_orientation = gs_.reverse_orientation;
+        if (gs_.area_light)
+            warn_once("curve area light", loc,
+                      "area lights on curves are not supported (pbrt-v4 cannot sample points on curves); "
+                      "curves do not emit");
     } else {
         warn(loc, d + " is not supported (the shape is skipped)");
         params.mark_all_used();

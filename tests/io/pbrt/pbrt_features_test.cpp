@@ -131,12 +131,12 @@ TEST(PbrtSettings, SppmIntegratorSamplerAndFilter) {
 }
 
 TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
-    // gaussian filter, mlt integrator, curve shape, goniometric light, Attribute: one each, even
+    // gaussian filter, mlt integrator, hyperboloid shape, goniometric light, Attribute: one each, even
     // though they carry parameters; pbrt-v3's WorldEnd is read silently.
     const Loaded l = load_text(
         "PixelFilter \"gaussian\" \"float sigma\" 0.5 \"float xradius\" 2\n"
         "Integrator \"mlt\" \"integer mutationsperpixel\" 10\nWorldBegin\n"
-        "Shape \"curve\" \"point3 P\" [0 0 0 1 1 1 2 2 2 3 3 3] \"float width\" 0.1\n"
+        "Shape \"hyperboloid\" \"point3 p1\" [0 0 0] \"point3 p2\" [1 1 1]\n"
         "LightSource \"goniometric\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
         "2\nLightSource \"point\"\nWorldEnd\n");
     EXPECT_EQ(l.warnings, 4);  // the mlt integrator is reported by `phos render` (it may be overridden)
