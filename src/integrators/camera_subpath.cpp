@@ -5,6 +5,7 @@
 
 #include <tbb/parallel_for.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/low_discrepancy.h"
@@ -115,8 +116,24 @@ void connect_to_camera(const Context& C, const Vertex& v, Sampler& sampler) {
     ++C.rays.shadow;
     const Spectrum T = transmittance_to(C.P, v, c.lens, sampler, v.lambda);
     if (T.is_black()) return;
-    const Spectrum value = v.beta * s.f * T * (w * camera_pdf_a);
-    C.film.add(pixel, spectrum::to_srgb(value, v.lambda), part_at_first_vertex(v));
+    const Rgb value = spectrum::to_srgb(v.beta * s.f * T * (w * camera_pdf_a), v.lambda);
+    if (C.P.filter.is_pixel_box()) {
+        C.film.add(pixel, value, part_at_first_vertex(v));
+        return;
+    }
+    // A wider pixel filter shares the splat out to every pixel whose filter covers its film position
+    // (the camera subpaths of those pixels sample positions with the same filter).
+    const Vec2 r = C.P.filter.radius();
+    const int w_px = C.P.options.width, h_px = C.P.options.height;
+    const int x0 = std::max(0, int(std::ceil(c.fx - 0.5f - r.x))),
+              x1 = std::min(w_px - 1, int(std::floor(c.fx - 0.5f + r.x)));
+    const int y0 = std::max(0, int(std::ceil(c.fy - 0.5f - r.y))),
+              y1 = std::min(h_px - 1, int(std::floor(c.fy - 0.5f + r.y)));
+    for (int y = y0; y <= y1; ++y)
+        for (int x = x0; x <= x1; ++x) {
+            const float f = C.P.filter.splat_weight(Vec2(c.fx - (float(x) + 0.5f), c.fy - (float(y) + 0.5f)));
+            if (f != 0) C.film.add(size_t(y) * size_t(w_px) + size_t(x), value * f, part_at_first_vertex(v));
+        }
 }
 
 // One light sample at camera vertex `v` (s = 1) from the random numbers (u_light, u), weighted
@@ -458,13 +475,24 @@ void render_pixel(const Prepared& P, const Iteration& it, const LightVertexGrid*
     // the others draw their own.
     const auto camera_sample = [&](int j, Sampler& s) {
         C.sample = first_sample + uint32_t(j);
-        const Vec2 jitter = padded_point2(C.sample, hash_combine(key, 1));
+        const PixelFilterSampler::FilmSample at =
+            P.filter.sample(padded_point2(C.sample, hash_combine(key, 1)));
         const Vec2 lens = padded_point2(C.sample, hash_combine(key, 2));
         const Wavelengths lambda =
             j == 0
                 ? subpath_wavelengths(ro.seed, i, iteration)
                 : Wavelengths::visible(spectrum::wavelength_sequence_point(C.sample, hash_combine(key, 3)));
-        camera_path(C, float(x) + jitter.x, float(y) + jitter.y, lens, s, lambda, j == 0);
+        if (at.weight == 1) {
+            camera_path(C, float(x) + at.position.x, float(y) + at.position.y, lens, s, lambda, j == 0);
+            return;
+        }
+        // A weighted sample's estimate is scaled as a whole (its path throughput stays positive
+        // for Russian roulette).
+        Rgb own[kParts] = {Rgb(0.0f), Rgb(0.0f), Rgb(0.0f), Rgb(0.0f)};
+        C.parts = own;
+        camera_path(C, float(x) + at.position.x, float(y) + at.position.y, lens, s, lambda, j == 0);
+        C.parts = parts;
+        for (int k = 0; k < kParts; ++k) parts[k] += own[k] * at.weight;
     };
     camera_sample(0, sampler);
     for (int j = 1; j < it.camera_samples; ++j) {

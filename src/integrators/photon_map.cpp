@@ -168,8 +168,8 @@ RenderDone PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps&
             payload);
     return render_samples(
         P, film, budget_, "photonmap", progress,
-        [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
-            film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total());
+        [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
+            film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total() * weight);
         },
         payload);
 }

@@ -26,11 +26,17 @@ Rgb hit_point_path(const Prepared& P, int x, int y, int s, int eye, int direct_s
     const RenderOptions& ro = P.options;
     const size_t i = (size_t(y) * size_t(ro.width) + size_t(x)) * size_t(eye) + size_t(s);
     Sampler sampler(ro.seed, 0x70706d657965ULL, i);
-    const Vec2 jitter = eye == 1 ? Vec2{0.5f, 0.5f} : stratified_sample(s, eye, sampler.next2());
+    // One hit point per pixel is the pixel's centre; several are spread by the pixel filter.
+    const PixelFilterSampler::FilmSample at =
+        eye == 1 ? PixelFilterSampler::FilmSample{Vec2{0.5f, 0.5f}, 1.0f}
+                 : P.filter.sample(stratified_sample(s, eye, sampler.next2()));
     const Vec2 lens = sampler.next2();
-    const Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+    const Ray ray = P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
     ++rays.camera;
-    return trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
+    if (at.weight == 1) return L;
+    vp.beta *= at.weight;
+    return L * at.weight;
 }
 
 // The ray tracing pass, deterministic in the seed, so a resumed render recomputes the

@@ -44,12 +44,16 @@ Rgb pixel_eye_path(const Prepared& P, int x, int y, uint64_t it, int direct_samp
     const uint64_t pixel = size_t(y) * size_t(ro.width) + size_t(x);
     Sampler sampler(ro.seed, 0x65796570617373ULL, pixel, it);
     const uint64_t key = Sampler(ro.seed, 0x6579657365717563ULL, pixel).next_bits();
-    const Vec2 jitter = padded_point2(uint32_t(it), hash_combine(key, 1));
+    const PixelFilterSampler::FilmSample at =
+        P.filter.sample(padded_point2(uint32_t(it), hash_combine(key, 1)));
     const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
-    const Ray ray = P.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+    const Ray ray = P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
     ++rays.camera;
     const PixelSequences sequences{uint32_t(it), hash_combine(key, 3)};
-    return trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &sequences);
+    const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &sequences);
+    if (at.weight == 1) return L;
+    vp.beta *= at.weight;  // the photons this visible point gathers count with the sample's weight
+    return L * at.weight;
 }
 
 // The eye pass of iteration `it`: one stochastic camera path per pixel of this rank's

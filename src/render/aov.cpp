@@ -92,7 +92,7 @@ void render_aovs(const Prepared& P, film::Film& film) {
     // only average the pixel's footprint further; a time budget would leave the count open).
     const int64_t n = int64_t(std::max(1, P.options.spp)) * std::max(1, P.options.dof_samples);
     const int samples = int(std::min<int64_t>(n, 64));
-    for_each_sample(P, samples, [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
+    for_each_sample(P, samples, [&](int x, int y, const Ray& ray, float, Sampler& sampler, RayCounts& rays) {
         const AovSample a = trace(P, ray, sampler, rays, albedo != nullptr);
         if (albedo) albedo->add(x, y, a.albedo);
         if (normal) normal->add(x, y, Rgb(a.normal.x, a.normal.y, a.normal.z));

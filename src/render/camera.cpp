@@ -2,15 +2,28 @@
 // proportionally, so changing the aspect ratio never crops the shorter dimension.
 #include "render/camera.h"
 
+#include <algorithm>
 #include <cmath>
 
+#include "core/equal_area.h"
 #include "core/error.h"
 #include "core/warp.h"
 
 namespace phos::render {
 
-CameraModel::CameraModel(const scene::Camera& camera, int width, int height)
-    : cam_(camera), width_(width), height_(height) {
+CameraModel::CameraModel(const scene::Camera& camera, int width, int height, const CropWindow& crop)
+    : cam_(camera),
+      width_(crop.active() ? crop.full_width : width),
+      height_(crop.active() ? crop.full_height : height),
+      crop_x0_(float(crop.x0)),
+      crop_y0_(float(crop.y0)),
+      film_w_(width),
+      film_h_(height) {
+    if (crop.active() && (crop.x0 < 0 || crop.y0 < 0 || crop.x0 + width > crop.full_width ||
+                          crop.y0 + height > crop.full_height))
+        throw InputError("camera: the crop window is outside the image");
+    width = width_;
+    height = height_;
     if (!(length(camera.forward) > 0)) throw InputError("camera: zero viewing direction");
     eye_ = camera.eye;
     forward_ = normalize(camera.forward);
@@ -49,6 +62,16 @@ scene::Camera CameraModel::frame_bounds(const Bounds& bounds) {
 }
 
 Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
+    fx += crop_x0_;
+    fy += crop_y0_;
+    if (spherical()) {
+        Ray ray;
+        ray.origin = eye_;
+        ray.dir = spherical_direction(fx / float(width_), fy / float(height_));
+        ray.tmin = cam_.near_clip;
+        ray.tmax = cam_.far_clip;
+        return ray;
+    }
     const float sx = (2.0f * fx / float(width_) - 1.0f) * half_w_;
     const float sy = (1.0f - 2.0f * fy / float(height_)) * half_h_;
     Ray ray;
@@ -78,7 +101,7 @@ Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
 }
 
 CameraModel::Footprint CameraModel::pixel_footprint() const {
-    const float cx = 0.5f * float(width_), cy = 0.5f * float(height_);
+    const float cx = 0.5f * float(width_) - crop_x0_, cy = 0.5f * float(height_) - crop_y0_;
     const Ray a = generate_ray(cx, cy, {0.5f, 0.5f});
     const Ray b = generate_ray(cx + 1, cy, {0.5f, 0.5f});
     Footprint f;
@@ -89,9 +112,12 @@ CameraModel::Footprint CameraModel::pixel_footprint() const {
 
 float CameraModel::direction_pdf(Vec3 unit_dir) const {
     if (cam_.projection == scene::Camera::Projection::Orthographic) return 0;
+    if (spherical()) return spherical_pdf(unit_dir);
     const float c = dot(unit_dir, forward_);
     if (!(c > 0)) return 0;
-    const float area = 4 * half_w_ * half_h_;
+    // The film the camera samples: the whole image plane, or the rendered part of it.
+    const float area =
+        4 * half_w_ * half_h_ * ((float(film_w_) * float(film_h_)) / (float(width_) * float(height_)));
     return 1 / (area * c * c * c);
 }
 
@@ -106,6 +132,14 @@ bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
     const float dist = length(to_ref);
     if (!(dist > 0)) return false;
     const Vec3 dir = to_ref / dist;
+    if (spherical()) {
+        // Clip distances along the ray; every direction reaches the film.
+        if (dist < cam_.near_clip || dist > cam_.far_clip || !project(ref, c.fx, c.fy)) return false;
+        c.wi = -dir;
+        c.distance = dist;
+        c.pdf_dir = spherical_pdf(dir);
+        return c.pdf_dir > 0;
+    }
     const float cos_axis = dot(dir, forward_);
     if (!(cos_axis > 0)) return false;
     // Near and far clip distances are measured along the viewing axis, as for camera rays.
@@ -124,12 +158,74 @@ bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
 
 bool CameraModel::project(Vec3 p, float& fx, float& fy) const {
     const Vec3 d = p - eye_;
+    if (spherical()) {
+        float u, v;
+        if (!spherical_position(d, u, v)) return false;
+        fx = u * float(width_) - crop_x0_;
+        fy = v * float(height_) - crop_y0_;
+        return fx >= 0 && fx < float(film_w_) && fy >= 0 && fy < float(film_h_);
+    }
     const float z = dot(d, forward_);
     if (z <= 0) return false;
     const float sx = dot(d, right_) / z, sy = dot(d, up_) / z;
-    fx = (sx / half_w_ + 1.0f) * 0.5f * float(width_);
-    fy = (1.0f - sy / half_h_) * 0.5f * float(height_);
-    return fx >= 0 && fx < float(width_) && fy >= 0 && fy < float(height_);
+    fx = (sx / half_w_ + 1.0f) * 0.5f * float(width_) - crop_x0_;
+    fy = (1.0f - sy / half_h_) * 0.5f * float(height_) - crop_y0_;
+    return fx >= 0 && fx < float(film_w_) && fy >= 0 && fy < float(film_h_);
+}
+
+// pbrt-v4's spherical camera: equirectangular theta = pi v from the camera's up axis and
+// phi = 2 pi u around it from its +x axis towards +z (the viewing direction at u = 1/4), or the
+// equal-area octahedral map (core/equal_area.h) with camera space's y and z exchanged, so the
+// map's centre looks up. Positions beyond the image (a wide pixel filter's samples) fold back
+// onto the sphere as pbrt-v4 wraps them.
+Vec3 CameraModel::spherical_direction(float u, float v) const {
+    Vec3 d;  // in camera space (x right, y up, z forward) before the exchange of y and z
+    if (cam_.spherical_mapping == scene::Camera::SphericalMapping::Equirectangular) {
+        const float theta = kPi * v, phi = 2 * kPi * u;
+        d = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    } else {
+        if (u < 0)
+            u = -u, v = 1 - v;
+        else if (u > 1)
+            u = 2 - u, v = 1 - v;
+        if (v < 0)
+            u = 1 - u, v = -v;
+        else if (v > 1)
+            u = 1 - u, v = 2 - v;
+        d = equal_area_square_to_sphere(Vec2(std::clamp(u, 0.0f, 1.0f), std::clamp(v, 0.0f, 1.0f)));
+    }
+    return normalize(right_ * d.x + up_ * d.z + forward_ * d.y);
+}
+
+bool CameraModel::spherical_position(Vec3 dir, float& u, float& v) const {
+    const float len = length(dir);
+    if (!(len > 0)) return false;
+    dir = dir / len;
+    const Vec3 d(dot(dir, right_), dot(dir, forward_), dot(dir, up_));  // y and z exchanged back
+    if (cam_.spherical_mapping == scene::Camera::SphericalMapping::Equirectangular) {
+        const float theta = std::acos(std::clamp(d.z, -1.0f, 1.0f));
+        float phi = std::atan2(d.y, d.x);
+        if (phi < 0) phi += 2 * kPi;
+        u = phi / (2 * kPi);
+        v = theta / kPi;
+    } else {
+        const Vec2 uv = equal_area_sphere_to_square(d);
+        u = uv.x;
+        v = uv.y;
+    }
+    return true;
+}
+
+float CameraModel::spherical_pdf(Vec3 unit_dir) const {
+    // Film positions are uniform over the rendered part of the image: per unit solid angle,
+    // 1 / (4 pi) for the equal-area map, 1 / (2 pi^2 sin theta) for the equirectangular one, over
+    // the part's share of the image.
+    const float share = (float(film_w_) * float(film_h_)) / (float(width_) * float(height_));
+    if (cam_.spherical_mapping == scene::Camera::SphericalMapping::EqualArea) return 1 / (4 * kPi * share);
+    const float cos_theta = dot(unit_dir, up_);
+    const float sin_theta = std::sqrt(std::max(0.0f, 1 - cos_theta * cos_theta));
+    if (!(sin_theta > 1e-6f)) return 0;
+    return 1 / (2 * kPi * kPi * sin_theta * share);
 }
 
 }  // namespace phos::render

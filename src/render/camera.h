@@ -1,9 +1,11 @@
 // The render-time camera: turns a scene::Camera into primary rays for a given image size —
-// pinhole, thin lens (depth of field) or orthographic. Image x grows to the right, y downwards.
+// pinhole, thin lens (depth of field), orthographic or spherical (pbrt-v4's equal-area or
+// equirectangular mapping of all directions). Image x grows to the right, y downwards.
 #pragma once
 
 #include "accel/embree_scene.h"
 #include "accel/ray.h"
+#include "render/options.h"
 #include "scene/camera.h"
 
 namespace phos::render {
@@ -18,7 +20,10 @@ public:
         float at(float distance) const { return offset + slope * distance; }
     };
 
-    CameraModel(const scene::Camera& camera, int width, int height);
+    // An image of width x height pixels; with an active `crop`, the image the camera frames is
+    // crop.full_width x crop.full_height and width x height is the part rendered, from crop.x0, y0:
+    // film positions below are in the rendered part's pixels.
+    CameraModel(const scene::Camera& camera, int width, int height, const CropWindow& crop = {});
     // A camera for scenes without one: frames `bounds` from the +z side.
     static scene::Camera frame_bounds(const Bounds& bounds);
 
@@ -58,8 +63,16 @@ public:
     Vec3 forward() const { return forward_; }
 
 private:
+    bool spherical() const { return cam_.projection == scene::Camera::Projection::Spherical; }
+    // Spherical camera: the direction of image position (u, v) in [0, 1]^2 of the whole image and
+    // back, and the film's density per unit solid angle of a direction.
+    Vec3 spherical_direction(float u, float v) const;
+    bool spherical_position(Vec3 unit_dir, float& u, float& v) const;
+    float spherical_pdf(Vec3 unit_dir) const;
     scene::Camera cam_;
-    int width_, height_;
+    int width_, height_;               // the image the camera frames
+    float crop_x0_ = 0, crop_y0_ = 0;  // film position (0, 0) of the rendered part, in the image's pixels
+    int film_w_, film_h_;              // the rendered part
     Vec3 eye_, forward_, right_, up_;
     float half_w_, half_h_;  // image-plane half extents at distance 1 (perspective) or in units
 };

@@ -3,11 +3,14 @@
 // wins). Their flags, defaults, ranges and help are in the option tables below (options.cpp).
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/option_table.h"
+#include "scene/pixel_filter.h"
 
 namespace phos::render {
 
@@ -16,8 +19,17 @@ inline constexpr float kDefaultSharpGlossy = 10;
 // The default --regularize exponent (see RenderOptions::regularize and docs/usage.md).
 inline constexpr float kDefaultRegularize = 30;
 
+// A render of part of the image (pbrt's Film "cropwindow" and "pixelbounds"; --crop-window,
+// --pixel-bounds): the camera frames the full_width x full_height image and the render covers its
+// pixels from (x0, y0) on, RenderOptions::width x height of them. full_width 0: the whole image.
+struct CropWindow {
+    int x0 = 0, y0 = 0;
+    int full_width = 0, full_height = 0;
+    bool active() const { return full_width > 0; }
+};
+
 struct RenderOptions {
-    int width = 512;
+    int width = 512;  // the image rendered (the crop's size when `crop` is active)
     int height = 512;
     int spp = 16;  // samples per pixel (iterations for progressive integrators)
     uint64_t seed = 0;
@@ -37,7 +49,27 @@ struct RenderOptions {
     bool background_light = false;  // the background lights diffuse surfaces too
     bool layers = false;            // --layers: integrators record their component layers
     std::vector<std::string> aovs;  // --aov: auxiliary images (albedo, normal, depth)
+    // --filter, --filter-radius: the pixel filter replacing the scene's (unset: the scene's), and its
+    // radius in pixels (0: the filter's own default, pbrt-v4's).
+    std::optional<scene::PixelFilter::Kind> filter;
+    float filter_radius = 0;
+    // --crop-window x0 x1 y0 y1 (fractions of the image, as pbrt's cropwindow) or --pixel-bounds
+    // x0 x1 y0 y1 (pixels, [x0, x1) x [y0, y1)); they replace the scene file's. The command resolves
+    // them into `crop` and `width` x `height` before rendering (resolve_crop).
+    std::optional<std::array<float, 4>> crop_window;
+    std::optional<std::array<int, 4>> pixel_bounds;
+    CropWindow crop;
 };
+
+// The part of a width x height image a crop window (fractions) or pixel bounds select, as pbrt-v4
+// rounds them: pixels [ceil(W x0), ceil(W x1)) x [ceil(H y0), ceil(H y1)). Throws options::ValueError
+// for an empty or out-of-image result.
+CropWindow resolve_crop(int width, int height, const std::optional<std::array<float, 4>>& crop_window,
+                        const std::optional<std::array<int, 4>>& pixel_bounds, int& crop_width,
+                        int& crop_height);
+
+// The pixel filter a render uses: the scene's, or the one --filter and --filter-radius give.
+scene::PixelFilter effective_filter(const scene::PixelFilter& from_scene, const RenderOptions& options);
 
 // The option tables over RenderOptions: "Image" (size, layers, AOVs) and "Sampling" (samples,
 // seed, depth, lens, shading switches).

@@ -28,13 +28,15 @@ void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint3
             const uint64_t scramble = Sampler(opt.seed, pixel, 0x7069786a6974ULL).next_bits();
             for (uint32_t s = s0; s < s1; ++s) {
                 Sampler sampler(opt.seed, pixel, uint64_t(s));
-                const Vec2 jitter = pixel_sample_position(s, scramble);
+                const PixelFilterSampler::FilmSample at =
+                    prepared.filter.sample(pixel_sample_position(s, scramble));
                 const Vec2 lens = sampler.next2();
-                const Ray ray = prepared.camera.generate_ray(float(x) + jitter.x, float(y) + jitter.y, lens);
+                const Ray ray =
+                    prepared.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
                 ++rays.camera;
                 t_sample_index = s;
                 t_wavelength_sample = spectrum::wavelength_sequence_point(s, hash_combine(scramble, 0x776c));
-                sample(x, y, ray, sampler, rays);
+                sample(x, y, ray, at.weight, sampler, rays);
                 t_sample_index = 0;
                 t_wavelength_sample = -1;
             }
@@ -71,8 +73,8 @@ RenderDone render_samples(const Prepared& prepared, film::Film& film, const Rend
 RenderDone render_pixels(const Prepared& prepared, film::Film& film, const RenderBudget& budget,
                          const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
     return render_samples(prepared, film, budget, integrator, progress,
-                          [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
-                              film.add_sample(x, y, radiance(ray, sampler, rays));
+                          [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
+                              film.add_sample(x, y, radiance(ray, sampler, rays) * weight);
                           });
 }
 
@@ -85,10 +87,10 @@ RenderDone render_layers(const Prepared& prepared, film::Film& film, const Rende
     for (const Component c : layers) out.emplace_back(&film.layer(component_name(c)), c);
     return render_samples(
         prepared, film, budget, integrator, progress,
-        [&](int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays) {
+        [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
             RadianceParts p;
-            film.add_sample(x, y, parts(ray, sampler, rays, p));
-            for (const auto& [layer, part] : out) layer->add(x, y, p[part]);
+            film.add_sample(x, y, parts(ray, sampler, rays, p) * weight);
+            for (const auto& [layer, part] : out) layer->add(x, y, p[part] * weight);
         },
         payload);
 }

@@ -34,8 +34,10 @@ RenderDone render_pixels(const Prepared& prepared, film::Film& film, const Rende
                          const std::string& integrator, Progress& progress, const RadianceFn& radiance);
 
 // One camera sample of pixel (x, y): the function traces `ray` and records the result itself
-// (main image and any layers). Only the task owning the pixel calls it.
-using SampleFn = std::function<void(int x, int y, const Ray& ray, Sampler& sampler, RayCounts& rays)>;
+// (main image and any layers), multiplied by the sample's pixel-filter `weight` (mean 1; exactly 1
+// for the default box filter, PixelFilterSampler). Only the task owning the pixel calls it.
+using SampleFn =
+    std::function<void(int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays)>;
 // The same loop for integrators that record more than one value per sample into `film` (layers;
 // every layer must exist before the call, and a resumed checkpoint must hold the same layers).
 // `payload` (optional) adds the integrator's own data to each checkpoint (SamplePasses).

@@ -19,9 +19,9 @@ void trace_pixel_samples(const Prepared& P, const film::Film& film, const Radian
     for (uint32_t s = 0; s < most && double(finite) < taken; ++s)
         render_tile_samples(
             P, pixel, s, s + 1,
-            [&](int, int, const Ray& ray, Sampler& sampler, RayCounts& counts) {
+            [&](int, int, const Ray& ray, float weight, Sampler& sampler, RayCounts& counts) {
                 RecordingScope scope(trace, s);
-                const Rgb L = radiance(ray, sampler, counts);
+                const Rgb L = radiance(ray, sampler, counts) * weight;
                 scope.done(L);
                 if (L.is_finite()) ++finite;
             },

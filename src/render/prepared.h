@@ -10,6 +10,7 @@
 #include "core/stats.h"
 #include "render/camera.h"
 #include "render/options.h"
+#include "render/pixel_filter.h"
 #include "scene/scene.h"
 #include "shading/bsdf.h"
 #include "shading/lights.h"
@@ -41,6 +42,7 @@ public:
     shading::LightSet lights;
     shading::MediaSet media;
     CameraModel camera;
+    PixelFilterSampler filter;  // where camera samples fall and how they weigh (pixel_filter.h)
     RenderOptions options;
     shading::BsdfOptions bsdf_options;
     shading::MaterialBsdfs bsdfs;  // every material's BSDF, placed at hits by bsdf()
@@ -50,7 +52,8 @@ public:
     shading::Bsdf bsdf(const accel::SurfaceHit& hit) const { return bsdfs.at(hit); }
     // Radiance emitted by the light surface at `hit` towards `wo` (0 if it does not emit), at `lambda`.
     Spectrum emitted(const accel::SurfaceHit& hit, Vec3 wo, const Wavelengths& lambda) const {
-        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].Le(hit.ng, wo, lambda) : Spectrum(0.0f);
+        return hit.area_light >= 0 ? lights[size_t(hit.area_light)].surface_Le(hit.ng, hit.uv, wo, lambda)
+                                   : Spectrum(0.0f);
     }
     // Radiance arriving along an escaped ray with direction `dir` from infinite lights, at `lambda`,
     // and its colour.

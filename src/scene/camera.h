@@ -6,8 +6,12 @@
 namespace phos::scene {
 
 struct Camera {
-    enum class Projection { Perspective, Orthographic };
+    // Spherical: every direction around the eye, as pbrt-v4's spherical camera maps them to the
+    // image (`spherical_mapping`); the image's top is the camera's up direction.
+    enum class Projection { Perspective, Orthographic, Spherical };
+    enum class SphericalMapping { EqualArea, Equirectangular };
     Projection projection = Projection::Perspective;
+    SphericalMapping spherical_mapping = SphericalMapping::EqualArea;
     Vec3 eye{0, 0, 0};
     Vec3 forward{0, 0, -1};  // viewing direction (need not be normalised)
     Vec3 up{0, 1, 0};

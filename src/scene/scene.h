@@ -2,6 +2,7 @@
 // Tests build scenes by hand through this struct, without any file.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "scene/light.h"
 #include "scene/material.h"
 #include "scene/medium.h"
+#include "scene/pixel_filter.h"
 #include "scene/shape.h"
 #include "scene/texture.h"
 #include "spectrum/distribution.h"
@@ -36,6 +38,13 @@ struct RenderSettings {
     // which phos may replace by one fitted to the scene (app/lib/scene_defaults.h).
     bool integrator_implied = false;
     std::optional<std::string> output;  // image filename
+    // pbrt's Film "cropwindow" (fractions x0 x1 y0 y1) or "pixelbounds" (pixels [x0, x1) x [y0, y1)):
+    // only that part of the image is rendered and written.
+    std::optional<std::array<float, 4>> crop_window;
+    std::optional<std::array<int, 4>> pixel_bounds;
+    // Auxiliary images the file asks for (pbrt's Film "gbuffer": albedo, normal, depth), written as
+    // --aov writes them; the command line's --aov wins.
+    std::vector<std::string> aovs;
     // When the file names an integrator phos does not have (pbrt "bdpt"): its name and where, so
     // the renderer can say which integrator it uses instead (unless --integrator chose one).
     std::string unavailable_integrator, integrator_location;
@@ -66,7 +75,8 @@ struct Scene {
     Rgb ambient{0.0f};     // .scn `ambient`, used only with --ambient
     RenderSettings settings;
     FilmResponse film_response;
-    std::string source;  // the file it was loaded from
+    PixelFilter pixel_filter;  // how camera samples make pixels (the box of radius 1/2 by default)
+    std::string source;        // the file it was loaded from
 
     // Adds an area light emitting radiance `L` from `shape` (appended); returns the light index.
     // `spectrum`: the radiance's spectrum when the file gives one (Light::spectrum), L its sRGB.

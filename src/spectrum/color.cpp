@@ -219,6 +219,30 @@ const Mat3 kBradford = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {
 
 }  // namespace
 
+std::optional<Mat3> rgb_space_to_srgb(const std::string& name, bool adapt_white) {
+    static const double kD65[2] = {0.3127, 0.3290};
+    static const double kAcesWhite[2] = {0.32168, 0.33767};
+    static const double kRec2020[3][2] = {{0.708, 0.292}, {0.170, 0.797}, {0.131, 0.046}};
+    static const double kDciP3[3][2] = {{0.680, 0.320}, {0.265, 0.690}, {0.150, 0.060}};
+    static const double kAp0[3][2] = {{0.7347, 0.2653}, {0.0, 1.0}, {0.0001, -0.0770}};
+    if (name == "srgb") return Mat3{{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    const double(*prim)[2] = name == "rec2020"      ? kRec2020
+                             : name == "dci-p3"     ? kDciP3
+                             : name == "aces2065-1" ? kAp0
+                                                    : nullptr;
+    if (!prim) return std::nullopt;
+    const double* white = prim == kAp0 ? kAcesWhite : kD65;
+    Mat3 to_xyz = rgb_to_xyz_from(prim, white);
+    if (adapt_white) {  // to sRGB's own white exactly (phos's D65 is the CIE table's)
+        const std::array<double, 3> src = times(kBradford, times(to_xyz, {1.0, 1.0, 1.0}));
+        const std::array<double, 3> dst = times(kBradford, times(srgb_to_xyz(), {1.0, 1.0, 1.0}));
+        Mat3 scale{};
+        for (size_t i = 0; i < 3; ++i) scale[i][i] = dst[i] / src[i];
+        to_xyz = multiply(multiply(inverse(kBradford), multiply(scale, kBradford)), to_xyz);
+    }
+    return multiply(xyz_to_srgb(), to_xyz);
+}
+
 Vec3 white_balance_source(float kelvin) {
     const double cct = double(kelvin) * 1.4388 / 1.4380;
     if (cct < 4000) {

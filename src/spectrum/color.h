@@ -8,6 +8,8 @@
 
 #include <array>
 #include <functional>
+#include <optional>
+#include <string>
 
 #include "core/vec.h"
 #include "spectrum/sampled_spectrum.h"
@@ -88,5 +90,12 @@ Vec3 white_balance_source(float kelvin);
 // scaling in the Bradford cone space: the source white becomes (1, 1, 1). Identity for T <= 0;
 // finite from about 300 K up (the pbrt loader accepts 1000 K to 40000 K).
 Mat3 white_balance(float source_kelvin);
+
+// pbrt-v4's named RGB colour spaces (its ColorSpace directive): "srgb", "rec2020" and "dci-p3" (D65
+// white) and "aces2065-1" (the ACES AP0 primaries, white x = 0.32168, y = 0.33767). The matrix
+// taking an RGB of that space to the linear sRGB of the same XYZ (an emitted colour), or, with
+// `adapt_white`, to the linear sRGB after Bradford adaptation of the space's white to sRGB's (a
+// reflectance: the space's white stays white); nullopt for another name.
+std::optional<Mat3> rgb_space_to_srgb(const std::string& name, bool adapt_white);
 
 }  // namespace phos::spectrum

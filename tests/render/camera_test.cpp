@@ -106,6 +106,62 @@ TEST(Camera, ThinLensRaysMeetOnTheFocalPlane) {
     EXPECT_GT(spread, 0.02f);
 }
 
+TEST(Camera, ACropRendersItsPartOfTheImage) {
+    // Pixel (x, y) of a crop starting at (20, 10) is pixel (x + 20, y + 10) of the whole image, and
+    // light tracing's film density counts only the part rendered.
+    const CameraModel whole(test_camera(), 64, 48);
+    const CameraModel part(test_camera(), 16, 8, CropWindow{20, 10, 64, 48});
+    const Ray a = whole.generate_ray(25.5f, 13.25f, {0.5f, 0.5f}),
+              b = part.generate_ray(5.5f, 3.25f, {0.5f, 0.5f});
+    EXPECT_NEAR(length(normalize(a.dir) - normalize(b.dir)), 0.0f, 1e-6f);
+    float fx, fy;
+    ASSERT_TRUE(part.project(b.origin + b.dir * 3.0f, fx, fy));
+    EXPECT_NEAR(fx, 5.5f, 1e-3f);
+    EXPECT_NEAR(fy, 3.25f, 1e-3f);
+    EXPECT_FALSE(part.project(whole.generate_ray(2.0f, 2.0f, {0.5f, 0.5f}).dir * 3.0f + a.origin, fx, fy));
+    const Vec3 d = normalize(a.dir);
+    EXPECT_NEAR(part.direction_pdf(d) / whole.direction_pdf(d), (64.0 * 48) / (16.0 * 8), 1e-3);
+}
+
+TEST(Camera, SphericalMappingsCoverEveryDirectionAsPbrtDoes) {
+    scene::Camera c = test_camera();
+    c.projection = scene::Camera::Projection::Spherical;
+    for (const auto mapping :
+         {scene::Camera::SphericalMapping::Equirectangular, scene::Camera::SphericalMapping::EqualArea}) {
+        c.spherical_mapping = mapping;
+        const CameraModel cam(c, 64, 32);
+        // project inverts generate_ray over the whole image.
+        for (float fy : {1.5f, 8.25f, 16.0f, 30.5f})
+            for (float fx : {0.5f, 17.0f, 40.75f, 63.5f}) {
+                const Ray r = cam.generate_ray(fx, fy, {0.5f, 0.5f});
+                EXPECT_NEAR(length(r.dir), 1.0f, 1e-5f);
+                float px, py;
+                ASSERT_TRUE(cam.project(r.origin + r.dir * 2.0f, px, py));
+                EXPECT_NEAR(px, fx, 2e-2f) << fx << " " << fy;
+                EXPECT_NEAR(py, fy, 2e-2f) << fx << " " << fy;
+            }
+        // The camera's density per unit solid angle integrates to 1 over the sphere.
+        double total = 0;
+        const int n = 400;
+        for (int i = 0; i < n; ++i)
+            for (int j = 0; j < 2 * n; ++j) {
+                const double theta = kPi * (i + 0.5) / n, phi = 2 * kPi * (j + 0.5) / (2 * n);
+                const Vec3 d(float(std::sin(theta) * std::cos(phi)), float(std::cos(theta)),
+                             float(std::sin(theta) * std::sin(phi)));
+                total += cam.direction_pdf(d) * std::sin(theta) * (kPi / n) * (2 * kPi / (2 * n));
+            }
+        EXPECT_NEAR(total, 1.0, 1e-2);
+    }
+    // Equirectangular: the top row looks up, u = 1/4 looks forward; equal-area: the centre looks up.
+    c.spherical_mapping = scene::Camera::SphericalMapping::Equirectangular;
+    const CameraModel eq(c, 64, 32);
+    EXPECT_GT(eq.generate_ray(10.0f, 0.01f, {0.5f, 0.5f}).dir.y, 0.999f);
+    EXPECT_GT(dot(eq.generate_ray(16.0f, 16.0f, {0.5f, 0.5f}).dir, Vec3(0, 0, -1)), 0.999f);
+    c.spherical_mapping = scene::Camera::SphericalMapping::EqualArea;
+    const CameraModel ea(c, 32, 32);
+    EXPECT_GT(ea.generate_ray(16.0f, 16.0f, {0.5f, 0.5f}).dir.y, 0.999f);
+}
+
 TEST(Camera, FramesScenesWithoutACamera) {
     Bounds b;
     b.extend(Vec3(-1, 0, -2));

@@ -214,6 +214,24 @@ Sources resolve_settings(RenderCommand& cmd, const scene::Scene& scene) {
         r.height = sh;
         src.size = file_or_default;
     }
+    if (!cmd.was_given("aov") && !st.aovs.empty()) r.aovs = st.aovs;
+    // A crop of that image: the command line's, else the scene file's.
+    if (!cmd.was_given("crop-window") && !cmd.was_given("pixel-bounds")) {
+        r.crop_window = st.crop_window;
+        r.pixel_bounds = st.pixel_bounds;
+    }
+    try {
+        const int full_w = r.width, full_h = r.height;
+        r.crop = render::resolve_crop(full_w, full_h, r.crop_window, r.pixel_bounds, r.width, r.height);
+    } catch (const options::ValueError& e) {
+        throw InputError(std::string(cmd.was_given("crop-window") || cmd.was_given("pixel-bounds")
+                                         ? "--crop-window/--pixel-bounds: "
+                                         : "the scene file's Film cropwindow/pixelbounds: ") +
+                         e.what());
+    }
+    if (r.crop.active())
+        src.size += ", cropped to " + std::to_string(r.width) + " x " + std::to_string(r.height) + " from (" +
+                    std::to_string(r.crop.x0) + ", " + std::to_string(r.crop.y0) + ")";
 
     const bool progressive =
         integrators::integrator(cmd.run.integrator).counts == integrators::Counts::Iterations;

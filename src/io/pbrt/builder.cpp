@@ -9,6 +9,7 @@
 #include "core/error.h"
 #include "core/log.h"
 #include "core/option_table.h"
+#include "spectrum/color.h"
 
 namespace phos::io {
 
@@ -142,7 +143,7 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
     c.camera_to_world = world_to_camera.inverse();
     coord_systems_["camera"] = c.camera_to_world;
     const std::string d = "Camera \"" + type + "\"";
-    if (type != "perspective" && type != "orthographic") {
+    if (type != "perspective" && type != "orthographic" && type != "spherical") {
         warn(loc,
              d + " is not supported; a perspective camera with the default 90 degree field of view is used");
         params.mark_all_used();
@@ -152,9 +153,17 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
             c.fov_deg = params.get_float("fov", 90.0f);
             if (!(c.fov_deg > 0 && c.fov_deg < 180))
                 params.find("fov")->loc.fail("fov must be in (0, 180) degrees");
+        } else if (type == "spherical") {
+            const std::string mapping = params.get_string("mapping", "equalarea");
+            if (mapping != "equalarea" && mapping != "equirectangular")
+                params.find("mapping")->loc.fail(d +
+                                                 ": mapping must be \"equalarea\" or \"equirectangular\"");
+            c.equirectangular = mapping == "equirectangular";
         }
-        c.lens_radius = params.get_float("lensradius", 0.0f);
-        c.focal_distance = params.get_float("focaldistance", 1e6f);
+        if (type != "spherical") {
+            c.lens_radius = params.get_float("lensradius", 0.0f);
+            c.focal_distance = params.get_float("focaldistance", 1e6f);
+        }
         if (c.lens_radius < 0) params.find("lensradius")->loc.fail("lensradius must not be negative");
         if (!(c.focal_distance > 0)) params.find("focaldistance")->loc.fail("focaldistance must be positive");
         const std::vector<float> sw = params.get_floats("screenwindow");
@@ -187,6 +196,19 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
     const std::string d = "Film \"" + type + "\"";
     if (type != "rgb" && type != "gbuffer" && type != "spectral")
         warn(loc, d + " is not a pbrt-v4 film type; treated as \"rgb\"");
+    if (type == "gbuffer") {
+        // pbrt-v4 adds albedo, normal and depth channels to its EXR; phos writes them as images of
+        // their own beside the image (OUT.albedo.exr...), as --aov does.
+        scene_.settings.aovs = {"albedo", "normal", "depth"};
+        log::info(loc.str() + ": note: " + d +
+                  ": its albedo, normal and depth are written as images beside the image (as --aov "
+                  "albedo,normal,depth)");
+        params.get_string("coordinatesystem", "camera");  // phos's normals are in world space
+    } else if (type == "spectral") {
+        warn(loc, d + ": phos writes the RGB image; the per-wavelength channels are not written");
+        for (const char* p : {"nbuckets", "lambdamin", "lambdamax"})
+            if (params.has(p)) params.find(p);
+    }
     const int w = params.get_int("xresolution", 1280), h = params.get_int("yresolution", 720);
     constexpr int kMax = scene::RenderSettings::kMaxResolution;
     if (w <= 0 || h <= 0 || w > kMax || h > kMax)
@@ -196,6 +218,22 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
     scene_.settings.height = h;
     const std::string out = params.get_string("filename", "");
     if (!out.empty()) scene_.settings.output = out;
+    if (const Param* cp = params.find("cropwindow")) {
+        const std::vector<float> c = params.get_floats("cropwindow");
+        if (c.size() != 4 ||
+            !(c[0] >= 0 && c[1] <= 1 && c[0] < c[1] && c[2] >= 0 && c[3] <= 1 && c[2] < c[3]))
+            cp->loc.fail(d + ": cropwindow needs 4 values x0 x1 y0 y1 in [0, 1] with x0 < x1 and y0 < y1");
+        scene_.settings.crop_window = std::array<float, 4>{c[0], c[1], c[2], c[3]};
+    }
+    if (const Param* bp = params.find("pixelbounds")) {
+        const std::vector<int> b = params.get_ints("pixelbounds");
+        if (b.size() != 4 ||
+            !(b[0] >= 0 && b[1] <= w && b[0] < b[1] && b[2] >= 0 && b[3] <= h && b[2] < b[3]))
+            bp->loc.fail(d + ": pixelbounds needs 4 values x0 x1 y0 y1 inside the " + std::to_string(w) +
+                         " x " + std::to_string(h) + " image with x0 < x1 and y0 < y1");
+        scene_.settings.pixel_bounds = std::array<int, 4>{b[0], b[1], b[2], b[3]};
+        scene_.settings.crop_window.reset();  // pbrt-v4: pixelbounds win over cropwindow
+    }
     // The sensor (pbrt-v4's PixelSensor): phos's film is the CIE 1931 observer. The imaging ratio
     // exposure time × ISO / 100 is completed by the camera's shutter times (end_of_files).
     film_iso_ = params.get_float("iso", 100.0f);
@@ -218,13 +256,39 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
 void SceneBuilder::pixel_filter(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(false, "PixelFilter", loc);
     const std::string d = "PixelFilter \"" + type + "\"";
-    if (type != "box") {
-        warn(loc, d + " is not supported; phos uses a box filter of radius 0.5 pixel");
-        params.mark_all_used();
-        return;
+    using Kind = scene::PixelFilter::Kind;
+    scene::PixelFilter f;
+    if (type == "box")
+        f.kind = Kind::Box;
+    else if (type == "gaussian")
+        f.kind = Kind::Gaussian;
+    else if (type == "mitchell")
+        f.kind = Kind::Mitchell;
+    else if (type == "sinc" || type == "lanczos")
+        f.kind = Kind::Lanczos;
+    else if (type == "triangle")
+        f.kind = Kind::Triangle;
+    else
+        loc.fail(
+            d + ": unknown filter (pbrt-v4 has \"box\", \"gaussian\", \"mitchell\", \"sinc\", \"triangle\")");
+    const Vec2 r = scene::PixelFilter::default_radius(f.kind);
+    f.radius = {params.get_float("xradius", r.x), params.get_float("yradius", r.y)};
+    for (const char* p : {"xradius", "yradius"})
+        if (const Param* rp = params.find(p);
+            rp && !(params.get_float(p, 1) > 0 && params.get_float(p, 1) <= 64))
+            rp->loc.fail(d + ": \"" + std::string(p) + "\" must be in (0, 64] pixels");
+    if (f.kind == Kind::Gaussian) {
+        f.sigma = params.get_float("sigma", 0.5f);
+        if (!(f.sigma > 0)) params.find("sigma")->loc.fail(d + ": sigma must be positive");
+    } else if (f.kind == Kind::Mitchell) {
+        f.b = params.get_float("B", 1.0f / 3.0f);
+        f.c = params.get_float("C", 1.0f / 3.0f);
+    } else if (f.kind == Kind::Lanczos) {
+        f.tau = params.get_float("tau", 3.0f);
+        if (!(f.tau > 0)) params.find("tau")->loc.fail(d + ": tau must be positive");
     }
-    const float xr = params.get_float("xradius", 0.5f), yr = params.get_float("yradius", 0.5f);
-    if (xr != 0.5f || yr != 0.5f) warn(loc, d + ": phos's box filter always has radius 0.5 pixel");
+    scene_.pixel_filter = f;
+    filter_given_ = true;
     done(params, d);
 }
 
@@ -303,12 +367,38 @@ void SceneBuilder::accelerator(const std::string& type, const ParamList& params,
 }
 
 void SceneBuilder::color_space(const std::string& name, const Loc& loc) {
-    if (name != "srgb")
-        warn(loc, "ColorSpace \"" + name + "\" is not supported; colours are read as linear sRGB");
+    if (!spectrum::rgb_space_to_srgb(name, false))
+        loc.fail("ColorSpace \"" + name +
+                 "\": unknown (pbrt-v4 has \"srgb\", \"rec2020\", \"dci-p3\", \"aces2065-1\")");
+    gs_.color_space = name;
 }
 
-void SceneBuilder::option(const Param& param, const Loc& loc) {
-    log::info(loc.str() + ": note: Option " + param.declaration() + " ignored");
+void SceneBuilder::option(const Param& p, const Loc& loc) {
+    const std::string d = "Option " + p.declaration();
+    if (p.name == "seed") {
+        // The render's seed: read like the Integrator's "seed" (the command line's --seed wins).
+        if (p.type != "integer" || p.numbers.size() != 1 || p.numbers[0] < 0)
+            p.loc.fail(d + ": takes one non-negative integer");
+        scene::IntegratorParameter ip;
+        ip.name = "seed";
+        ip.type = "integer";
+        ip.values = {options::format_number(p.numbers[0])};
+        ip.file = p.loc.filename();
+        ip.line = p.loc.line;
+        ip.column = p.loc.col;
+        if (p.loc.file) ip.included_from = p.loc.file->included_from;
+        scene_.settings.integrator_parameters.push_back(std::move(ip));
+    } else if (p.name == "rendercoordsys" || p.name == "pixelstats" || p.name == "wavefront" ||
+               p.name == "disabletexturefiltering") {
+        // Where pbrt renders (camera, camera-world or world space), its statistics images, its
+        // GPU/wavefront mode and texture filtering: none of them changes phos's image.
+        log::info(loc.str() + ": note: " + d + " does not change phos's image (ignored)");
+    } else if (p.name == "disablepixeljitter" || p.name == "disablewavelengthjitter" ||
+               p.name == "forcediffuse" || p.name == "displacementedgescale") {
+        warn(loc, d + " is not supported (ignored): phos renders as without it");
+    } else {
+        warn(loc, d + ": unknown option (ignored)");
+    }
 }
 
 // ---- world structure ----
@@ -391,6 +481,11 @@ void SceneBuilder::end_of_files(const Loc& loc) {
             "none of the scene's lights can be used (this one is the first that cannot): its "
             "image would be black");
     if (sppm_iterations_ > 0) scene_.settings.spp = sppm_iterations_;
+    // pbrt-v4's default pixel filter (for pbrt-v3 files too, as pbrt-v4 reads their upgrade).
+    if (!filter_given_) {
+        scene_.pixel_filter.kind = scene::PixelFilter::Kind::Gaussian;
+        scene_.pixel_filter.radius = scene::PixelFilter::default_radius(scene_.pixel_filter.kind);
+    }
     scene_.film_response.exposure = (camera_ ? camera_->exposure_time : 1.0f) * film_iso_ / 100;
     if (!camera_) return;  // the renderer frames the scene itself
     const CameraSpec& c = *camera_;
@@ -412,7 +507,11 @@ void SceneBuilder::end_of_files(const Loc& loc) {
             warn(c.loc, "Camera: off-centre \"screenwindow\" is not supported; it is centred");
         half_short = w >= h ? 0.5f * (sw[3] - sw[2]) : 0.5f * (sw[1] - sw[0]);
     }
-    if (c.type == "orthographic") {
+    if (c.type == "spherical") {
+        cam.projection = scene::Camera::Projection::Spherical;
+        cam.spherical_mapping = c.equirectangular ? scene::Camera::SphericalMapping::Equirectangular
+                                                  : scene::Camera::SphericalMapping::EqualArea;
+    } else if (c.type == "orthographic") {
         cam.projection = scene::Camera::Projection::Orthographic;
         cam.ortho_half_size = half_short;
     } else {

@@ -72,6 +72,11 @@ private:
         std::optional<spectrum::Distribution> spectrum;  // L's spectrum when the file gives one
         bool two_sided = false;
         float power = -1;  // > 0: rescale L so the shape emits this flux
+        // "filename": the radiance image (scene texture index, -1: none), its mean colour and
+        // mean luminance (pbrt-v4 normalises "power" by the latter).
+        int texture = -1;
+        Rgb image_mean{1.0f};
+        float image_luminance = 1;
         Loc loc;
     };
     struct GraphicsState {
@@ -79,8 +84,9 @@ private:
         bool reverse_orientation = false;
         int material = -1;  // index into scene_.materials; -1: pbrt's default (diffuse 0.5)
         std::optional<AreaLight> area_light;
-        int inside = -1, outside = -1;  // media
-        bool media_declared = false;    // a MediumInterface statement set them
+        int inside = -1, outside = -1;     // media
+        bool media_declared = false;       // a MediumInterface statement set them
+        std::string color_space = "srgb";  // ColorSpace: how "rgb" values are read
     };
     struct StackEntry {
         GraphicsState state;
@@ -92,7 +98,8 @@ private:
         Transform camera_to_world;
         float fov_deg = 90, lens_radius = 0, focal_distance = 1e6f;
         std::optional<std::vector<float>> screen_window;
-        float exposure_time = 1;  // shutterclose - shutteropen
+        float exposure_time = 1;       // shutterclose - shutteropen
+        bool equirectangular = false;  // spherical: the mapping (else equal-area)
         int medium = -1;
         Loc loc;
     };
@@ -125,6 +132,8 @@ private:
     scene::Material make_material(const std::string& type, const ParamList& params, const Loc& loc,
                                   const std::string& directive);
     void add_shape(scene::Shape shape, float area, const Loc& loc);
+    // Applies a plymesh's "displacement" (the parameter `dp`) to its object-space mesh.
+    void displace(scene::TriangleMesh& mesh, const ParamList& params, const Param& dp, const std::string& d);
 
     PbrtOptions options_;
     std::string main_dir_;
@@ -136,6 +145,7 @@ private:
     std::optional<CameraSpec> camera_;
     // pbrt-v3 SPPM's "numiterations" (0: not given): the iterations, whatever the Sampler says.
     int sppm_iterations_ = 0;
+    bool filter_given_ = false;  // a PixelFilter directive was read (else pbrt-v4's Gaussian)
     // The first light directive that could not be used: if no light could, the scene is refused
     // there (its image would be black) rather than rendered.
     std::optional<Loc> skipped_light_;

@@ -1,5 +1,6 @@
 // SceneBuilder: colours and textured parameters, the Texture directive and pbrt materials mapped
 // onto phos's layered scene::Material (approximations are warned about once per material type).
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
 #include "io/text/image_texture.h"
+#include "spectrum/color.h"
 #include "spectrum/dispersion.h"
 
 namespace phos::io::pbrt {
@@ -47,6 +49,19 @@ std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::strin
         c = Rgb(float(p->numbers[0]), float(p->numbers[1]), float(p->numbers[2]));
         if (use != SpectrumUse::Unbounded && (c.r < 0 || c.g < 0 || c.b < 0))
             p->loc.fail("parameter " + p->declaration() + " must not be negative");
+        if (gs_.color_space != "srgb") {
+            // Another ColorSpace: the same colour in linear sRGB (an emitted colour keeps its XYZ, a
+            // reflectance its whiteness); a colour outside sRGB's gamut is clipped to it.
+            const Vec3 v = spectrum::apply(*spectrum::rgb_space_to_srgb(gs_.color_space, !illuminant),
+                                           Vec3(c.r, c.g, c.b));
+            c = Rgb(v.x, v.y, v.z);
+            if (use != SpectrumUse::Unbounded && (c.r < 0 || c.g < 0 || c.b < 0)) {
+                warn_once(
+                    "gamut", p->loc,
+                    "parameter " + p->declaration() + ": a colour outside the sRGB gamut is clipped to it");
+                c = Rgb(std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f));
+            }
+        }
     } else if (p->type == "float") {
         if (p->numbers.size() != 1) p->loc.fail("parameter " + p->declaration() + " takes one value");
         c = Rgb(float(p->numbers[0]));

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <vector>
@@ -179,13 +180,22 @@ private:
             std::string type = string_arg(loc, d);
             ParamList pl = params();
             upgrade_directive(d, type, pl, loc);  // pbrt-v3's names and parameters (upgrade_v3.h)
+            if (d == "Attribute")
+                record_attribute(type, pl, loc);
+            else
+                add_attributes(d, pl);
             (target_.*method)(type, pl, loc);
         };
-        if (d == "AttributeBegin")
+        if (d == "AttributeBegin") {
+            attribute_stack_.push_back(attributes_);
             target_.attribute_begin(loc);
-        else if (d == "AttributeEnd")
+        } else if (d == "AttributeEnd") {
+            if (!attribute_stack_.empty()) {
+                attributes_ = std::move(attribute_stack_.back());
+                attribute_stack_.pop_back();
+            }
             target_.attribute_end(loc);
-        else if (d == "Shape")
+        } else if (d == "Shape")
             typed(&ParserTarget::shape);
         else if (d == "Translate")
             target_.translate(vec3(loc, d), loc);
@@ -224,6 +234,7 @@ private:
             const std::string cls = string_arg(loc, d);
             ParamList pl = params();
             upgrade_texture(type, cls, pl);
+            add_attributes(d, pl);
             target_.texture(name, type, cls, pl, loc);
         } else if (d == "LightSource")
             typed(&ParserTarget::light_source);
@@ -264,11 +275,16 @@ private:
             target_.transform_end(loc);
         else if (d == "Attribute")
             typed(&ParserTarget::attribute);
-        else if (d == "ObjectBegin")
+        else if (d == "ObjectBegin") {
+            attribute_stack_.push_back(attributes_);  // an object definition is an attribute block
             target_.object_begin(string_arg(loc, d), loc);
-        else if (d == "ObjectEnd")
+        } else if (d == "ObjectEnd") {
+            if (!attribute_stack_.empty()) {
+                attributes_ = std::move(attribute_stack_.back());
+                attribute_stack_.pop_back();
+            }
             target_.object_end(loc);
-        else if (d == "ObjectInstance")
+        } else if (d == "ObjectInstance")
             target_.object_instance(string_arg(loc, d), loc);
         else if (d == "Include" || d == "Import")
             include(loc, d);
@@ -289,7 +305,39 @@ private:
         }
     }
 
+    // pbrt-v4's Attribute defaults in effect, per kind ("shape", "light", "material", "medium",
+    // "texture"), saved and restored with attribute blocks.
+    void record_attribute(const std::string& kind, const ParamList& pl, const Loc& loc) {
+        if (kind != "shape" && kind != "light" && kind != "material" && kind != "medium" && kind != "texture")
+            loc.fail("Attribute: unknown target \"" + kind +
+                     "\" (pbrt-v4 has \"shape\", \"light\", \"material\", \"medium\", \"texture\")");
+        std::vector<Param>& list = attributes_[kind];
+        for (const Param& p : pl.all()) {
+            std::erase_if(list, [&](const Param& q) { return q.name == p.name; });  // the latest value wins
+            list.push_back(p);
+        }
+    }
+    void add_attributes(const std::string& directive, ParamList& pl) const {
+        if (attributes_.empty() || !target_.applies_attributes()) return;
+        const char* kind = directive == "Shape"                                           ? "shape"
+                           : directive == "LightSource" || directive == "AreaLightSource" ? "light"
+                           : directive == "Material" || directive == "MakeNamedMaterial"  ? "material"
+                           : directive == "MakeNamedMedium"                               ? "medium"
+                           : directive == "Texture"                                       ? "texture"
+                                                                                          : nullptr;
+        if (!kind) return;
+        const auto it = attributes_.find(kind);
+        if (it == attributes_.end()) return;
+        for (Param p : it->second)
+            if (!pl.peek(p.name)) {
+                p.used = true;  // a default the directive need not read
+                pl.add(std::move(p));
+            }
+    }
+
     ParserTarget& target_;
+    std::map<std::string, std::vector<Param>> attributes_;
+    std::vector<std::map<std::string, std::vector<Param>>> attribute_stack_;
     std::vector<std::unique_ptr<Tokenizer>> stack_;
     std::vector<std::string> open_files_;
 };

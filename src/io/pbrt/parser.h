@@ -46,7 +46,12 @@ public:
     virtual void attribute_end(const Loc& loc) = 0;
     virtual void transform_begin(const Loc& loc) = 0;  // pbrt-v3 legacy
     virtual void transform_end(const Loc& loc) = 0;    // pbrt-v3 legacy
+    // pbrt-v4's `Attribute "shape"|"light"|"material"|"medium"|"texture" params`: defaults for the
+    // following directives of that kind in the attribute block. With applies_attributes() the
+    // parser itself adds them to those directives' parameter lists (a parameter the directive gives
+    // wins; defaults it does not read are not reported as unused); attribute() is called either way.
     virtual void attribute(const std::string& target, const ParamList& params, const Loc& loc) = 0;
+    virtual bool applies_attributes() const { return true; }
     virtual void texture(const std::string& name, const std::string& type, const std::string& tex_class,
                          const ParamList& params, const Loc& loc) = 0;
     virtual void material(const std::string& type, const ParamList& params, const Loc& loc) = 0;

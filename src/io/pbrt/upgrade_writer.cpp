@@ -101,6 +101,7 @@ public:
     void attribute(const std::string& target, const ParamList& params, const Loc&) override {
         directive("Attribute", target, params);
     }
+    bool applies_attributes() const override { return false; }  // written as given
     void texture(const std::string& name, const std::string& type, const std::string& cls,
                  const ParamList& params, const Loc&) override {
         line("Texture " + pbrt_string(name) + " " + pbrt_string(type) + " " + pbrt_string(cls) +
