@@ -168,7 +168,9 @@ Spectrum single_scattering(const Prepared& P, int medium_index, Vec3 o, Vec3 d, 
     if (!(pmf > 0)) return Spectrum(0.0f);
     const scene::Light& light = P.scene.lights[li];
     float t, pdf_t;
-    if (light.kind == scene::Light::Kind::Point || light.kind == scene::Light::Kind::Spot) {
+    using LK = scene::Light::Kind;
+    if (light.kind == LK::Point || light.kind == LK::Spot || light.kind == LK::Goniometric ||
+        light.kind == LK::Projection) {
         // Equiangular: t = h + D tan(theta), theta uniform between the stretch's ends as seen from
         // the light (Kulla & Fajardo 2012, eq. 6); pdf D / ((theta_b - theta_a)(D^2 + (t - h)^2)).
         const float h = dot(light.position - o, d);

@@ -104,7 +104,8 @@ namespace {
 
 bool delta_light(const scene::Light& l) {
     using enum scene::Light::Kind;
-    return l.kind == Point || l.kind == Spot || l.kind == Directional;
+    return l.kind == Point || l.kind == Spot || l.kind == Directional || l.kind == Goniometric ||
+           l.kind == Projection;
 }
 
 // Whether a shape of the scene (or of an object it instances) has a material with a mirror or

@@ -17,7 +17,10 @@ struct Light {
         Spot,         // intensity I on the axis `direction`, cone `cutoff` (half angle, rad), cos^dropoff
         Directional,  // irradiance E (W/m^2) on a surface facing the light, travelling along `direction`
         Area,         // radiance L (W/sr/m^2) leaving the surface of shape `shape`
-        Infinite,     // environment: radiance L (constant or `texture` lat-long map)
+        Infinite,     // environment: radiance L (constant, or a `texture` map: lat-long or equal-area)
+        // Point lights whose intensity I over directions is an image (`texture`) times `color`:
+        Goniometric,  // the image is an equal-area map over the sphere of directions (pbrt-v4)
+        Projection,   // the image is projected like a slide, field of view `fov` (pbrt-v4)
     };
     Kind kind = Kind::Point;
     Rgb color{1.0f};  // I, E or L as stated above (already multiplied by any scale)
@@ -36,8 +39,14 @@ struct Light {
     // Area: the emitting shape; emission on the side its normal faces unless two_sided.
     int shape = -1;
     bool two_sided = false;
-    // Infinite: lat-long radiance map (texture index, -1 = constant) and its orientation.
+    // Infinite: radiance map (texture index, -1 = constant) and its orientation; `equal_area`: the
+    // map is pbrt-v4's square equal-area octahedral map, else a lat-long map.
+    // Goniometric, projection: the image (required), in the light space of `to_world`, whose
+    // origin is the light's position (Light::position).
+    // Area: an image of the radiance over the surface's (u, v) replacing `color` (-1: none).
     int texture = -1;
+    bool equal_area = false;
+    float fov = 1.5707964f;  // projection: the full angle across the image's shorter side (radians)
     Transform to_world;
     // The medium the light sits in (-1 = vacuum) when the file says so (`medium_declared`: pbrt's
     // MediumInterface in effect at the light, the .scene containment rule). An undeclared light sits

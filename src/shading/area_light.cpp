@@ -4,20 +4,83 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
+#include "core/error.h"
 #include "core/frame.h"
 #include "core/warp.h"
+#include "spectrum/rgb_spectrum.h"
 
 namespace phos::shading {
 
-AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape)
-    : Light(light), sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {}
-
-Spectrum AreaLight::Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const {
-    return (two_sided_ || dot(n, wo) > 0) ? emission(lambda) : Spectrum(0.0f);
+AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape,
+                     const std::vector<scene::Texture>* textures)
+    : Light(light), sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {
+    if (light.texture < 0) return;
+    if (!textures || size_t(light.texture) >= textures->size())
+        throw InputError("area light: texture index " + std::to_string(light.texture) + " out of range");
+    const scene::Texture& tex = (*textures)[size_t(light.texture)];
+    if (tex.kind != scene::Texture::Kind::Image || !tex.image || tex.image->width <= 0 ||
+        tex.image->height <= 0)
+        throw InputError("area light: the emission image must be an image");
+    if (shape.kind != scene::Shape::Kind::Mesh)
+        throw InputError("area light: image emission needs a triangle mesh");
+    image_ = tex.image;
+    double sum[3] = {0, 0, 0};
+    for (const Rgb& c : image_->texels)
+        for (int k = 0; k < 3; ++k) sum[k] += std::max(c[k], 0.0f);
+    const double count = double(image_->texels.size());
+    image_mean_ = Rgb(float(sum[0] / count), float(sum[1] / count), float(sum[2] / count));
+    if (shape.mesh.uvs.size() == shape.mesh.positions.size()) uvs_ = shape.mesh.uvs;
+    indices_ = shape.mesh.indices;
 }
 
-Rgb AreaLight::power() const { return radiance_ * (kPi * sampler_.area() * (two_sided_ ? 2.0f : 1.0f)); }
+Rgb AreaLight::radiance_rgb(Vec2 uv) const {
+    if (!image_) return radiance_;
+    // pbrt-v4's Bilerp at (u, 1 - v) with clamped edges: pixel centres at (i + 0.5) / width.
+    const int w = image_->width, h = image_->height;
+    const float x = uv.x * float(w) - 0.5f, y = (1 - uv.y) * float(h) - 0.5f;
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float dx = x - fx, dy = y - fy;
+    auto at = [&](int i, int j) {
+        const Rgb c = image_->at(std::clamp(i, 0, w - 1), std::clamp(j, 0, h - 1));
+        return Rgb(std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f));
+    };
+    const int x0 = int(fx), y0 = int(fy);
+    const Rgb c = at(x0, y0) * ((1 - dx) * (1 - dy)) + at(x0 + 1, y0) * (dx * (1 - dy)) +
+                  at(x0, y0 + 1) * ((1 - dx) * dy) + at(x0 + 1, y0 + 1) * (dx * dy);
+    return c * radiance_;
+}
+
+Vec2 AreaLight::sample_uv(const ShapeSample& s) const {
+    if (s.triangle < 0) return {0, 0};
+    const Vec2 b = s.barycentric;
+    if (uvs_.empty()) return b;  // the accel layer's uv of a mesh without uvs
+    const uint32_t* idx = &indices_[3 * size_t(s.triangle)];
+    return uvs_[idx[0]] * (1 - b.x - b.y) + uvs_[idx[1]] * b.x + uvs_[idx[2]] * b.y;
+}
+
+Spectrum AreaLight::Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const {
+    if (!(two_sided_ || dot(n, wo) > 0)) return Spectrum(0.0f);
+    if (!image_) return emission(lambda);
+    using spectrum::RgbSpectrum;
+    return RgbSpectrum(image_mean_ * radiance_, RgbSpectrum::Use::Illuminant, RgbSpectrum::Fit::Table)
+        .sample(lambda);
+}
+
+Spectrum AreaLight::surface_Le(Vec3 n, Vec2 uv, Vec3 wo, const Wavelengths& lambda) const {
+    if (!image_) return Le(n, wo, lambda);
+    if (!(two_sided_ || dot(n, wo) > 0)) return Spectrum(0.0f);
+    const Rgb c = radiance_rgb(uv);
+    if (!(c.max() > 0)) return Spectrum(0.0f);
+    using spectrum::RgbSpectrum;
+    return RgbSpectrum(c, RgbSpectrum::Use::Illuminant, RgbSpectrum::Fit::Table).sample(lambda);
+}
+
+Rgb AreaLight::power() const {
+    const Rgb L = image_ ? image_mean_ * radiance_ : radiance_;
+    return L * (kPi * sampler_.area() * (two_sided_ ? 2.0f : 1.0f));
+}
 
 LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const {
     LightLiSample s;
@@ -31,7 +94,7 @@ LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) 
     s.p_light = ss.p;
     s.n_light = ss.n;
     s.pdf = ss.pdf;
-    s.L = Le(ss.n, -s.wi, lambda);
+    s.L = surface_Le(ss.n, sample_uv(ss), -s.wi, lambda);
     return s;
 }
 
@@ -69,7 +132,7 @@ LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& la
     const float extent = std::max(std::fabs(ss.p.x), std::max(std::fabs(ss.p.y), std::fabs(ss.p.z)));
     s.ray = {ss.p, w, 1e-5f * (1 + extent)};
     s.n = n;
-    s.Le = emission(lambda);
+    s.Le = image_ ? surface_Le(n, sample_uv(ss), w, lambda) : emission(lambda);
     s.pdf_pos = ss.pdf;
     s.pdf_dir = warp::cosine_hemisphere_pdf(local.z) * side_pdf;
     // L |cos| / (pdf_pos pdf_dir), which is L pi A / side_pdf; a grazing direction (cos = 0) takes

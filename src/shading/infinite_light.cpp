@@ -11,22 +11,9 @@
 #include "core/warp.h"
 
 namespace phos::shading {
-namespace {
-
-// Rotation part of the light transform as an orthonormal frame (Gram-Schmidt, keeping a mirror).
-Frame orientation(const Transform& t) {
-    const Vec3 x = normalize(t.vector({1, 0, 0}));
-    Vec3 y = t.vector({0, 1, 0});
-    y = normalize(y - x * dot(x, y));
-    const Vec3 z = cross(x, y) * (t.swaps_handedness() ? -1.0f : 1.0f);
-    return Frame(x, y, z);
-}
-
-}  // namespace
-
 InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
                              const SceneSphere& sphere)
-    : Light(light), frame_(orientation(light.to_world)), scale_(light.color), sphere_(sphere) {
+    : Light(light), frame_(light_frame(light.to_world)), scale_(light.color), sphere_(sphere) {
     if (light.texture >= 0) {
         if (size_t(light.texture) >= textures.size())
             throw InputError("infinite light: texture index " + std::to_string(light.texture) +
@@ -40,6 +27,14 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
             height_ = tex.image->height;
         } else if (tex.kind != scene::Texture::Kind::Constant) {
             throw InputError("infinite light: texture must be an image or a constant");
+        }
+        if (width_ > 0 && light.equal_area) {
+            if (width_ != height_)
+                throw InputError("infinite light: equal-area map '" + tex.filename + "' is not square");
+            equal_area_ = EqualAreaMap(tex.image->texels, width_);
+            width_ = height_ = 0;
+            integral_ = equal_area_.mean() * scale_ * (4 * kPi);
+            return;
         }
         if (width_ > 0) {
             texels_ = tex.image->texels;
@@ -87,13 +82,14 @@ void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
 }
 
 Spectrum InfiniteLight::Le(Vec3, Vec3 w, const Wavelengths& lambda) const {
-    if (width_ == 0) return constant_.sample(lambda);
+    if (width_ == 0 && equal_area_.empty()) return constant_.sample(lambda);
     return spectrum::RgbSpectrum(Le_rgb(w), spectrum::RgbSpectrum::Use::Illuminant,
                                  spectrum::RgbSpectrum::Fit::Table)
         .sample(lambda);
 }
 
 Rgb InfiniteLight::Le_rgb(Vec3 w) const {
+    if (!equal_area_.empty()) return equal_area_.lookup(frame_.to_local(normalize(w))) * scale_;
     if (width_ == 0) return scale_;
     int i, j;
     Vec2 uv;
@@ -102,6 +98,7 @@ Rgb InfiniteLight::Le_rgb(Vec3 w) const {
 }
 
 float InfiniteLight::pdf_direction(Vec3 w) const {
+    if (!equal_area_.empty()) return equal_area_.pdf(frame_.to_local(normalize(w)));
     if (width_ == 0) return warp::uniform_sphere_pdf();
     int i, j;
     Vec2 uv;
@@ -111,6 +108,10 @@ float InfiniteLight::pdf_direction(Vec3 w) const {
 }
 
 Vec3 InfiniteLight::sample_direction(Vec2 u) const {
+    if (!equal_area_.empty()) {
+        float pdf = 0;  // recomputed from the final direction by the callers
+        return frame_.to_world(equal_area_.sample(u, &pdf));
+    }
     if (width_ == 0) return warp::uniform_sphere(u);
     float pdf_uv = 0;
     const Vec2 uv = distribution_.sample(u, &pdf_uv);

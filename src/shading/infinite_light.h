@@ -1,5 +1,10 @@
-// Environment light at infinity: constant radiance, or a lat-long radiance map importance-sampled
-// in proportion to luminance.
+// Environment light at infinity: constant radiance, a lat-long radiance map importance-sampled
+// in proportion to luminance, or pbrt-v4's square equal-area map (shading/equal_area_map.h: nearest
+// lookup, sampled by the pixels' channel average, solid-angle pdf = pdf_uv / (4 pi)).
+//
+// Equal-area convention (pbrt-v4's ImageInfiniteLight): a world direction is taken to light space
+// as below and mapped to the square by Clarberg's octahedral map (core/equal_area.h), u the column
+// (left to right) and v the row (row 0 at the top).
 //
 // Map convention (pbrt-v3's lat-long): a world direction is first taken to light space with the
 // inverse of the light's `to_world` (its linear part orthonormalised: only its rotation / mirroring
@@ -13,6 +18,7 @@
 
 #include "core/frame.h"
 #include "shading/distribution2d.h"
+#include "shading/equal_area_map.h"
 #include "shading/lights.h"
 
 namespace phos::shading {
@@ -54,6 +60,7 @@ private:
     std::vector<Rgb> texels_;
     std::vector<float> cos_edge_;  // cos(theta) at the row edges, height_ + 1 values from 1 to -1
     Distribution2D distribution_;  // luminance x solid angle of each texel
+    EqualAreaMap equal_area_;      // the map when it is an equal-area one (width_ = height_ = 0)
     Rgb integral_;
     SceneSphere sphere_;
 };

@@ -71,7 +71,8 @@ std::vector<LightMedia> place_lights_in_media(const accel::EmbreeScene& accel, c
                 continue;
             }
         }
-        const bool single_point = spec.kind == K::Point || spec.kind == K::Spot;
+        const bool single_point = spec.kind == K::Point || spec.kind == K::Spot ||
+                                  spec.kind == K::Goniometric || spec.kind == K::Projection;
         const std::map<int, int> count = tracked_media(accel, lights[i], single_point, eye, camera_medium);
         int tracked = spec.medium, most = 0, total = 0;
         for (const auto& [medium, k] : count) {

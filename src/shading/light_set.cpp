@@ -7,9 +7,11 @@
 #include "core/log.h"
 #include "shading/area_light.h"
 #include "shading/directional_light.h"
+#include "shading/goniometric_light.h"
 #include "shading/infinite_light.h"
 #include "shading/lights.h"
 #include "shading/point_light.h"
+#include "shading/projection_light.h"
 #include "shading/spot_light.h"
 
 namespace phos::shading {
@@ -24,6 +26,14 @@ SceneSphere SceneSphere::from_bounds(const Bounds& b) {
     s.radius = 0.5f * length(b.extent());
     if (!(s.radius > 0)) s.radius = 1e-3f;  // a single point: keep the emission disk non-degenerate
     return s;
+}
+
+Frame light_frame(const Transform& t) {
+    const Vec3 x = normalize(t.vector({1, 0, 0}));
+    Vec3 y = t.vector({0, 1, 0});
+    y = normalize(y - x * dot(x, y));
+    const Vec3 z = cross(x, y) * (t.swaps_handedness() ? -1.0f : 1.0f);
+    return Frame(x, y, z);
 }
 
 Light::Light(const scene::Light& light)
@@ -45,6 +55,10 @@ const char* kind_name(scene::Light::Kind k) {
             return "area";
         case scene::Light::Kind::Infinite:
             return "infinite";
+        case scene::Light::Kind::Goniometric:
+            return "goniometric";
+        case scene::Light::Kind::Projection:
+            return "projection";
     }
     return "?";
 }
@@ -75,11 +89,18 @@ LightSet::LightSet(const scene::Scene& scene, const Bounds& scene_bounds, const 
                 // lights.
                 if (l.shape < 0 || size_t(l.shape) >= scene.shapes.size())
                     throw InputError(name + ": shape index " + std::to_string(l.shape) + " out of range");
-                lights_.push_back(std::make_unique<AreaLight>(l, scene.shapes[size_t(l.shape)]));
+                lights_.push_back(
+                    std::make_unique<AreaLight>(l, scene.shapes[size_t(l.shape)], &scene.textures));
                 break;
             case K::Infinite:
                 lights_.push_back(std::make_unique<InfiniteLight>(l, scene.textures, sphere));
                 infinite_.push_back(i);
+                break;
+            case K::Goniometric:
+                lights_.push_back(std::make_unique<GoniometricLight>(l, scene.textures));
+                break;
+            case K::Projection:
+                lights_.push_back(std::make_unique<ProjectionLight>(l, scene.textures));
                 break;
         }
     }

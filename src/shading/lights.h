@@ -8,6 +8,7 @@
 
 #include "accel/embree_scene.h"
 #include "accel/ray.h"
+#include "core/frame.h"
 #include "core/vec.h"
 #include "scene/scene.h"
 #include "shading/distribution1d.h"
@@ -25,6 +26,11 @@ struct SceneSphere {
     // Empty bounds give the unit sphere at the origin (nothing to hit, but no NaNs either).
     static SceneSphere from_bounds(const Bounds& bounds);
 };
+
+// The light space of a light's transform as an orthonormal frame: its linear part with the scale
+// and shear removed (Gram-Schmidt on the images of x and y, keeping a mirror). Lights whose emission
+// depends on direction (infinite maps, goniometric, projection) look directions up in it.
+Frame light_frame(const Transform& to_world);
 
 struct LightLiSample {
     Spectrum L;             // radiance arriving at the reference point along -wi (delta lights: I/d^2 or E)
@@ -74,6 +80,12 @@ public:
     // escapes the scene, the radiance it brings back to o is Le({}, normalize(d)).
     // Delta lights: 0.
     virtual Spectrum Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const = 0;
+    // Le at a surface point with parameterisation `uv` (SurfaceHit::uv): what an area light whose
+    // emission varies over its surface (an image) gives; every other light ignores `uv`.
+    virtual Spectrum surface_Le(Vec3 n, Vec2 uv, Vec3 wo, const Wavelengths& lambda) const {
+        (void)uv;
+        return Le(n, wo, lambda);
+    }
     virtual LightLeSample sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const = 0;
     // The densities sample_Le has of emitting from a point with normal `n` in unit direction `w`
     // (the direction light travels): pdf_pos (area measure, 1 for point and spot lights; for

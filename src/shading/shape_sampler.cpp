@@ -292,6 +292,10 @@ ShapeSample ShapeSampler::sample_patch(const Patch& pt, Vec2 u) const {
             const Vec2 b = warp::uniform_triangle(u);
             out.p = pt.o + pt.e1 * b.x + pt.e2 * b.y;
             out.n = pt.n;
+            if (!pt.project) {
+                out.triangle = int(pt.triangle);
+                out.barycentric = b;
+            }
             if (!shading_normals_.empty() && !pt.project) {
                 // As the accel layer does: the geometric normal follows the interpolated shading one.
                 const uint32_t* idx = &indices_[3 * size_t(pt.triangle)];

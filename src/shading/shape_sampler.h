@@ -35,6 +35,10 @@ struct ShapeSample {
     Vec3 p;         // world-space point on the surface
     Vec3 n;         // unit normal on the emitting side (see the rule above)
     float pdf = 0;  // area density (sample_area) or solid-angle density (sample)
+    // A point of a mesh: its triangle and barycentrics (b1, b2) there (-1: not a mesh point), so a
+    // light can find the surface's uv.
+    int triangle = -1;
+    Vec2 barycentric;
 };
 
 class ShapeSampler {

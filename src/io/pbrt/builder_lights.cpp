@@ -4,6 +4,7 @@
 #include <cmath>
 #include <map>
 
+#include "core/equal_area.h"
 #include "core/error.h"
 #include "core/log.h"
 #include "io/image/image_io.h"
@@ -62,6 +63,29 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         light.color = light.color * k;
         if (emission) emission = emission->scaled(k);
     };
+    // A light's image (pbrt-v4 decodes 8-bit images from sRGB) as a scene texture; its index.
+    auto image_texture = [&](const Param& fp) {
+        const std::string path = resolve(params.get_string("filename", ""), fp.loc);
+        Image img;
+        try {
+            img = read_image(path, true);
+        } catch (const std::exception& ex) {
+            fp.loc.fail(d + ": " + std::string(ex.what()));
+        }
+        for (const Rgb& c : img.pixels)
+            if (!c.is_finite()) fp.loc.fail(d + ": the image has pixels that are not finite");
+        scene::Texture tex;
+        tex.kind = scene::Texture::Kind::Image;
+        tex.image = text::to_texture_image(std::move(img));
+        tex.filename = path;
+        scene_.textures.push_back(std::move(tex));
+        return int(scene_.textures.size()) - 1;
+    };
+    auto required_image = [&]() -> const Param& {
+        const Param* fp = params.find("filename");
+        if (!fp) loc.fail(d + ": missing \"string filename\"");
+        return *fp;
+    };
     auto positive = [&](const char* name) {
         const float v = params.get_float(name, -1.0f);
         if (params.has(name) && !(v > 0))
@@ -113,34 +137,88 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
             // A uniform environment of radiance L gives illuminance pi * L on an upward surface.
             if (e > 0) times(e / kPi);
         } else {
-            const std::string path = resolve(params.get_string("filename", ""), fp->loc);
-            Image img;
-            try {
-                img = read_image(path, false);
-            } catch (const std::exception& ex) {
-                fp->loc.fail(d + ": " + std::string(ex.what()));
-            }
-            if (e > 0) warn(loc, d + ": \"illuminance\" with an image is not supported (ignored)");
-            if (img.width == img.height) {
-                // pbrt-v4's own environment maps are square equal-area octahedral maps, which phos
-                // cannot look up; keep their mean radiance so the lighting level is right.
-                Rgb sum(0.0f);
-                for (const Rgb& c : img.pixels) sum += c;
-                light.color = sum / float(img.pixels.size()) * scale;
-                warn(fp->loc, d + ": equal-area (square) environment maps are not supported; a constant "
-                                  "environment of the map's mean radiance is used");
-            } else {
-                scene::Texture tex;
-                tex.kind = scene::Texture::Kind::Image;
-                tex.image = text::to_texture_image(std::move(img));
-                tex.filename = path;
-                scene_.textures.push_back(std::move(tex));
-                light.texture = int(scene_.textures.size()) - 1;
-                light.color = Rgb(scale);
+            light.texture = image_texture(*fp);
+            light.color = Rgb(scale);
+            const scene::TextureImage& img = *scene_.textures[size_t(light.texture)].image;
+            light.equal_area = img.width == img.height;
+            if (!light.equal_area) {
+                if (e > 0)
+                    warn(loc,
+                         d + ": \"illuminance\" with a latitude-longitude map is not supported (ignored)");
                 warn(fp->loc, d + ": a non-square map is read as a latitude-longitude map (pbrt-v4 expects "
                                   "equal-area square maps)");
+            } else if (e > 0) {
+                // pbrt-v4's illuminance of the map's upper hemisphere, summed over the pixel centres
+                // with z > 0 as pbrt-v4 sums it (2 pi / N per pixel, where a pixel spans 4 pi / N).
+                const int n = img.width;
+                double k_e = 0;
+                for (int y = 0; y < n; ++y)
+                    for (int x = 0; x < n; ++x) {
+                        const Vec3 w = equal_area_square_to_sphere(
+                            {(float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)});
+                        if (w.z > 0) k_e += double(img.at(x, y).luminance()) * w.z;
+                    }
+                k_e *= 2 * double(kPi) / (double(n) * double(n));
+                if (!(k_e > 0))
+                    params.find("illuminance")->loc.fail(d + ": the map's upper hemisphere is black");
+                times(float(e / k_e));
             }
         }
+    } else if (type == "goniometric") {
+        light.kind = scene::Light::Kind::Goniometric;
+        light.color = emitted("I");
+        light.texture = image_texture(required_image());
+        const scene::TextureImage& img = *scene_.textures[size_t(light.texture)].image;
+        if (img.width != img.height)
+            required_image().loc.fail(d + ": the image is " + std::to_string(img.width) + " x " +
+                                      std::to_string(img.height) + "; pbrt-v4 takes a square equal-area map");
+        const float power = positive("power");
+        if (power > 0) {
+            // pbrt-v4: the flux of the map read as grey (its channels' average) is 4 pi mean.
+            double sum = 0;
+            for (const Rgb& c : img.texels) sum += c.average();
+            const double k_e = 4 * double(kPi) * sum / double(img.texels.size());
+            if (!(k_e > 0)) params.find("power")->loc.fail(d + ": \"power\" with a black image");
+            times(float(power / k_e));
+        }
+        // pbrt-v4 looks the map up with y and z swapped in the light's space.
+        Mat4 swap_yz;
+        swap_yz(1, 1) = swap_yz(2, 2) = 0;
+        swap_yz(1, 2) = swap_yz(2, 1) = 1;
+        light.to_world = t * Transform(swap_yz, swap_yz);
+        light.position = t.point({0, 0, 0});
+    } else if (type == "projection") {
+        light.kind = scene::Light::Kind::Projection;
+        // pbrt-v4 reads no "I" (pbrt-v3 did): an "I" multiplies the image as pbrt-v3's did.
+        light.color = emitted("I");
+        light.texture = image_texture(required_image());
+        const scene::TextureImage& img = *scene_.textures[size_t(light.texture)].image;
+        const float fov = params.get_float("fov", 90.0f);
+        if (!(fov > 0 && fov < 180)) params.find("fov")->loc.fail(d + ": fov must be in (0, 180)");
+        light.fov = fov * kPi / 180.0f;
+        const float power = positive("power");
+        if (power > 0) {
+            // pbrt-v4: the luminance flux of the image, each pixel's solid angle A cos^3 / pixels at
+            // its centre, A the image's area on the plane at distance 1.
+            const float aspect = float(img.width) / float(img.height), tan_half = std::tan(0.5f * light.fov);
+            const float half_w = aspect > 1 ? aspect : 1, half_h = aspect > 1 ? 1 : 1 / aspect;
+            const double area = 4.0 * double(half_w) * half_h * tan_half * tan_half;
+            double sum = 0;
+            for (int y = 0; y < img.height; ++y)
+                for (int x = 0; x < img.width; ++x) {
+                    const float px = (-half_w + 2 * half_w * (float(x) + 0.5f) / float(img.width)) * tan_half;
+                    const float py =
+                        (-half_h + 2 * half_h * (float(y) + 0.5f) / float(img.height)) * tan_half;
+                    const double c = 1 / std::sqrt(1.0 + double(px) * px + double(py) * py);
+                    sum += double(img.at(x, y).luminance()) * c * c * c;
+                }
+            const double k_e = area * sum / (double(img.width) * double(img.height));
+            if (!(k_e > 0)) params.find("power")->loc.fail(d + ": \"power\" with a black image");
+            times(float(power / k_e));
+        }
+        // pbrt-v4 flips y in the light's space, so that the image's top row lands on +y.
+        light.to_world = t * Transform::scale({1, -1, 1});
+        light.position = t.point({0, 0, 0});
     } else {
         warn(loc, d + " is not supported (the light is skipped)");
         if (!skipped_light_) skipped_light_ = loc;
@@ -175,8 +253,33 @@ void SceneBuilder::area_light_source(const std::string& type, const ParamList& p
     al.power = params.get_float("power", -1.0f);
     if (params.has("power") && !(al.power > 0))
         params.find("power")->loc.fail(d + ": \"power\" must be positive");
-    if (const Param* fp = params.find("filename"))
-        warn(fp->loc, d + ": image emission (\"filename\") is not supported; \"L\" is used");
+    if (const Param* fp = params.find("filename")) {
+        // pbrt-v4: the image replaces L (both is an error); `scale` multiplies it.
+        if (params.has("L")) loc.fail(d + ": give either \"L\" or \"filename\", not both");
+        const std::string path = resolve(params.get_string("filename", ""), fp->loc);
+        Image img;
+        try {
+            img = read_image(path, true);
+        } catch (const std::exception& ex) {
+            fp->loc.fail(d + ": " + std::string(ex.what()));
+        }
+        Rgb sum(0.0f);
+        for (const Rgb& c : img.pixels) {
+            if (!c.is_finite()) fp->loc.fail(d + ": the image has pixels that are not finite");
+            sum += Rgb(std::max(c.r, 0.0f), std::max(c.g, 0.0f), std::max(c.b, 0.0f));
+        }
+        al.image_mean = sum / float(std::max<size_t>(img.pixels.size(), 1));
+        al.image_luminance = al.image_mean.luminance();
+        if (al.power > 0 && !(al.image_luminance > 0)) fp->loc.fail(d + ": \"power\" with a black image");
+        scene::Texture tex;
+        tex.kind = scene::Texture::Kind::Image;
+        tex.image = text::to_texture_image(std::move(img));
+        tex.filename = path;
+        scene_.textures.push_back(std::move(tex));
+        al.texture = int(scene_.textures.size()) - 1;
+        al.L = Rgb(scale);
+        al.spectrum.reset();
+    }
     if (!al.L.is_finite()) loc.fail(d + ": emission is not finite");
     done(params, d);
     gs_.area_light = al;

@@ -66,9 +66,19 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     const AreaLight& al = *gs_.area_light;
     Rgb L = al.L;
     std::optional<spectrum::Distribution> emission = al.spectrum;
+    int texture = al.texture;
+    if (texture >= 0 && shape.kind != scene::Shape::Kind::Mesh) {
+        warn_once("area light image on an analytic shape", al.loc,
+                  "image emission (\"filename\") is supported on triangle meshes; other shapes emit the "
+                  "image's mean radiance");
+        L = L * al.image_mean;
+        texture = -1;
+    }
     if (al.power > 0) {
-        // pbrt-v4: scale so that the emitted flux pi * area * L (twice if two-sided) equals `power`.
-        const float k = kPi * area * (al.two_sided ? 2.0f : 1.0f);
+        // pbrt-v4: scale so that the emitted flux pi * area * L (twice if two-sided) equals `power`;
+        // with an image, L is its mean luminance.
+        const float k =
+            kPi * area * (al.two_sided ? 2.0f : 1.0f) * (al.texture >= 0 ? al.image_luminance : 1.0f);
         if (!(k > 0)) loc.fail("area light with \"power\" on a shape of zero area");
         L = L * (al.power / k);
         if (emission) emission = emission->scaled(al.power / k);
@@ -94,6 +104,7 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     scene::Light& light = scene_.lights[size_t(index)];
     light.position = position;
     light.direction = direction;
+    light.texture = texture;
     light.medium = gs_.outside;  // photons leave into the outside medium
     light.medium_declared = gs_.media_declared;
     light.origin = loc.str();  // the Shape that emits

@@ -131,13 +131,13 @@ TEST(PbrtSettings, SppmIntegratorSamplerAndFilter) {
 }
 
 TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
-    // gaussian filter, mlt integrator, hyperboloid shape, goniometric light, Attribute: one each, even
+    // gaussian filter, mlt integrator, hyperboloid shape, an unknown light, Attribute: one each, even
     // though they carry parameters; pbrt-v3's WorldEnd is read silently.
     const Loaded l = load_text(
         "PixelFilter \"gaussian\" \"float sigma\" 0.5 \"float xradius\" 2\n"
         "Integrator \"mlt\" \"integer mutationsperpixel\" 10\nWorldBegin\n"
         "Shape \"hyperboloid\" \"point3 p1\" [0 0 0] \"point3 p2\" [1 1 1]\n"
-        "LightSource \"goniometric\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
+        "LightSource \"sunsky\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
         "2\nLightSource \"point\"\nWorldEnd\n");
     EXPECT_EQ(l.warnings, 4);  // the mlt integrator is reported by `phos render` (it may be overridden)
     EXPECT_EQ(l.scene.settings.integrator, "bdpt");  // mlt explores bdpt's paths: bdpt, with a warning
@@ -145,7 +145,7 @@ TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
     EXPECT_EQ(l.scene.settings.integrator_location.substr(l.scene.settings.integrator_location.size() - 4),
               ":2:1");
     EXPECT_TRUE(l.scene.shapes.empty());
-    EXPECT_EQ(l.scene.lights.size(), 1u);  // the point light; the goniometric one is skipped
+    EXPECT_EQ(l.scene.lights.size(), 1u);  // the point light; the unknown one is skipped
 }
 
 // A scene none of whose lights can be used is refused at the first of them (it would render black,
@@ -154,8 +154,8 @@ TEST(PbrtSettings, ASceneWhoseLightsAllFailIsAnError) {
     PbrtTempDir dir;
     QuietLog quiet;
     expect_pbrt_error(dir.write("a.pbrt",
-                                "WorldBegin\nShape \"sphere\"\nLightSource \"goniometric\" \"string "
-                                "filename\" \"x.exr\"\nLightSource \"projection\"\n"),
+                                "WorldBegin\nShape \"sphere\"\nLightSource \"sunsky\" \"string "
+                                "filename\" \"x.exr\"\nLightSource \"skylight\"\n"),
                       3, 1, "none of the scene's lights can be used");
     expect_pbrt_error(dir.write("b.pbrt", "WorldBegin\nAreaLightSource \"glow\"\nShape \"sphere\"\n"), 2, 1,
                       "none of the scene's lights can be used");

@@ -1,0 +1,168 @@
+// pbrt image-driven lights as scene data: a square infinite map is an equal-area map (with pbrt-v4's
+// "illuminance" normalisation), goniometric and projection lights carry their image, pbrt-v4's
+// light-space conventions (goniometric's y/z swap, projection's y flip) and their "power"; bad
+// input is a located error.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "core/equal_area.h"
+#include "pbrt_test_util.h"
+
+namespace phos::io::test {
+namespace {
+
+using scene::Light;
+
+// A PFM image from rows listed top first (PFM stores the bottom row first).
+std::string pfm(int w, int h, const std::vector<Rgb>& top_first) {
+    std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1\n";
+    for (int y = h - 1; y >= 0; --y)
+        for (int x = 0; x < w; ++x) {
+            const Rgb c = top_first[size_t(y * w + x)];
+            const float v[3] = {c.r, c.g, c.b};
+            s.append(reinterpret_cast<const char*>(v), sizeof v);
+        }
+    return s;
+}
+
+scene::Scene load_in(PbrtTempDir& dir, const std::string& body) {
+    QuietLog quiet;
+    return load_pbrt(dir.write("scene.pbrt", "WorldBegin\n" + body));
+}
+
+TEST(PbrtImageLights, SquareInfiniteMapIsEqualAreaWithIlluminance) {
+    PbrtTempDir dir;
+    constexpr int n = 8;
+    std::vector<Rgb> px(n * n, Rgb(0.5f));
+    px[3] = Rgb(4, 2, 1);
+    dir.write("sky.pfm", pfm(n, n, px));
+    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    const scene::Scene s =
+        load_in(dir,
+                "LightSource \"infinite\" \"string filename\" \"sky.pfm\" \"float scale\" 2\n"
+                "LightSource \"infinite\" \"string filename\" \"sky.pfm\" \"float illuminance\" 10\n"
+                "LightSource \"infinite\" \"string filename\" \"wide.pfm\"\n");
+    ASSERT_EQ(s.lights.size(), 3u);
+    const Light& a = s.lights[0];
+    EXPECT_EQ(a.kind, Light::Kind::Infinite);
+    EXPECT_TRUE(a.equal_area);
+    ASSERT_GE(a.texture, 0);
+    EXPECT_EQ(s.textures[size_t(a.texture)].image->width, n);
+    EXPECT_EQ(s.textures[size_t(a.texture)].image->at(3, 0), Rgb(4, 2, 1));  // row 0 is the top
+    EXPECT_EQ(a.color, Rgb(2.0f));
+    // pbrt-v4's normalisation: 2 pi / N^2 times the sum of luminance x cos over the pixel centres
+    // of the upper hemisphere, computed here independently.
+    double k = 0;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            const Vec3 w = equal_area_square_to_sphere({(x + 0.5f) / n, (y + 0.5f) / n});
+            if (w.z > 0) k += double(px[size_t(y * n + x)].luminance()) * w.z;
+        }
+    k *= 2 * M_PI / (n * n);
+    EXPECT_NEAR(s.lights[1].color.g, 10 / k, 1e-4 * 10 / k);
+    EXPECT_FALSE(s.lights[2].equal_area);  // a non-square map stays a lat-long map
+}
+
+// Goniometric: "I" x "scale", "power" = 4 pi I mean(grey map); pbrt-v4 swaps y and z, so the map's
+// centre (light-space +z) looks along world +y under the identity.
+TEST(PbrtImageLights, GoniometricConventions) {
+    PbrtTempDir dir;
+    constexpr int n = 4;
+    std::vector<Rgb> px(n * n, Rgb(0.0f));
+    for (int y = 1; y <= 2; ++y)
+        for (int x = 1; x <= 2; ++x) px[size_t(y * n + x)] = Rgb(3, 6, 0);  // grey 3
+    dir.write("g.pfm", pfm(n, n, px));
+    const scene::Scene s = load_in(
+        dir,
+        "Translate 1 2 3\nLightSource \"goniometric\" \"string filename\" \"g.pfm\" \"rgb I\" [1 2 3] "
+        "\"float scale\" 2\n"
+        "LightSource \"goniometric\" \"string filename\" \"g.pfm\" \"float power\" 100\n");
+    ASSERT_EQ(s.lights.size(), 2u);
+    const Light& g = s.lights[0];
+    EXPECT_EQ(g.kind, Light::Kind::Goniometric);
+    EXPECT_EQ(g.color, Rgb(2, 4, 6));
+    EXPECT_NEAR(g.position.y, 2.0f, 1e-6f);
+    const Vec3 up = g.to_world.vector({0, 0, 1});  // light-space +z: the map's centre
+    EXPECT_NEAR(up.y, 1.0f, 1e-6f);
+    // power: 4 pi I mean(grey) = 100 with mean(grey) = 3 x 4 / 16.
+    EXPECT_NEAR(s.lights[1].color.g * 4 * M_PI * 3 * 4 / 16, 100.0, 1e-3);
+}
+
+// Projection: "fov", "scale", "power" normalised by the image's luminance flux; pbrt-v4 flips y so
+// the top row of the slide lands on +y in the light's space.
+TEST(PbrtImageLights, ProjectionConventions) {
+    PbrtTempDir dir;
+    dir.write("slide.pfm", pfm(2, 2, {Rgb(1.0f), Rgb(1.0f), Rgb(1.0f), Rgb(1.0f)}));
+    const scene::Scene s =
+        load_in(dir,
+                "LightSource \"projection\" \"string filename\" \"slide.pfm\" \"float fov\" "
+                "40 \"float scale\" 3\n"
+                "LightSource \"projection\" \"string filename\" \"slide.pfm\" \"float power\" "
+                "50\n");
+    ASSERT_EQ(s.lights.size(), 2u);
+    const Light& p = s.lights[0];
+    EXPECT_EQ(p.kind, Light::Kind::Projection);
+    EXPECT_NEAR(p.fov, 40 * kPi / 180, 1e-6f);
+    EXPECT_EQ(p.color, Rgb(3.0f));
+    EXPECT_NEAR(p.to_world.vector({0, 1, 0}).y, -1.0f, 1e-6f);  // the flip
+    // A white 90-degree square slide: flux = integral over the window of cos^3 dA, midpoint rule
+    // over the four pixels (each centre at (+-0.5, +-0.5) on the plane z = 1): 4 x cos^3 x 1.
+    const double c = 1 / std::sqrt(1.5);
+    EXPECT_NEAR(s.lights[1].color.g * 4 * c * c * c, 50.0, 1e-3);
+}
+
+// AreaLightSource "diffuse" with "filename": the mesh's light carries the image, L = scale, and
+// "power" is normalised by the image's mean luminance; on a sphere the image's mean is emitted
+// uniformly (with a warning); "L" and "filename" together are an error.
+TEST(PbrtImageLights, AreaLightImage) {
+    PbrtTempDir dir;
+    dir.write("e.pfm", pfm(2, 1, {Rgb(1, 2, 3), Rgb(3, 2, 1)}));
+    const std::string quad =
+        "Shape \"trianglemesh\" \"point3 P\" [0 0 0 2 0 0 2 2 0 0 2 0] \"integer indices\" [0 1 2 0 2 3]\n";
+    const scene::Scene s = load_in(
+        dir, "AttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"e.pfm\" \"float scale\" 2\n" +
+                 quad +
+                 "AttributeEnd\nAttributeBegin\nAreaLightSource \"diffuse\" \"string filename\" \"e.pfm\" "
+                 "\"float power\" 10\n" +
+                 quad + "Shape \"sphere\"\nAttributeEnd\n");
+    ASSERT_EQ(s.lights.size(), 3u);
+    const Light& a = s.lights[0];
+    EXPECT_EQ(a.kind, Light::Kind::Area);
+    ASSERT_GE(a.texture, 0);
+    EXPECT_EQ(s.textures[size_t(a.texture)].image->width, 2);
+    EXPECT_EQ(a.color, Rgb(2.0f));
+    // power: pi A L mean-luminance = 10 with A = 4 and the mean (2, 2, 2) of luminance 2.
+    EXPECT_NEAR(s.lights[1].color.g * kPi * 4 * 2, 10.0f, 1e-4f);
+    EXPECT_EQ(s.lights[2].texture, -1);           // the sphere: the image's mean, uniformly
+    const float k = 10.0f / (kPi * 4 * kPi * 2);  // the power normalisation on the unit sphere's area
+    EXPECT_NEAR(s.lights[2].color.g, 2 * k, 1e-4f);
+    QuietLog quiet;
+    expect_pbrt_error(dir.write("both.pbrt",
+                                "WorldBegin\nAreaLightSource \"diffuse\" \"string filename\" "
+                                "\"e.pfm\" \"rgb L\" [1 1 1]\n" +
+                                    quad),
+                      2, 1, "either \"L\" or \"filename\"");
+}
+
+TEST(PbrtImageLights, BadInputIsLocated) {
+    PbrtTempDir dir;
+    QuietLog quiet;
+    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    expect_pbrt_error(dir.write("a.pbrt", "WorldBegin\nLightSource \"goniometric\"\n"), 2, 1,
+                      "missing \"string filename\"");
+    expect_pbrt_error(
+        dir.write("b.pbrt", "WorldBegin\nLightSource \"goniometric\" \"string filename\" \"wide.pfm\"\n"), 2,
+        27, "square");
+    expect_pbrt_error(dir.write("c.pbrt",
+                                "WorldBegin\nLightSource \"projection\" \"string filename\" \"wide.pfm\" "
+                                "\"float fov\" 180\n"),
+                      2, 55, "fov");
+    expect_pbrt_error(
+        dir.write("d.pbrt", "WorldBegin\nLightSource \"projection\" \"string filename\" \"no.pfm\"\n"), 2, 26,
+        "cannot read");
+}
+
+}  // namespace
+}  // namespace phos::io::test
