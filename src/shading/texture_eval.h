@@ -1,26 +1,12 @@
-// Evaluation of scene::Texture at a surface point's uv: constant, image (bilinear, wrap modes),
-// checkerboard and scale textures, with each texture's uv scale/offset mapping.
+// Texture evaluation for shading: scene/texture_eval.h (the scene layer holds it so that loaders
+// can evaluate textures too, e.g. pbrt's mesh displacement) under the shading layer's names.
 #pragma once
 
-#include "core/vec.h"
-#include "scene/scene.h"
+#include "scene/texture_eval.h"
 
 namespace phos::shading {
 
-// Value of texture `texture` (an index into scene.textures) at `uv`. An index of -1 means "no
-// texture" and gives white, so callers can multiply unconditionally; an index out of range also
-// gives white (loaders validate indices, this only keeps a bad scene from crashing).
-//
-// uv convention: (u, v) = (0, 0) is the bottom-left corner of an image and (1, 1) its top-right
-// (v grows upwards, as in OBJ and pbrt); `invert_v` puts v = 0 at the top row instead. Texel
-// centres sit at half-integer positions and lookups interpolate bilinearly between the four
-// nearest texels, wrapping per Texture::wrap (Repeat tiles, Clamp extends the edge texels, Black
-// treats texels outside the image as black). The mapping applied first is
-// (u, v) -> (u * u_scale + u_offset, v * v_scale + v_offset).
-Rgb eval_texture(const scene::Scene& scene, int texture, Vec2 uv);
-
-// Bilinear lookup of an image at continuous texel coordinates (x, y) in [0, width] x [0, height]
-// (row 0 at the top), with the given wrap mode. Exposed for tests.
-Rgb lookup_bilinear(const scene::TextureImage& image, float x, float y, scene::Texture::Wrap wrap);
+using scene::eval_texture;
+using scene::lookup_bilinear;
 
 }  // namespace phos::shading

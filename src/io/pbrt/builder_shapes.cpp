@@ -9,6 +9,8 @@
 #include "io/mesh/mesh_io.h"
 #include "io/pbrt/builder.h"
 #include "io/pbrt/curves.h"
+#include "scene/mesh_displacement.h"
+#include "scene/texture_eval.h"
 
 namespace phos::io::pbrt {
 namespace {
@@ -110,6 +112,37 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     light.origin = loc.str();  // the Shape that emits
 }
 
+// pbrt-v4's plymesh displacement: the object-space mesh refined until every edge is shorter than
+// "edgelength" (default 1) measured in world space, each vertex moved along its normal by the
+// float texture (or constant) "displacement" at its uv, the normals recomputed.
+void SceneBuilder::displace(scene::TriangleMesh& mesh, const ParamList& params, const Param& dp,
+                            const std::string& d) {
+    const float edge = params.get_float("edgelength", 1.0f);
+    if (!(edge > 0) || !std::isfinite(edge))
+        params.find("edgelength")->loc.fail(d + ": \"edgelength\" must be a positive length");
+    int texture = -1;
+    float constant = 0;
+    if (dp.type == "texture") {
+        const auto it = float_textures_.find(dp.strings[0]);
+        if (it == float_textures_.end()) dp.loc.fail(d + ": unknown float texture \"" + dp.strings[0] + "\"");
+        texture = it->second;
+    } else {
+        constant = params.get_float("displacement", 0.0f);
+        if (!std::isfinite(constant)) dp.loc.fail(d + ": \"displacement\" is not finite");
+    }
+    const Transform& t = gs_.ctm;
+    try {
+        scene::displace_mesh(
+            mesh, edge, [&](Vec3 a, Vec3 b) { return length(t.point(a) - t.point(b)); },
+            [&](Vec3, Vec3, Vec2 uv) {
+                return texture < 0 ? constant : scene::eval_texture(scene_, texture, uv).average();
+            },
+            size_t(1) << 25);
+    } catch (const InputError& e) {
+        dp.loc.fail(d + ": " + e.what());
+    }
+}
+
 void SceneBuilder::shape(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "Shape", loc);
     const std::string d = "Shape \"" + type + "\"";
@@ -120,7 +153,9 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
     if (const Param* a = params.find("alpha"))
         warn(a->loc, d + ": \"alpha\" (cut-outs) is not supported; the shape is opaque");
     for (const char* p : {"emission", "displacement", "edgelength"})
-        if (const Param* q = params.find(p))
+        if (type == "plymesh" && std::string(p) != "emission")
+            continue;  // plymesh reads them below
+        else if (const Param* q = params.find(p))
             warn(q->loc, d + ": \"" + std::string(p) + "\" is not supported (ignored)");
 
     auto mesh_from_params = [&](bool bilinear) {
@@ -189,6 +224,7 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
                 fp->loc.add_to(e);
                 throw;
             }
+            if (const Param* dp = params.find("displacement")) displace(s.mesh, params, *dp, d);
         } else {
             s.mesh = mesh_from_params(type == "bilinearmesh");
         }

@@ -1,12 +1,10 @@
 // Texture evaluation (see texture_eval.h for the uv and wrap conventions).
-#include "shading/texture_eval.h"
+#include "scene/texture_eval.h"
 
 #include <cmath>
 
-namespace phos::shading {
+namespace phos::scene {
 namespace {
-
-using scene::Texture;
 
 // Maps an integer texel index to one inside [0, n) per wrap mode; -1 means "black".
 int wrap_index(int i, int n, Texture::Wrap wrap) {
@@ -84,4 +82,4 @@ Rgb lookup_bilinear(const scene::TextureImage& image, float x, float y, Texture:
 
 Rgb eval_texture(const scene::Scene& scene, int texture, Vec2 uv) { return eval(scene, texture, uv, 0); }
 
-}  // namespace phos::shading
+}  // namespace phos::scene
