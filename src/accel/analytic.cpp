@@ -89,6 +89,32 @@ void sphere(const Analytic& s, D3 o, D3 d, Best& best) {
     best.offer(t1, o + d * t1, kSide);
 }
 
+// pbrt-v4's partial sphere: each root's point, moved onto the sphere, is kept only within the z
+// range and the azimuth range, so a ray can pass through the cut and hit the far side.
+void partial_sphere(const Analytic& s, D3 o, D3 d, Best& best) {
+    const double a = dot(d, d);
+    if (a == 0) return;
+    const double b = dot(o, d);
+    const D3 f = o - d * (b / a);
+    const double disc = a * (s.radius * s.radius - dot(f, f));
+    if (disc < 0) return;
+    const double c = dot(o, o) - s.radius * s.radius;
+    double roots[2];
+    stable_roots(a, b, c, disc, roots[0], roots[1]);
+    for (double t : roots) {
+        if (!(t > best.tmin && t < best.tmax)) continue;
+        const D3 p = o + d * t;
+        const double len = length(p);
+        D3 q = len > 0 ? p * (s.radius / len) : p;
+        if (q.x == 0 && q.y == 0) q.x = 1e-5 * s.radius;  // phi defined at the poles (pbrt)
+        double phi = std::atan2(q.y, q.x);
+        if (phi < 0) phi += kTwoPi;
+        if (q.z < s.z_min || q.z > s.z_max || phi > s.phi_max) continue;
+        best.offer(t, p, kSide);
+        return;  // the roots are ascending: the first one kept is the closest
+    }
+}
+
 void cylinder(const Analytic& s, D3 o, D3 d, Best& best) {
     const double h2 = 0.5 * s.height;
     const double a = d.x * d.x + d.y * d.y;
@@ -219,6 +245,15 @@ bool make_analytic(const scene::Shape& shape, int index, Analytic& out, const ch
     a.shape = index;
     a.source = &shape;
     if (!(a.radius > 0) || !std::isfinite(a.radius)) return why = "radius must be positive", false;
+    if (a.kind == Kind::Sphere && shape.partial) {
+        a.partial = true;
+        a.z_min = std::clamp(double(std::min(shape.z_min, shape.z_max)), -a.radius, a.radius);
+        a.z_max = std::clamp(double(std::max(shape.z_min, shape.z_max)), -a.radius, a.radius);
+        a.phi_max = std::clamp(double(shape.phi_max), 0.0, kTwoPi);
+        a.theta_z_min = std::acos(std::clamp(a.z_min / a.radius, -1.0, 1.0));
+        a.theta_z_max = std::acos(std::clamp(a.z_max / a.radius, -1.0, 1.0));
+        if (!(a.z_max > a.z_min) || !(a.phi_max > 0)) return why = "partial sphere of zero area", false;
+    }
     if ((a.kind == Kind::Cylinder || a.kind == Kind::Cone) && (!(a.height > 0) || !std::isfinite(a.height)))
         return why = "height must be positive", false;
     if (a.kind == Kind::Disk && (!(a.inner >= 0) || !(a.inner < a.radius)))
@@ -242,7 +277,10 @@ bool intersect_canonical(const Analytic& a, D3 o, D3 d, double tmin, double tmax
     Best best{tmin, tmax, {}};
     switch (a.kind) {
         case Kind::Sphere:
-            sphere(a, o, d, best);
+            if (a.partial)
+                partial_sphere(a, o, d, best);
+            else
+                sphere(a, o, d, best);
             break;
         case Kind::Disk:
             cap(o, d, 0.0, a.radius, a.inner, kSide, best);
@@ -268,6 +306,15 @@ void analytic_bounds(const Analytic& a, D3& lo, D3& hi) {
     const double h2 = 0.5 * a.height;
     switch (a.kind) {
         case Kind::Sphere: {
+            if (a.partial) {
+                // pbrt-v4's box of a partial sphere: [-r, r]^2 x [z_min, z_max], each corner mapped.
+                for (int i = 0; i < 8; ++i) {
+                    const D3 c(i & 1 ? a.radius : -a.radius, i & 2 ? a.radius : -a.radius,
+                               i & 4 ? a.z_max : a.z_min);
+                    grow(lo, hi, m.point(c), D3(0, 0, 0));
+                }
+                break;
+            }
             D3 e;
             for (int i = 0; i < 3; ++i) {
                 const double v = a.radius * std::sqrt(m.m[i][0] * m.m[i][0] + m.m[i][1] * m.m[i][1] +
@@ -331,6 +378,13 @@ AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit, dou
                 p = p * (a.radius / length(p));
                 n = p * (1.0 / a.radius);
                 const double theta = std::acos(std::clamp(p.z / a.radius, -1.0, 1.0));
+                if (a.partial) {
+                    // pbrt-v4: u = phi / phi_max, v = (theta - theta_z_min) / (theta_z_max - theta_z_min).
+                    uv = {float(std::min(phi / a.phi_max, 1.0)),
+                          float(std::clamp((theta - a.theta_z_min) / (a.theta_z_max - a.theta_z_min), 0.0,
+                                           1.0))};
+                    break;
+                }
                 uv = {u, float(theta / (0.5 * kTwoPi))};
                 break;
             }

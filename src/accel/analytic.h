@@ -63,6 +63,10 @@ struct Analytic {
     scene::Shape::Kind kind = scene::Shape::Kind::Sphere;
     double radius = 1, inner = 0, height = 1;
     bool capped = true;
+    // A partial sphere (scene::Shape::partial): hits outside z_min <= z <= z_max or beyond phi_max
+    // are rejected; theta_z_min/max = acos(z_min/max / radius) for pbrt's v.
+    bool partial = false;
+    double z_min = 0, z_max = 0, phi_max = 0, theta_z_min = 0, theta_z_max = 0;
     Affine to_space;    // canonical frame -> the geometry's space (world, or the object's space)
     Affine to_canon;    // inverse of to_space
     bool flip = false;  // reverse_orientation XOR the shape transform swaps handedness (pbrt)

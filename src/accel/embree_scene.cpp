@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "accel/analytic.h"
+#include "accel/bilinear_patch.h"
 #include "accel/curves.h"
 #include "core/error.h"
 #include "core/frame.h"
@@ -58,7 +59,16 @@ struct MeshGeom {
     const scene::Shape* source = nullptr;
     int shape = -1;
     std::vector<TriangleFacts> facts;  // per triangle, or empty (too many triangles to keep them)
+    // Set for a mesh's exact bilinear patches (Embree user geometry, one primitive per patch; no
+    // triangles, vertices or indices): hits go through patch_local.
+    const struct PatchSet* patches = nullptr;
     D3 vertex(uint32_t i) const { return {vertices[3 * i], vertices[3 * i + 1], vertices[3 * i + 2]}; }
+};
+
+// The exact bilinear patches of one mesh (scene::TriangleMesh::patches).
+struct PatchSet {
+    std::vector<std::array<D3, 4>> corners;  // geometry space, pbrt's order p00 p10 p01 p11
+    const uint32_t* indices = nullptr;       // 4 per patch into the mesh's vertices
 };
 
 // The facts of triangle `prim` (defined with mesh_local below).
@@ -146,6 +156,63 @@ void analytic_occluded_cb(const RTCOccludedFunctionNArguments* args) {
     }
 }
 
+// Bilinear patches: the box of the four corners (a patch lies in their convex hull), and the
+// exact double-precision hit (accel/bilinear_patch.h) whose (u, v) the canonical hit carries in
+// p.x, p.y for finish_hit.
+void patch_bounds_cb(const RTCBoundsFunctionArguments* args) {
+    const auto& set = *static_cast<const PatchSet*>(args->geometryUserPtr);
+    const std::array<D3, 4>& c = set.corners[args->primID];
+    D3 lo = c[0], hi = c[0];
+    for (const D3& p : c) {
+        lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+        hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+    RTCBounds* b = args->bounds_o;
+    b->lower_x = std::nextafter(float(lo.x), -kInf), b->upper_x = std::nextafter(float(hi.x), kInf);
+    b->lower_y = std::nextafter(float(lo.y), -kInf), b->upper_y = std::nextafter(float(hi.y), kInf);
+    b->lower_z = std::nextafter(float(lo.z), -kInf), b->upper_z = std::nextafter(float(hi.z), kInf);
+}
+
+bool patch_hit(const PatchSet& set, unsigned prim, RTCRayN* ray, unsigned N, unsigned i,
+               detail::PatchHit& h) {
+    const D3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
+    const D3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
+    return detail::intersect_patch(set.corners[prim], o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
+                                   h);
+}
+
+void patch_intersect_cb(const RTCIntersectFunctionNArguments* args) {
+    const auto& set = *static_cast<const PatchSet*>(args->geometryUserPtr);
+    auto* qc = reinterpret_cast<QueryContext*>(args->context);
+    RTCRayN* ray = RTCRayHitN_RayN(args->rayhit, args->N);
+    RTCHitN* hit = RTCRayHitN_HitN(args->rayhit, args->N);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        detail::PatchHit h;
+        if (!patch_hit(set, args->primID, ray, args->N, i, h)) continue;
+        RTCRayN_tfar(ray, args->N, i) = float(h.t);
+        RTCHitN_Ng_x(hit, args->N, i) = -RTCRayN_dir_x(ray, args->N, i);
+        RTCHitN_Ng_y(hit, args->N, i) = -RTCRayN_dir_y(ray, args->N, i);
+        RTCHitN_Ng_z(hit, args->N, i) = -RTCRayN_dir_z(ray, args->N, i);
+        RTCHitN_u(hit, args->N, i) = float(h.u);
+        RTCHitN_v(hit, args->N, i) = float(h.v);
+        RTCHitN_primID(hit, args->N, i) = args->primID;
+        RTCHitN_geomID(hit, args->N, i) = args->geomID;
+        RTCHitN_instID(hit, args->N, i, 0) = args->context->instID[0];
+        qc->hit[RTCRayN_id(ray, args->N, i) & 15u] = {h.t, D3(h.u, h.v, 0), 0};
+    }
+}
+
+void patch_occluded_cb(const RTCOccludedFunctionNArguments* args) {
+    const auto& set = *static_cast<const PatchSet*>(args->geometryUserPtr);
+    for (unsigned i = 0; i < args->N; ++i) {
+        if (args->valid[i] != -1) continue;
+        detail::PatchHit h;
+        if (patch_hit(set, args->primID, args->ray, args->N, i, h))
+            RTCRayN_tfar(args->ray, args->N, i) = -kInf;
+    }
+}
+
 std::string where(const scene::Shape& s) { return s.origin.empty() ? std::string("shape") : s.origin; }
 
 }  // namespace
@@ -167,6 +234,8 @@ struct EmbreeScene::Impl {
     // that huge meshes do not double the accelerator's memory; the others compute them per hit.
     static constexpr size_t kMaxCachedTriangles = size_t(1) << 20;
     size_t cached_triangles = 0;
+    // The meshes' bilinear patches (a deque: Embree keeps pointers to them).
+    std::deque<PatchSet> patch_sets;
     std::deque<Analytic> analytics;  // a deque: Embree keeps pointers to the Analytic records
     std::vector<InstanceData> instances;
     std::vector<CurveGeom> curves;                // pbrt curve shapes
@@ -212,6 +281,54 @@ struct EmbreeScene::Impl {
         ids[id] = what;
     }
 
+    // A mesh's per-vertex shading normals (in geometry space) and uvs.
+    static void vertex_attributes(MeshGeom& mg, const scene::Shape& shape, size_t nv) {
+        const auto& mesh = shape.mesh;
+        if (!mesh.normals.empty() && mesh.normals.size() != nv)
+            log::warn(where(shape) + ": normal count differs from vertex count; normals ignored");
+        else if (!mesh.normals.empty()) {
+            // pbrt-v4: normals go through the normal transform and flip with ReverseOrientation.
+            mg.normals.resize(nv);
+            for (size_t i = 0; i < nv; ++i) {
+                Vec3 n = shape.to_world.normal(mesh.normals[i]);
+                const float l = length(n);
+                n = l > 0 && std::isfinite(l) ? n / l : Vec3(0.0f);
+                mg.normals[i] = shape.reverse_orientation ? -n : n;
+            }
+        }
+        if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
+            log::warn(where(shape) + ": uv count differs from vertex count; uvs ignored");
+        else if (!mesh.uvs.empty())
+            mg.uvs = &mesh.uvs;
+    }
+
+    // Adds a mesh's exact bilinear patches as one user geometry.
+    void add_patches(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index) {
+        const auto& mesh = shape.mesh;
+        const size_t np = mesh.patch_count();
+        PatchSet& set = patch_sets.emplace_back();
+        set.indices = mesh.patches.data();
+        set.corners.resize(np);
+        const Affine m = Affine::from(shape.to_world);
+        for (size_t i = 0; i < np; ++i)
+            for (size_t k = 0; k < 4; ++k)
+                set.corners[i][k] = m.point(D3(mesh.positions[mesh.patches[4 * i + k]]));
+        MeshGeom mg;
+        mg.patches = &set;
+        mg.flip = mesh.patches_flipped != (shape.reverse_orientation != shape.to_world.swaps_handedness());
+        mg.source = &shape;
+        mg.shape = index;
+        vertex_attributes(mg, shape, mesh.positions.size());
+        RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
+        rtcSetGeometryUserPrimitiveCount(g, unsigned(np));
+        rtcSetGeometryUserData(g, &set);
+        rtcSetGeometryBoundsFunction(g, patch_bounds_cb, nullptr);
+        rtcSetGeometryIntersectFunction(g, patch_intersect_cb);
+        rtcSetGeometryOccludedFunction(g, patch_occluded_cb);
+        meshes.push_back(std::move(mg));
+        attach(s, g, ids, {Geom::Mesh, int(meshes.size() - 1)});
+    }
+
     // Adds a triangle mesh whose object-space vertices are `pos` and triangles `idx`.
     void add_triangles(RTCScene s, std::vector<Geom>& ids, const scene::Shape& shape, int index,
                        const std::vector<Vec3>& pos, const std::vector<uint32_t>& idx) {
@@ -239,25 +356,7 @@ struct EmbreeScene::Impl {
         mg.flip = shape.reverse_orientation != shape.to_world.swaps_handedness();
         mg.source = &shape;
         mg.shape = index;
-        if (shape.kind == scene::Shape::Kind::Mesh) {
-            const auto& mesh = shape.mesh;
-            if (!mesh.normals.empty() && mesh.normals.size() != nv)
-                log::warn(where(shape) + ": normal count differs from vertex count; normals ignored");
-            else if (!mesh.normals.empty()) {
-                // pbrt-v4: normals go through the normal transform and flip with ReverseOrientation.
-                mg.normals.resize(nv);
-                for (size_t i = 0; i < nv; ++i) {
-                    Vec3 n = shape.to_world.normal(mesh.normals[i]);
-                    const float l = length(n);
-                    n = l > 0 && std::isfinite(l) ? n / l : Vec3(0.0f);
-                    mg.normals[i] = shape.reverse_orientation ? -n : n;
-                }
-            }
-            if (!mesh.uvs.empty() && mesh.uvs.size() != nv)
-                log::warn(where(shape) + ": uv count differs from vertex count; uvs ignored");
-            else if (!mesh.uvs.empty())
-                mg.uvs = &mesh.uvs;
-        }
+        if (shape.kind == scene::Shape::Kind::Mesh) vertex_attributes(mg, shape, nv);
         if (cached_triangles + nt <= kMaxCachedTriangles) {
             cached_triangles += nt;
             mg.facts.resize(nt);
@@ -275,17 +374,24 @@ struct EmbreeScene::Impl {
         const auto& mesh = shape.mesh;
         if (mesh.indices.size() % 3 != 0)
             throw InputError(where(shape) + ": mesh index count is not a multiple of 3");
-        if (mesh.positions.empty() || mesh.indices.empty()) {
+        if (mesh.patches.size() % 4 != 0)
+            throw InputError(where(shape) + ": bilinear patch index count is not a multiple of 4");
+        if (mesh.positions.empty() || (mesh.indices.empty() && mesh.patches.empty())) {
             log::warn(where(shape) + ": empty mesh ignored");
             return;
         }
+        for (uint32_t i : mesh.patches)
+            if (i >= mesh.positions.size())
+                throw InputError(where(shape) + ": patch vertex index " + std::to_string(i) +
+                                 " out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
         for (uint32_t i : mesh.indices)
             if (i >= mesh.positions.size())
                 throw InputError(where(shape) + ": mesh vertex index " + std::to_string(i) +
                                  " out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
         for (const Vec3& p : mesh.positions)
             if (!is_finite(p)) throw InputError(where(shape) + ": mesh has a non-finite vertex");
-        add_triangles(s, ids, shape, index, mesh.positions, mesh.indices);
+        if (!mesh.indices.empty()) add_triangles(s, ids, shape, index, mesh.positions, mesh.indices);
+        if (!mesh.patches.empty()) add_patches(s, ids, shape, index);
     }
 
     // A box is 12 triangles, counter-clockwise seen from outside, so its normals point out.
@@ -600,6 +706,54 @@ Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
     return L;
 }
 
+// A hit on bilinear patch `prim` at the exact (u, v) of `h` (its p.x, p.y), as pbrt-v4's
+// BilinearPatch::InteractionFromIntersection: the point, n = dp/du x dp/dv (flipped with the mesh),
+// uv and the tangent along the texture's u from the corners' uvs when given, shading normals
+// interpolated bilinearly with the geometric normal turned to their side.
+Local patch_local(const MeshGeom& m, unsigned prim, const CanonicalHit& h) {
+    const std::array<D3, 4>& c = m.patches->corners[prim];
+    const double u = std::clamp(h.p.x, 0.0, 1.0), v = std::clamp(h.p.y, 0.0, 1.0);
+    const double w[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+    Local L;
+    L.p = c[0] * w[0] + c[1] * w[1] + c[2] * w[2] + c[3] * w[3];
+    const D3 dpdu = (c[1] - c[0]) * (1 - v) + (c[3] - c[2]) * v;
+    const D3 dpdv = (c[2] - c[0]) * (1 - u) + (c[3] - c[1]) * u;
+    D3 n = normalized(detail::cross(dpdu, dpdv));
+    if (!(detail::dot(n, n) > 0)) n = normalized(detail::cross(c[3] - c[0], c[2] - c[1]));  // a corner
+    if (m.flip) n = n * -1.0;
+    L.ng = L.ns = n;
+    const uint32_t* idx = m.patches->indices + 4 * size_t(prim);
+    D3 tangent = dpdu;
+    if (m.uvs) {
+        const std::vector<Vec2>& t = *m.uvs;
+        const Vec2 t00 = t[idx[0]], t10 = t[idx[1]], t01 = t[idx[2]], t11 = t[idx[3]];
+        L.uv = t00 * float(w[0]) + t10 * float(w[1]) + t01 * float(w[2]) + t11 * float(w[3]);
+        // d(s, t)/du and d(s, t)/dv; dp/ds by the chain rule when that map is invertible.
+        const double dsdu = (1 - v) * (double(t10.x) - t00.x) + v * (double(t11.x) - t01.x);
+        const double dtdu = (1 - v) * (double(t10.y) - t00.y) + v * (double(t11.y) - t01.y);
+        const double dsdv = (1 - u) * (double(t01.x) - t00.x) + u * (double(t11.x) - t10.x);
+        const double dtdv = (1 - u) * (double(t01.y) - t00.y) + u * (double(t11.y) - t10.y);
+        const double det = dsdu * dtdv - dtdu * dsdv;
+        if (std::fabs(det) > 1e-12) tangent = (dpdu * dtdv - dpdv * dtdu) * (1.0 / det);
+    } else {
+        L.uv = {float(u), float(v)};
+    }
+    if (!m.normals.empty()) {
+        const Vec3 ns = m.normals[idx[0]] * float(w[0]) + m.normals[idx[1]] * float(w[1]) +
+                        m.normals[idx[2]] * float(w[2]) + m.normals[idx[3]] * float(w[3]);
+        if (length_squared(ns) > 0) {
+            L.ns = normalized(D3(ns));
+            if (detail::dot(L.ng, L.ns) < 0) L.ng = L.ng * -1.0;  // pbrt: ng follows the shading normal
+        }
+    }
+    L.dpdu = normalized(tangent);
+    if (!(std::fabs(detail::dot(L.dpdu, L.ng)) < 0.999)) L.dpdu = D3(Frame(L.ng.to_float()).s);
+    double mag = max_abs(L.p);
+    for (const D3& q : c) mag = std::max(mag, max_abs(q));
+    L.error = 32 * kUlp * mag;
+    return L;
+}
+
 // `amplify` >= 1 accounts for the larger spawn offsets of instanced hits (see intersect).
 Local analytic_local(const Analytic& a, const CanonicalHit& h, double amplify) {
     const D3 approx = a.to_space.point(h.p);
@@ -749,7 +903,7 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
             hit.error = float(t.error + 2 * kUlp * max_abs(p)) * 1.0001f;
             return;
         }
-        L = mesh_local(m, raw.prim, raw.u, raw.v);
+        L = m.patches ? patch_local(m, raw.prim, canonical) : mesh_local(m, raw.prim, raw.u, raw.v);
         shape = m.source;
         shape_index = m.shape;
         hit.shading = nullptr;

@@ -21,6 +21,11 @@ struct CanonicalHit;  // accel/analytic.h
 //   box stays outward under mirroring). With per-vertex normals, ns is their interpolation (normal
 //   transform, flipped by reverse_orientation as in pbrt-v4) and ng is turned to ns's side.
 //   uv: mesh uvs, else the barycentrics (b1, b2).
+// - Exact bilinear patches of a mesh (TriangleMesh::patches, pbrt's non-planar bilinearmesh patches;
+//   accel/bilinear_patch.h): ng = dp/du x dp/dv, flipped if patches_flipped XOR reverse_orientation
+//   XOR to_world swaps handedness; with per-vertex normals ns is their bilinear interpolation and ng
+//   is turned to its side. uv: the corners' uvs interpolated bilinearly, else the patch's (u, v).
+//   `primitive` is the patch's index in TriangleMesh::patches / 4.
 // - Analytic shapes: outward normal, flipped if reverse_orientation XOR to_world swaps handedness.
 //   Sphere: pole along Shape::axis (+y by default), u = phi / 2pi around it (phi = atan2(y, x) for
 //   a +z axis), v = theta / pi from the +axis pole. Disk: u = phi / 2pi, v = (r_out - r) /

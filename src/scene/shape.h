@@ -18,7 +18,14 @@ struct TriangleMesh {
     std::vector<Vec3> normals;      // empty, or one per position (shading normals)
     std::vector<Vec2> uvs;          // empty, or one per position
     std::vector<uint32_t> indices;  // 3 per triangle, counter-clockwise seen from the front
+    // Exact bilinear patches (pbrt's non-planar `bilinearmesh` patches): 4 indices per patch in
+    // pbrt's order p00 p10 p01 p11 (scene/bilinear_patch.h). The front is the side of
+    // dp/du x dp/dv, or of -(dp/du x dp/dv) when `patches_flipped`; with `normals` it is the side
+    // of the interpolated normal. Without `uvs`, a patch's uv is its (u, v).
+    std::vector<uint32_t> patches;
+    bool patches_flipped = false;
     size_t triangle_count() const { return indices.size() / 3; }
+    size_t patch_count() const { return patches.size() / 4; }
 };
 
 struct Shape {
@@ -42,6 +49,11 @@ struct Shape {
     float height = 1.0f;
     bool capped = true;
     Vec3 box_min{0.0f}, box_max{1.0f};
+    // Sphere only, when `partial` (pbrt's zmin, zmax, phimax): the open surface with
+    // z_min <= z <= z_max along `axis` (object units from the centre, within [-radius, radius]) and
+    // azimuth 0 <= phi <= phi_max radians, phi measured from Frame(axis).s (core/frame.h).
+    bool partial = false;
+    float z_min = -1.0f, z_max = 1.0f, phi_max = 2 * kPi;
 
     int material = 0;
     int area_light = -1;               // index into Scene::lights, or -1

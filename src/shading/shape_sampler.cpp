@@ -3,12 +3,16 @@
 // is sampled uniformly (pdf = 1 / total area). Spheres seen from outside are sampled by solid angle.
 #include "shading/shape_sampler.h"
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <string>
 
 #include "core/error.h"
 #include "core/frame.h"
+#include "core/rng.h"
 #include "core/warp.h"
+#include "scene/bilinear_patch.h"
 
 namespace phos::shading {
 namespace {
@@ -106,6 +110,7 @@ void ShapeSampler::add_mesh(const scene::Shape& s) {
                 len > 0 && std::isfinite(len) ? n / len * (s.reverse_orientation ? -1.0f : 1.0f) : Vec3(0.0f);
         }
         indices_ = m.indices;
+        patch_indices_ = m.patches;
     }
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         Vec3 v[3];
@@ -126,6 +131,28 @@ void ShapeSampler::add_mesh(const scene::Shape& s) {
         if (!(len > 0)) continue;
         p.n = c / len * flip;
         add_patch(p, 0.5f * len);
+    }
+    // Exact bilinear patches: sampled uniformly by area (sample_bilinear), picked by their area.
+    for (size_t q = 0; q < m.patch_count(); ++q) {
+        scene::PatchCorners c;
+        for (size_t k = 0; k < 4; ++k) {
+            const uint32_t idx = m.patches[4 * q + k];
+            if (idx >= m.positions.size())
+                throw InputError("area light on shape " + s.origin + ": vertex index out of range");
+            c[k] = identity ? m.positions[idx] : s.to_world.point(m.positions[idx]);
+        }
+        Patch p;
+        p.kind = PatchKind::Bilinear;
+        p.triangle = uint32_t(q);
+        p.o = c[0];
+        p.e1 = c[1] - c[0];
+        p.e2 = c[2] - c[0];
+        p.n = c[3] - c[1] - c[2] + c[0];  // the twist: p(u, v) = o + e1 u + e2 v + n u v
+        p.b = m.patches_flipped ? -flip : flip;
+        // |dp/du x dp/dv| is the norm of a function affine in (u, v), so convex: largest at a corner.
+        for (float u : {0.0f, 1.0f})
+            for (float v : {0.0f, 1.0f}) p.a = std::max(p.a, length(cross(p.e1 + p.n * v, p.e2 + p.n * u)));
+        add_patch(p, float(scene::patch_area(c)));
     }
 }
 
@@ -172,6 +199,14 @@ void ShapeSampler::add_curved(const scene::Shape& s, Projection kind) {
     obj_radius_ = s.radius;
     obj_height_ = s.height;
     if (!(s.radius > 0) || (kind != Projection::Sphere && !(s.height > 0))) return;
+    if (kind == Projection::Sphere && s.partial) {
+        // Clamped as the accel layer and pbrt-v4 do.
+        obj_partial_ = true;
+        obj_z_min_ = std::clamp(std::min(s.z_min, s.z_max), -s.radius, s.radius);
+        obj_z_max_ = std::clamp(std::max(s.z_min, s.z_max), -s.radius, s.radius);
+        obj_phi_max_ = std::clamp(s.phi_max, 0.0f, 2 * kPi);
+        if (!(obj_z_max_ > obj_z_min_) || !(obj_phi_max_ > 0)) return;
+    }
     float scale = 1;
     if (!is_similarity(s.to_world, scale)) {
         tessellate(s, kind);
@@ -181,6 +216,13 @@ void ShapeSampler::add_curved(const scene::Shape& s, Projection kind) {
     p.o = s.to_world.point(s.center);
     p.a = s.radius * scale;
     p.b = sign_;
+    if (kind == Projection::Sphere && obj_partial_) {
+        // Archimedes: z uniform in [z_min, z_max] and phi uniform in [0, phi_max] is uniform by
+        // area, and a similarity scales every area by scale^2.
+        p.kind = PatchKind::PartialSphere;
+        add_patch(p, obj_phi_max_ * s.radius * (obj_z_max_ - obj_z_min_) * scale * scale);
+        return;
+    }
     if (kind == Projection::Sphere) {
         p.kind = PatchKind::Sphere;
         sphere_cone_ = true;
@@ -220,11 +262,21 @@ void ShapeSampler::tessellate(const scene::Shape& s, Projection kind) {
     const Vec3 c = obj_center_, ax = obj_axis_;
     const float r = obj_radius_, h = obj_height_;
     if (kind == Projection::Sphere) {
+        // The whole sphere, or a partial sphere's theta and phi ranges (its frame: Frame(axis)).
+        const float theta0 = obj_partial_ ? std::acos(std::clamp(obj_z_max_ / r, -1.0f, 1.0f)) : 0.0f;
+        const float theta1 = obj_partial_ ? std::acos(std::clamp(obj_z_min_ / r, -1.0f, 1.0f)) : kPi;
+        const float phi1 = obj_partial_ ? obj_phi_max_ : 2 * kPi;
+        const Frame frame(ax);
         auto at = [&](int i, int j) {
-            const float phi = 2 * kPi * float(i) / kSpherePhi, theta = kPi * float(j) / kSphereTheta;
-            return c +
-                   Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)) *
-                       r;
+            const float phi = phi1 * float(i) / kSpherePhi,
+                        theta = theta0 + (theta1 - theta0) * float(j) / kSphereTheta;
+            if (!obj_partial_)
+                return c + Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                std::cos(theta)) *
+                               r;
+            return c + frame.to_world(Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi),
+                                           std::cos(theta))) *
+                           r;
         };
         for (int j = 0; j < kSphereTheta; ++j)
             for (int i = 0; i < kSpherePhi; ++i) {
@@ -261,6 +313,17 @@ void ShapeSampler::project(Vec3& p, Vec3& n) const {
         case Projection::Sphere: {
             const Vec3 d = q - c;
             n_obj = length(d) > 0 ? normalize(d) : ax;
+            if (obj_partial_) {
+                // Keep the projected point on the partial surface: clamp z and phi to its ranges.
+                const Frame frame(ax);
+                const Vec3 l = frame.to_local(n_obj * r);
+                const float z = std::clamp(l.z, obj_z_min_, obj_z_max_);
+                float phi = std::atan2(l.y, l.x);
+                if (phi < 0) phi += 2 * kPi;
+                if (phi > obj_phi_max_) phi = phi - obj_phi_max_ < 2 * kPi - phi ? obj_phi_max_ : 0.0f;
+                const float rho = safe_sqrt(r * r - z * z);
+                n_obj = frame.to_world(Vec3(rho * std::cos(phi), rho * std::sin(phi), z)) / r;
+            }
             p_obj = c + n_obj * r;
             break;
         }
@@ -323,6 +386,29 @@ ShapeSample ShapeSampler::sample_patch(const Patch& pt, Vec2 u) const {
             out.n = d * pt.b;
             break;
         }
+        case PatchKind::Bilinear: {
+            const Vec2 uv = sample_bilinear(pt, u);
+            out.p = pt.o + pt.e1 * uv.x + pt.e2 * uv.y + pt.n * (uv.x * uv.y);
+            out.n = normalize(cross(pt.e1 + pt.n * uv.y, pt.e2 + pt.n * uv.x)) * pt.b;
+            if (!patch_indices_.empty()) {
+                // As the accel layer does: the geometric normal follows the interpolated shading one.
+                const uint32_t* idx = &patch_indices_[4 * size_t(pt.triangle)];
+                const Vec3 ns = shading_normals_[idx[0]] * ((1 - uv.x) * (1 - uv.y)) +
+                                shading_normals_[idx[1]] * (uv.x * (1 - uv.y)) +
+                                shading_normals_[idx[2]] * ((1 - uv.x) * uv.y) +
+                                shading_normals_[idx[3]] * (uv.x * uv.y);
+                if (dot(ns, out.n) < 0) out.n = -out.n;
+            }
+            break;
+        }
+        case PatchKind::PartialSphere: {
+            const float z = obj_z_min_ + (obj_z_max_ - obj_z_min_) * u.x, phi = obj_phi_max_ * u.y;
+            const float rho = safe_sqrt(obj_radius_ * obj_radius_ - z * z);
+            const Vec3 d = Frame(obj_axis_).to_world(Vec3(rho * std::cos(phi), rho * std::sin(phi), z));
+            out.p = to_world_.point(obj_center_ + d);
+            out.n = world_normal(d);
+            break;
+        }
         case PatchKind::CylinderSide: {
             const float phi = 2 * kPi * u.x;
             const Vec3 radial = pt.e1 * std::cos(phi) + pt.e2 * std::sin(phi);
@@ -342,6 +428,21 @@ ShapeSample ShapeSampler::sample_patch(const Patch& pt, Vec2 u) const {
     }
     if (pt.project) project(out.p, out.n);
     return out;
+}
+
+Vec2 ShapeSampler::sample_bilinear(const Patch& pt, Vec2 u) {
+    // Rejection sampling: (s, t) uniform, kept with probability J(s, t) / J_max, has density
+    // proportional to the area element J = |dp/du x dp/dv|, i.e. uniform by area. The first try
+    // uses u itself; later ones, and every acceptance test, numbers keyed by u's bits (a function of
+    // u, so the result is deterministic).
+    Sampler rng(0x62696c696e656172ull, std::bit_cast<uint32_t>(u.x), std::bit_cast<uint32_t>(u.y));
+    Vec2 st = u;
+    for (int tries = 0; tries < 64; ++tries) {
+        const float j = length(cross(pt.e1 + pt.n * st.y, pt.e2 + pt.n * st.x));
+        if (rng.next() * pt.a <= j) break;
+        st = rng.next2();
+    }
+    return st;
 }
 
 ShapeSample ShapeSampler::sample_area(Vec2 u) const {

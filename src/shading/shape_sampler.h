@@ -1,6 +1,7 @@
 // Samples points on the emitting surface of a scene::Shape in world space, for area lights:
 // uniformly by area (photon emission, and direct light in general) or, for a sphere seen from
-// outside, uniformly over the solid angle of its visible cap (direct light).
+// outside, uniformly over the solid angle of its visible cap (direct light). A partial sphere (pbrt's
+// zmin, zmax, phimax) is sampled uniformly by area over its actual surface.
 //
 // Emission side: the side the accel layer's geometric normal (SurfaceHit::ng) points to, so that
 // Le(hit.ng, wo) and the light's own samples agree:
@@ -19,7 +20,8 @@
 // similarity transforms (rotation, uniform scale, translation, mirroring). Under a non-uniform scale
 // or shear those curved parts fall back to a fine tessellation (sampled uniformly by triangle area,
 // with pdf 1 / tessellated area) whose samples are projected back onto the true surface, so the
-// density is right to about 0.1%.
+// density is right to about 0.1%. A mesh's exact bilinear patches are sampled uniformly by area under
+// any transform (rejection against their largest area element; their areas by quadrature).
 #pragma once
 
 #include <cstdint>
@@ -58,11 +60,25 @@ public:
     bool tessellated() const { return projection_ != Projection::None; }
 
 private:
-    enum class PatchKind : uint8_t { Triangle, Parallelogram, Annulus, Sphere, CylinderSide, ConeSide };
+    enum class PatchKind : uint8_t {
+        Triangle,
+        Parallelogram,
+        Annulus,
+        Sphere,
+        PartialSphere,
+        Bilinear,
+        CylinderSide,
+        ConeSide
+    };
     // One uniformly-sampleable piece of surface, in world space.
     //  Triangle / Parallelogram: corner o, edges e1, e2, normal n.
     //  Annulus: centre o, semi-axis vectors e1, e2 (images of two orthogonal radii), a = inner/outer.
     //  Sphere: centre o, a = radius, b = +1 (outward) or -1.
+    //  Bilinear: p(u, v) = o + e1 u + e2 v + n u v (n is the twist, not a normal), a = the largest
+    //            area element |dp/du x dp/dv| (at a corner), b = the sign of the front (+1: dp/du x
+    //            dp/dv), triangle = the patch's index.
+    //  PartialSphere: uniform in z and phi over the object-space part (the obj_ members), mapped to
+    //                 world (area-preserving up to the similarity's scale, Archimedes).
     //  CylinderSide: axis-segment centre o, n = unit axis, e1, e2 = orthogonal radius vectors,
     //                a = height, b = sign.  ConeSide: o = apex, n = unit axis towards the apex, rest
     //                as the cylinder.
@@ -82,6 +98,8 @@ private:
     void add_curved(const scene::Shape& s, Projection kind);
     void tessellate(const scene::Shape& s, Projection kind);
     ShapeSample sample_patch(const Patch& patch, Vec2 u) const;
+    // A point (u, v) of a Bilinear patch with density proportional to its area element.
+    static Vec2 sample_bilinear(const Patch& patch, Vec2 u);
     // Moves a point of the tessellation onto the true curved surface (object space) and returns it
     // with its emitting-side world normal.
     void project(Vec3& p, Vec3& n) const;
@@ -92,6 +110,7 @@ private:
     // the index buffer, to orient each sample's normal the way the accel layer does.
     std::vector<Vec3> shading_normals_;
     std::vector<uint32_t> indices_;
+    std::vector<uint32_t> patch_indices_;  // the mesh's bilinear patches, with shading normals
     std::vector<Patch> patches_;
     std::vector<float> areas_;
     Distribution1D by_area_;
@@ -102,6 +121,9 @@ private:
     Projection projection_ = Projection::None;
     Vec3 obj_center_{0.0f}, obj_axis_{0, 1, 0};
     float obj_radius_ = 1, obj_height_ = 1;
+    // A partial sphere (scene::Shape::partial): its clamped z range and azimuth.
+    bool obj_partial_ = false;
+    float obj_z_min_ = -1, obj_z_max_ = 1, obj_phi_max_ = 2 * kPi;
     // Sphere under a similarity transform: solid-angle sampling of the visible cap from outside.
     bool sphere_cone_ = false;
     Vec3 sphere_center_{0.0f};

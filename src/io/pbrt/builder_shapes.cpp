@@ -1,6 +1,7 @@
 // SceneBuilder: the Shape directive. Meshes (trianglemesh, bilinearmesh, plymesh) are baked into
 // world space with pbrt's orientation rules resolved into the triangle winding; spheres, disks and
 // cylinders keep the current transform as to_world. Area lights attach here.
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 
@@ -9,6 +10,8 @@
 #include "io/mesh/mesh_io.h"
 #include "io/pbrt/builder.h"
 #include "io/pbrt/curves.h"
+#include "scene/bilinear_patch.h"
+#include "scene/loop_subdivision.h"
 #include "scene/mesh_displacement.h"
 #include "scene/texture_eval.h"
 
@@ -40,6 +43,14 @@ float bake_mesh(scene::TriangleMesh& mesh, const Transform& t, bool reverse) {
             swap = dot(ng, ns) < 0;
         }
         if (swap) std::swap(tri[1], tri[2]);
+    }
+    // Exact bilinear patches keep pbrt's corner order: their front is dp/du x dp/dv, flipped by the
+    // same rule (or, with N, the side of the interpolated N, which the accelerator applies).
+    mesh.patches_flipped = flip;
+    for (size_t i = 0; i + 3 < mesh.patches.size(); i += 4) {
+        const uint32_t* q = &mesh.patches[i];
+        area += float(scene::patch_area(
+            {mesh.positions[q[0]], mesh.positions[q[1]], mesh.positions[q[2]], mesh.positions[q[3]]}));
     }
     return area;
 }
@@ -196,12 +207,16 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
         if (!bilinear) {
             m.indices.assign(idx.begin(), idx.end());
         } else {
-            // pbrt's patch vertex order is p00 p10 p01 p11: triangles (p00 p10 p11) and (p00 p11 p01)
-            // keep the orientation of dp/du x dp/dv.
+            // pbrt's patch vertex order is p00 p10 p01 p11. A planar patch is the quadrilateral of
+            // its triangles (p00 p10 p11) and (p00 p11 p01), which keep the orientation of
+            // dp/du x dp/dv; the others are intersected exactly as bilinear patches.
             for (size_t i = 0; i < idx.size(); i += 4) {
                 const uint32_t a = uint32_t(idx[i]), b = uint32_t(idx[i + 1]), c = uint32_t(idx[i + 2]),
                                e = uint32_t(idx[i + 3]);
-                m.indices.insert(m.indices.end(), {a, b, e, a, e, c});
+                if (scene::patch_is_planar({m.positions[a], m.positions[b], m.positions[c], m.positions[e]}))
+                    m.indices.insert(m.indices.end(), {a, b, e, a, e, c});
+                else
+                    m.patches.insert(m.patches.end(), {a, b, c, e});
             }
         }
         return m;
@@ -234,14 +249,28 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
         s.kind = scene::Shape::Kind::Sphere;
         s.radius = params.get_float("radius", 1.0f);
         if (!(s.radius > 0)) params.find("radius")->loc.fail(d + ": radius must be positive");
+        // pbrt-v4 clamps: z range ordered and within [-r, r], phimax within [0, 360] degrees.
         const float zmin = params.get_float("zmin", -s.radius), zmax = params.get_float("zmax", s.radius);
-        const float phimax = params.get_float("phimax", 360.0f);
-        if (zmin > -s.radius || zmax < s.radius || phimax < 360.0f)
-            warn(loc, d + ": partial spheres (zmin/zmax/phimax) are unsupported; the full sphere is used");
+        const float z_min = std::clamp(std::min(zmin, zmax), -s.radius, s.radius);
+        const float z_max = std::clamp(std::max(zmin, zmax), -s.radius, s.radius);
+        const float phi_deg = std::clamp(params.get_float("phimax", 360.0f), 0.0f, 360.0f);
+        const float phi_max = phi_deg < 360.0f ? phi_deg * (kPi / 180.0f) : 2 * kPi;
         s.center = Vec3(0.0f);
         s.to_world = t;
         s.reverse_orientation = gs_.reverse_orientation;
         area = 4 * kPi * s.radius * s.radius * ls * ls;
+        if (z_min > -s.radius || z_max < s.radius || phi_deg < 360.0f) {
+            if (!(z_max > z_min) || !(phi_max > 0)) {
+                warn(loc, d + ": the partial sphere has no area (skipped)");
+                done(params, d);
+                return;
+            }
+            // pbrt's object space: the pole along +z, phi from +x (the frame of a +z axis).
+            s.partial = true;
+            s.axis = {0, 0, 1};
+            s.z_min = z_min, s.z_max = z_max, s.phi_max = phi_max;
+            area = phi_max * s.radius * (z_max - z_min) * ls * ls;
+        }
     } else if (type == "disk") {
         s.kind = scene::Shape::Kind::Disk;
         s.radius = params.get_float("radius", 1.0f);
@@ -271,6 +300,37 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
         s.to_world = t;
         s.reverse_orientation = gs_.reverse_orientation;
         area = 2 * kPi * s.radius * s.height * ls * ls;
+    } else if (type == "loopsubdiv") {
+        // pbrt-v4: subdivided at load into a triangle mesh with limit positions and normals.
+        s.kind = scene::Shape::Kind::Mesh;
+        const Param* pp = params.find("P");
+        if (!pp) loc.fail(d + ": missing \"point3 P\"");
+        if (!params.has("indices")) loc.fail(d + ": missing \"integer indices\"");
+        const int levels = params.get_int("levels", 3);
+        const Param* lp = params.find("levels");
+        if (levels < 0) lp->loc.fail(d + ": \"levels\" must not be negative");
+        const std::vector<int> idx = params.get_ints("indices");
+        // 4^levels triangles per input triangle: refuse meshes that could not be held.
+        if (levels > 12 || double(idx.size() / 3) * std::pow(4.0, levels) > double(1u << 28))
+            (lp ? lp->loc : loc)
+                .fail(d + ": " + std::to_string(idx.size() / 3) + " triangles subdivided " +
+                      std::to_string(levels) + " times is too many triangles");
+        std::vector<uint32_t> indices;
+        indices.reserve(idx.size());
+        for (int i : idx) {
+            if (i < 0) params.find("indices")->loc.fail(d + ": negative vertex index " + std::to_string(i));
+            indices.push_back(uint32_t(i));
+        }
+        const std::vector<Vec3> positions = params.get_point3s("P");
+        for (const Vec3& p : positions)
+            if (!is_finite(p)) pp->loc.fail(d + ": non-finite vertex position");
+        try {
+            s.mesh = scene::loop_subdivide(positions, indices, levels);
+        } catch (const InputError& e) {
+            params.find("indices")->loc.fail(d + ": " + e.what());
+        }
+        area = bake_mesh(s.mesh, t, gs_.reverse_orientation);
+        s.to_world = Transform();  // baked
     } else if (type == "curve") {
         s.kind = scene::Shape::Kind::Curves;
         s.curves = read_curves(params, loc, d, [&](const Loc& l, const std::string& m) { warn(l, m); });

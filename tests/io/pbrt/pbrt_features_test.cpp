@@ -355,7 +355,14 @@ TEST(PbrtShapes, QuadricsKeepTheirTransform) {
     EXPECT_FLOAT_EQ(c.height, 4.0f);
     expect_vec(c.center, {0, 0, 1});
     EXPECT_TRUE(c.reverse_orientation);
-    EXPECT_EQ(l.warnings, 1);  // the partial sphere
+    // A partial sphere: pbrt's +z pole, its z range clamped to the radius, phimax 360 degrees.
+    const Shape& s = l.scene.shapes[2];
+    EXPECT_TRUE(s.partial);
+    EXPECT_EQ(s.axis, Vec3(0, 0, 1));
+    EXPECT_FLOAT_EQ(s.z_min, -1.0f);
+    EXPECT_FLOAT_EQ(s.z_max, 0.5f);
+    EXPECT_FLOAT_EQ(s.phi_max, 2 * kPi);
+    EXPECT_EQ(l.warnings, 0);
 }
 
 // ---- materials ----
