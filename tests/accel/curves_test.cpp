@@ -267,6 +267,16 @@ TEST(Curves, SpawnedRaysLeaveTheCurve) {
             ADD_FAILURE() << "no far wall " << i;
         }
     }
+    // A flat ribbon (normal +z): rays leaving either side do not meet it again.
+    const accel::EmbreeScene ribbon(single(straight_curve(CurveSet::Type::Ribbon, r)));
+    for (int i = 0; i < 50; ++i) {
+        accel::SurfaceHit h;
+        const float z = rng.next() < 0.5f ? 5.0f : -5.0f;
+        ASSERT_TRUE(ribbon.intersect({{-0.5f + rng.next(), 0.4f * (rng.next() - 0.5f), z}, {0, 0, -z}}, h));
+        const Vec3 out = random_unit(rng);
+        accel::SurfaceHit again;
+        EXPECT_FALSE(ribbon.intersect(accel::spawn_ray(h, out), again)) << i << " t " << again.t;
+    }
     const accel::EmbreeScene flat(single(straight_curve(CurveSet::Type::Flat, r)));
     for (int i = 0; i < 20; ++i) {
         accel::SurfaceHit h;
