@@ -46,6 +46,10 @@ struct Light {
     // Area: an image of the radiance over the surface's (u, v) replacing `color` (-1: none).
     int texture = -1;
     bool equal_area = false;
+    // Infinite, pbrt-v4's "portal": the unit normal (world space) of the portal rectangle's plane,
+    // z = normalize((p3 - p0) x (p1 - p0)); the light then emits only from directions w (pointing
+    // at the sky) with w . portal_normal > 0. Zero: no portal.
+    Vec3 portal_normal{0.0f};
     float fov = 1.5707964f;  // projection: the full angle across the image's shorter side (radians)
     Transform to_world;
     // The medium the light sits in (-1 = vacuum) when the file says so (`medium_declared`: pbrt's

@@ -10,17 +10,42 @@
 
 namespace phos::shading {
 
-EqualAreaMap::EqualAreaMap(std::vector<Rgb> texels, int n) : n_(n), texels_(std::move(texels)) {
+EqualAreaMap::EqualAreaMap(std::vector<Rgb> texels, int n, Vec3 hemisphere)
+    : n_(n), texels_(std::move(texels)) {
     std::vector<float> weights(texels_.size());
-    double sum[3] = {0, 0, 0};
-    for (size_t k = 0; k < texels_.size(); ++k) {
-        Rgb& c = texels_[k];
-        for (int ch = 0; ch < 3; ++ch) c[ch] = std::isfinite(c[ch]) ? std::max(c[ch], 0.0f) : 0.0f;
-        weights[k] = c.average();
-        for (int ch = 0; ch < 3; ++ch) sum[ch] += c[ch];
-    }
+    double sum[3] = {0, 0, 0}, half[3] = {0, 0, 0};
+    const bool restricted = length_squared(hemisphere) > 0;
+    // The sine of a pixel's angular size, generously: a great circle that crosses a pixel passes
+    // within this of one of the 3 x 3 points.
+    const float margin = std::min(1.0f, 2 * std::sqrt(4 * kPi / float(n_ * n_)));
+    for (int y = 0; y < n_; ++y)
+        for (int x = 0; x < n_; ++x) {
+            const size_t k = size_t(y) * size_t(n_) + size_t(x);
+            Rgb& c = texels_[k];
+            for (int ch = 0; ch < 3; ++ch) c[ch] = std::isfinite(c[ch]) ? std::max(c[ch], 0.0f) : 0.0f;
+            for (int ch = 0; ch < 3; ++ch) sum[ch] += c[ch];
+            weights[k] = c.average();
+            if (!restricted) continue;
+            float nearest = -1;
+            int inside = 0;
+            for (int j = 0; j < 3; ++j)
+                for (int i = 0; i < 3; ++i) {
+                    const Vec3 w = equal_area_square_to_sphere(
+                        {(float(x) + 0.5f * float(i)) / float(n_), (float(y) + 0.5f * float(j)) / float(n_)});
+                    const float d = dot(normalize(w), hemisphere);
+                    nearest = std::max(nearest, d);
+                    inside += d > 0;
+                }
+            if (nearest <= -margin) weights[k] = 0;
+            for (int ch = 0; ch < 3; ++ch) half[ch] += c[ch] * double(inside) / 9;
+        }
     const double count = double(std::max<size_t>(texels_.size(), 1));
     mean_ = Rgb(float(sum[0] / count), float(sum[1] / count), float(sum[2] / count));
+    if (!restricted)
+        hemisphere_integral_ = mean_ * (4 * kPi);
+    else
+        hemisphere_integral_ =
+            Rgb(float(half[0] / count), float(half[1] / count), float(half[2] / count)) * (4 * kPi);
     distribution_ = Distribution2D(weights, n_, n_);
 }
 

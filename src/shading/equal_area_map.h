@@ -17,8 +17,11 @@ class EqualAreaMap {
 public:
     EqualAreaMap() = default;
     // `texels`: n x n values, row-major, row 0 at the top (v = 0). Negative and non-finite values
-    // count as 0.
-    EqualAreaMap(std::vector<Rgb> texels, int n);
+    // count as 0. A non-zero `hemisphere` (unit, light space) keeps sampling to the pixels that
+    // reach into the hemisphere w . hemisphere > 0 (a pixel is kept when one of 3 x 3 points on it
+    // lies within its own angular size of that hemisphere, which keeps every pixel the boundary
+    // crosses); mean() and the density are then those of the kept pixels.
+    EqualAreaMap(std::vector<Rgb> texels, int n, Vec3 hemisphere = Vec3(0.0f));
 
     int resolution() const { return n_; }
     bool empty() const { return n_ == 0; }
@@ -32,12 +35,16 @@ public:
     float pdf(Vec3 w) const;
     // The mean of the texels: the integral over the sphere is 4 pi times this.
     Rgb mean() const { return mean_; }
+    // The integral over the sphere of the texels restricted to the hemisphere (4 pi mean() without
+    // one), each pixel counted by the share of 3 x 3 points on it that lie in the hemisphere.
+    Rgb hemisphere_integral() const { return hemisphere_integral_; }
 
 private:
     int n_ = 0;
     std::vector<Rgb> texels_;
     Distribution2D distribution_;
     Rgb mean_{0.0f};
+    Rgb hemisphere_integral_{0.0f};
 };
 
 }  // namespace phos::shading

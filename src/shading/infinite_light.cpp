@@ -13,7 +13,12 @@
 namespace phos::shading {
 InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
                              const SceneSphere& sphere)
-    : Light(light), frame_(light_frame(light.to_world)), scale_(light.color), sphere_(sphere) {
+    : Light(light),
+      frame_(light_frame(light.to_world)),
+      scale_(light.color),
+      portal_(length_squared(light.portal_normal) > 0),
+      portal_normal_(portal_ ? normalize(light.portal_normal) : Vec3(0.0f)),
+      sphere_(sphere) {
     if (light.texture >= 0) {
         if (size_t(light.texture) >= textures.size())
             throw InputError("infinite light: texture index " + std::to_string(light.texture) +
@@ -31,9 +36,10 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
         if (width_ > 0 && light.equal_area) {
             if (width_ != height_)
                 throw InputError("infinite light: equal-area map '" + tex.filename + "' is not square");
-            equal_area_ = EqualAreaMap(tex.image->texels, width_);
+            equal_area_ = EqualAreaMap(tex.image->texels, width_,
+                                       portal_ ? frame_.to_local(portal_normal_) : Vec3(0.0f));
             width_ = height_ = 0;
-            integral_ = equal_area_.mean() * scale_ * (4 * kPi);
+            integral_ = equal_area_.hemisphere_integral() * scale_;
             return;
         }
         if (width_ > 0) {
@@ -43,7 +49,7 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
         }
     }
     if (width_ == 0) {
-        integral_ = scale_ * (4 * kPi);
+        integral_ = scale_ * (portal_ ? 2 * kPi : 4 * kPi);
         constant_ = light.spectrum
                         ? light.spectrum->scaled(light.color.max() > 0 ? scale_.max() / light.color.max() : 0)
                         : spectrum::Distribution::rgb(scale_, spectrum::RgbSpectrum::Use::Illuminant);
@@ -82,6 +88,7 @@ void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
 }
 
 Spectrum InfiniteLight::Le(Vec3, Vec3 w, const Wavelengths& lambda) const {
+    if (portal_ && !(dot(w, portal_normal_) > 0)) return Spectrum(0.0f);
     if (width_ == 0 && equal_area_.empty()) return constant_.sample(lambda);
     return spectrum::RgbSpectrum(Le_rgb(w), spectrum::RgbSpectrum::Use::Illuminant,
                                  spectrum::RgbSpectrum::Fit::Table)
@@ -89,6 +96,7 @@ Spectrum InfiniteLight::Le(Vec3, Vec3 w, const Wavelengths& lambda) const {
 }
 
 Rgb InfiniteLight::Le_rgb(Vec3 w) const {
+    if (portal_ && !(dot(w, portal_normal_) > 0)) return Rgb(0.0f);
     if (!equal_area_.empty()) return equal_area_.lookup(frame_.to_local(normalize(w))) * scale_;
     if (width_ == 0) return scale_;
     int i, j;
@@ -99,7 +107,10 @@ Rgb InfiniteLight::Le_rgb(Vec3 w) const {
 
 float InfiniteLight::pdf_direction(Vec3 w) const {
     if (!equal_area_.empty()) return equal_area_.pdf(frame_.to_local(normalize(w)));
-    if (width_ == 0) return warp::uniform_sphere_pdf();
+    if (width_ == 0) {
+        if (portal_) return dot(w, portal_normal_) > 0 ? 1 / (2 * kPi) : 0.0f;
+        return warp::uniform_sphere_pdf();
+    }
     int i, j;
     Vec2 uv;
     cell(frame_.to_local(normalize(w)), i, j, uv);
@@ -112,7 +123,12 @@ Vec3 InfiniteLight::sample_direction(Vec2 u) const {
         float pdf = 0;  // recomputed from the final direction by the callers
         return frame_.to_world(equal_area_.sample(u, &pdf));
     }
-    if (width_ == 0) return warp::uniform_sphere(u);
+    if (width_ == 0) {
+        if (!portal_) return warp::uniform_sphere(u);
+        // Uniform over the portal's hemisphere: cos uniform in (0, 1].
+        const float z = 1 - u.x, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u.y;
+        return Frame(portal_normal_).to_world({r * std::cos(phi), r * std::sin(phi), z});
+    }
     float pdf_uv = 0;
     const Vec2 uv = distribution_.sample(u, &pdf_uv);
     const int row = std::min(int(uv.y * float(height_)), height_ - 1);

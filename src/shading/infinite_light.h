@@ -6,6 +6,10 @@
 // as below and mapped to the square by Clarberg's octahedral map (core/equal_area.h), u the column
 // (left to right) and v the row (row 0 at the top).
 //
+// A portal (scene::Light::portal_normal) keeps the emission to the directions in front of the
+// portal's plane, as pbrt-v4's portal light does; the sampling is restricted to that hemisphere
+// (not to the directions through the portal rectangle, which pbrt-v4 samples).
+//
 // Map convention (pbrt-v3's lat-long): a world direction is first taken to light space with the
 // inverse of the light's `to_world` (its linear part orthonormalised: only its rotation / mirroring
 // counts); there theta is measured from +z and phi = atan2(y, x) in [0, 2 pi) around z, and the
@@ -61,6 +65,10 @@ private:
     std::vector<float> cos_edge_;  // cos(theta) at the row edges, height_ + 1 values from 1 to -1
     Distribution2D distribution_;  // luminance x solid angle of each texel
     EqualAreaMap equal_area_;      // the map when it is an equal-area one (width_ = height_ = 0)
+    // pbrt-v4's portal: only directions w with w . portal_normal_ > 0 emit, and a constant or
+    // equal-area light samples only them (a lat-long map samples the whole sphere).
+    bool portal_ = false;
+    Vec3 portal_normal_{0.0f};
     Rgb integral_;
     SceneSphere sphere_;
 };

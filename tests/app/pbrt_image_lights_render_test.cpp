@@ -103,6 +103,25 @@ TEST_F(PbrtImageLightsRender, EqualAreaMapLightsTheFloorFromOverhead) {
     }
 }
 
+// A constant environment L = 2 behind a portal whose normal points up lights the floor with
+// E = pi L (radiance 0.5 L); turned the other way (its points in the other order) it leaves the
+// floor black.
+TEST_F(PbrtImageLightsRender, PortalKeepsTheEnvironmentToItsSide) {
+    auto scene = [&](const std::string& name, const std::string& points) {
+        return dir.write(name + ".pbrt",
+                         kView + kFloor + "LightSource \"infinite\" \"rgb L\" [2 2 2] \"point3 portal\" [" +
+                             points + "]\n");
+    };
+    // (p3 - p0) x (p1 - p0): (0, 0, 1) x (1, 0, 0) = +y for the first, -y for the second.
+    const std::string up = scene("up", "0 2 0  1 2 0  1 2 1  0 2 1"),
+                      down = scene("down", "0 2 0  0 2 1  1 2 1  1 2 0");
+    for (const char* integrator : kIntegrators) {
+        SCOPED_TRACE(integrator);
+        EXPECT_NEAR(mean(render(up, integrator)), 1.0, 0.03);
+        EXPECT_EQ(mean(render(down, integrator)), 0.0);
+    }
+}
+
 // A goniometric light 1 above the floor whose map is lit (I = 1) outside the diamond (light-space
 // z < 0, which pbrt-v4's y/z swap turns to world -y): the floor is lit, every integrator agreeing
 // with path; the complementary map (the diamond, world +y) leaves it black.

@@ -129,8 +129,22 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         light.kind = scene::Light::Kind::Infinite;
         const Param* fp = params.find("filename");
         if (fp && params.has("L")) loc.fail(d + ": give either \"L\" or \"filename\", not both");
-        if (const Param* pp = params.find("portal"))
-            warn(pp->loc, d + ": \"portal\" is not supported (ignored)");
+        if (const Param* pp = params.find("portal")) {
+            // pbrt-v4: four points in world space (not the current transform) making a rectangle;
+            // its frame's z, (p3 - p0) x (p1 - p0), is the side the light shines from.
+            const std::vector<Vec3> p = params.get_point3s("portal");
+            if (p.size() != 4) pp->loc.fail(d + ": \"portal\" takes four points");
+            const Vec3 p01 = p[1] - p[0], p12 = p[2] - p[1], p32 = p[2] - p[3], p03 = p[3] - p[0];
+            if (!(length(p01) > 0 && length(p12) > 0 && length(p32) > 0 && length(p03) > 0))
+                pp->loc.fail(d + ": the portal has coincident points");
+            const Vec3 a = normalize(p01), b = normalize(p12), c = normalize(p32), e03 = normalize(p03);
+            if (std::fabs(dot(a, c) - 1) > 0.001f || std::fabs(dot(b, e03) - 1) > 0.001f)
+                pp->loc.fail(d + ": the portal's opposite edges are not parallel");
+            if (std::fabs(dot(a, b)) > 0.001f || std::fabs(dot(b, c)) > 0.001f ||
+                std::fabs(dot(c, e03)) > 0.001f || std::fabs(dot(e03, a)) > 0.001f)
+                pp->loc.fail(d + ": the portal's edges are not perpendicular");
+            light.portal_normal = normalize(cross(e03, a));
+        }
         const float e = positive("illuminance");
         if (!fp) {
             light.color = emitted("L");
@@ -145,6 +159,12 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
                 if (e > 0)
                     warn(loc,
                          d + ": \"illuminance\" with a latitude-longitude map is not supported (ignored)");
+                if (length_squared(light.portal_normal) > 0) {
+                    warn(params.find("portal")->loc,
+                         d + ": a portal needs a square equal-area map (pbrt-v4); "
+                             "ignored with a latitude-longitude map");
+                    light.portal_normal = Vec3(0.0f);
+                }
                 warn(fp->loc, d + ": a non-square map is read as a latitude-longitude map (pbrt-v4 expects "
                                   "equal-area square maps)");
             } else if (e > 0) {

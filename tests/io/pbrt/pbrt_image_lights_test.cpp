@@ -146,6 +146,35 @@ TEST(PbrtImageLights, AreaLightImage) {
                       2, 1, "either \"L\" or \"filename\"");
 }
 
+// "portal": four world-space points of a rectangle; the light shines from the side of
+// (p3 - p0) x (p1 - p0). A non-rectangle is a located error; with a lat-long map it is ignored.
+TEST(PbrtImageLights, Portal) {
+    PbrtTempDir dir;
+    dir.write("sky.pfm", pfm(4, 4, std::vector<Rgb>(16, Rgb(1.0f))));
+    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    const scene::Scene s =
+        load_in(dir,
+                "Rotate 30 0 1 0\nLightSource \"infinite\" \"string filename\" \"sky.pfm\" "
+                "\"point3 portal\" [0 0 0  0 1 0  1 1 0  1 0 0]\n"
+                "LightSource \"infinite\" \"rgb L\" [1 1 1] \"point3 portal\" [0 0 0  0 1 0  1 1 0  1 0 0]\n"
+                "LightSource \"infinite\" \"string filename\" \"wide.pfm\" \"point3 portal\" [0 0 0  0 1 0  "
+                "1 1 0  1 0 0]\n");
+    ASSERT_EQ(s.lights.size(), 3u);
+    // (p3 - p0) x (p1 - p0) = x cross y = +z, whatever the current transform.
+    EXPECT_EQ(s.lights[0].portal_normal, Vec3(0, 0, 1));
+    EXPECT_EQ(s.lights[1].portal_normal, Vec3(0, 0, 1));
+    EXPECT_EQ(s.lights[2].portal_normal, Vec3(0.0f));
+    QuietLog quiet;
+    expect_pbrt_error(dir.write("skew.pbrt",
+                                "WorldBegin\nLightSource \"infinite\" \"point3 portal\" "
+                                "[0 0 0  0 1 0  1 1.5 0  1 0 0]\n"),
+                      2, 24, "not parallel");
+    expect_pbrt_error(dir.write("three.pbrt",
+                                "WorldBegin\nLightSource \"infinite\" \"point3 portal\" "
+                                "[0 0 0  0 1 0  1 1 0]\n"),
+                      2, 24, "four points");
+}
+
 TEST(PbrtImageLights, BadInputIsLocated) {
     PbrtTempDir dir;
     QuietLog quiet;
