@@ -245,7 +245,7 @@ TriangleMesh loop_subdivide(const std::vector<Vec3>& positions, const std::vecto
                        ? weight_boundary(m, v, 1.0 / 5.0)
                        : weight_ring(m, v, 1.0 / (double(m.valence(v)) + 3.0 / (8.0 * beta(m.valence(v)))));
     m.p = std::move(limit);
-    // The winding's side at each vertex (area-weighted face normals), to orient the limit normals.
+    // The winding's side at each vertex (area-weighted face normals), for degenerate tangents.
     std::vector<P3> winding(m.p.size());
     for (const Face& f : m.faces) {
         const P3 n = cross(m.p[f[1]] - m.p[f[0]], m.p[f[2]] - m.p[f[0]]);
@@ -255,10 +255,11 @@ TriangleMesh loop_subdivide(const std::vector<Vec3>& positions, const std::vecto
     out.positions.reserve(m.p.size());
     out.normals.reserve(m.p.size());
     for (uint32_t v = 0; v < m.p.size(); ++v) {
+        // pbrt's S x T, with the ring in pbrt's order, points against the winding; where the
+        // tangents are degenerate, the winding's normal reversed likewise.
         P3 n = limit_normal(m, v);
-        if (dot(n, winding[v]) < 0) n = n * -1;
         double len = std::sqrt(dot(n, n));
-        if (!(len > 0) || !std::isfinite(len)) n = winding[v], len = std::sqrt(dot(n, n));
+        if (!(len > 0) || !std::isfinite(len)) n = winding[v] * -1, len = std::sqrt(dot(n, n));
         n = len > 0 ? n * (1 / len) : P3(0, 0, 1);
         out.positions.emplace_back(float(m.p[v].x), float(m.p[v].y), float(m.p[v].z));
         out.normals.emplace_back(float(n.x), float(n.y), float(n.z));

@@ -86,13 +86,16 @@ TEST(PbrtLoopSubdiv, TetrahedronBecomesItsSmoothLimitSurface) {
     const Vec3 corner = normalize(Vec3(1, 1, 1));
     ASSERT_TRUE(es.intersect({corner * 10.0f, -corner}, h));
     EXPECT_NEAR(length(h.p), std::sqrt(3.0f) / 5, 1e-4);
-    EXPECT_GT(dot(h.ns, corner), 0.999f);  // the smooth surface's normal there is the axis
+    // The smooth surface's normal there is the axis; pbrt-v4's masks point it against the winding
+    // (inwards here), and the surface faces it.
+    EXPECT_LT(dot(h.ns, corner), -0.999f);
+    EXPECT_LT(dot(h.ng, corner), 0.0f);
     // Towards a face centre: a third of the corner's distance on the tetrahedron; the smooth limit
     // surface is much rounder (0.73 of it).
     ASSERT_TRUE(es.intersect({corner * -10.0f, corner}, h));
     EXPECT_LT(length(h.p), 1 / std::sqrt(3.0f));
     EXPECT_GT(length(h.p), 0.6f * std::sqrt(3.0f) / 5);
-    EXPECT_GT(dot(h.ns, -corner), 0.999f);
+    EXPECT_LT(dot(h.ns, -corner), -0.999f);
     // The default is 3 levels; pbrt-v3's "nlevels" is read as "levels".
     EXPECT_EQ(load_text(kHead + "Shape \"loopsubdiv\" " + tet + "\n").shapes[0].mesh.triangle_count(), 256u);
     EXPECT_EQ(load_text("WorldBegin\nShape \"loopsubdiv\" \"integer nlevels\" 1 " + tet + "\n")

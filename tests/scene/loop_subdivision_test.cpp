@@ -1,6 +1,7 @@
 // Loop subdivision: face counts, closed meshes stay closed manifolds, the masks' closed-form results
 // (a tetrahedron's corners, a planar grid reproduced), convergence inside the hull, boundaries kept
-// on their curve, unit outward normals, and bad meshes refused.
+// on their curve, unit normals all on one side (pbrt-v4's: against the winding), and bad meshes
+// refused.
 #include "scene/loop_subdivision.h"
 
 #include <gtest/gtest.h>
@@ -99,7 +100,8 @@ TEST(LoopSubdivision, PlanarGridIsReproducedAndStaysOnItsPlane) {
     int interior_found = 0;
     for (size_t v = 0; v < m.positions.size(); ++v) {
         EXPECT_EQ(m.positions[v].z, 0.0f);
-        EXPECT_NEAR(m.normals[v].z, 1.0f, 1e-6f);  // unit and on the winding's (+z) side
+        // Unit, and against the winding's +z, as pbrt-v4's tangent masks give them.
+        EXPECT_NEAR(m.normals[v].z, -1.0f, 1e-6f);
         // Loop's masks reproduce linear functions: away from the boundary's corners the regular
         // grid maps onto itself, so every interior point lies on the quarter-step lattice.
         const Vec3 q = m.positions[v];
@@ -129,7 +131,7 @@ TEST(LoopSubdivision, CubeConvergesInsideItsHullWithOutwardNormals) {
             EXPECT_LE(std::max({std::fabs(q.x), std::fabs(q.y), std::fabs(q.z)}), 1.0f);
             EXPECT_GT(length(q), 0.5f);
             EXPECT_NEAR(length(n), 1.0f, 1e-5f);
-            EXPECT_GT(dot(n, q), 0.0f);  // outward
+            EXPECT_LT(dot(n, q), 0.0f);  // against the outward winding, as pbrt-v4's
         }
         // Limit positions are points of the one limit surface: a vertex kept by the next level
         // (the even vertices come first, in order) lands on the same point.
@@ -180,7 +182,7 @@ TEST(LoopSubdivision, BoundaryVerticesStayOnTheBoundaryCurve) {
         EXPECT_EQ(boundary_edges, 4 << levels);
         for (size_t v = 0; v < m.positions.size(); ++v) {
             EXPECT_NEAR(length(m.normals[v]), 1.0f, 1e-5f);
-            EXPECT_GT(m.normals[v].z, 0.0f);  // the pyramid's outside is up
+            EXPECT_LT(m.normals[v].z, 0.0f);  // against the winding (its outside is up), as pbrt-v4's
         }
     }
 }
