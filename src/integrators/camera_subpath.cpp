@@ -297,6 +297,7 @@ float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3
 // what --layers needs of its vertices so far.
 struct CameraWalk {
     SubpathState path{Spectrum(1.0f), {}, {}};
+    Spectrum beta0{1.0f};  // the throughput it starts with: the camera's weight
     Vec3 from;
     bool specular_chain = true;  // only delta bounces so far: the camera sees what it meets directly
     // The previous vertex was the first non-delta one (its light samples: direct_light's `first`).
@@ -397,7 +398,7 @@ bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, boo
     else
         w.delta_after_x1 = w.delta_after_x1 && d->delta;
     ++C.rays.bounce;
-    if (!survives(depth, w.path.beta, Spectrum(1.0f), sampler)) return false;
+    if (!survives(depth, w.path.beta, w.beta0, sampler)) return false;
     w.from = v.p;
     ray = leave_vertex(v, d->wi, walk);
     return true;
@@ -411,11 +412,14 @@ bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, boo
 void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, const Wavelengths& lambda,
                  bool full) {
     const Prepared& P = C.P;
-    const Ray first = P.camera.generate_ray(fx, fy, lens);
+    float camera_weight = 1;
+    const Ray first = P.camera.generate_ray(fx, fy, lens, camera_weight);
     ++C.rays.camera;
+    if (camera_weight == 0) return;  // the camera's lenses blocked the ray: it finds nothing
     Ray ray = first;
     const float camera_pdf = P.camera.direction_pdf(normalize(first.dir));
     CameraWalk w;
+    w.path.beta = w.beta0 = Spectrum(camera_weight);
     w.path.lambda = lambda;
     if (auto* r = recorder()) r->wavelengths(lambda);
     w.path.mis = camera_pdf > 0 ? start_camera(camera_pdf) : SubpathMis{};

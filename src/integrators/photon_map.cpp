@@ -169,7 +169,9 @@ RenderDone PhotonMapIntegrator::render_with(const Prepared& P, const PhotonMaps&
     return render_samples(
         P, film, budget_, "photonmap", progress,
         [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
-            film.add_sample(x, y, R.camera_ray(ray, sampler, rays).total() * weight);
+            // Weight 0 (a ray the camera's lenses blocked) is a black sample, not traced.
+            film.add_sample(x, y,
+                            weight != 0 ? R.camera_ray(ray, sampler, rays).total() * weight : Rgb(0.0f));
         },
         payload);
 }

@@ -31,12 +31,20 @@ Rgb hit_point_path(const Prepared& P, int x, int y, int s, int eye, int direct_s
         eye == 1 ? PixelFilterSampler::FilmSample{Vec2{0.5f, 0.5f}, 1.0f}
                  : P.filter.sample(stratified_sample(s, eye, sampler.next2()));
     const Vec2 lens = sampler.next2();
-    const Ray ray = P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
+    float camera_weight = 1;
+    const Ray ray =
+        P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens, camera_weight);
     ++rays.camera;
+    if (camera_weight == 0) {  // the camera's lenses blocked the ray: no hit point, black
+        vp.bsdf.reset();
+        vp.medium = -1;
+        return Rgb(0.0f);
+    }
     const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays);
-    if (at.weight == 1) return L;
-    vp.beta *= at.weight;
-    return L * at.weight;
+    const float weight = at.weight * camera_weight;
+    if (weight == 1) return L;
+    vp.beta *= weight;
+    return L * weight;
 }
 
 // The ray tracing pass, deterministic in the seed, so a resumed render recomputes the

@@ -47,13 +47,21 @@ Rgb pixel_eye_path(const Prepared& P, int x, int y, uint64_t it, int direct_samp
     const PixelFilterSampler::FilmSample at =
         P.filter.sample(padded_point2(uint32_t(it), hash_combine(key, 1)));
     const Vec2 lens = padded_point2(uint32_t(it), hash_combine(key, 2));
-    const Ray ray = P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
+    float camera_weight = 1;
+    const Ray ray =
+        P.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens, camera_weight);
     ++rays.camera;
+    if (camera_weight == 0) {  // the camera's lenses blocked the ray: no visible point, black
+        vp.bsdf.reset();
+        vp.medium = -1;
+        return Rgb(0.0f);
+    }
     const PixelSequences sequences{uint32_t(it), hash_combine(key, 3)};
     const Rgb L = trace_eye_path(P, ray, sampler, direct_samples, vp, rays, &sequences);
-    if (at.weight == 1) return L;
-    vp.beta *= at.weight;  // the photons this visible point gathers count with the sample's weight
-    return L * at.weight;
+    const float weight = at.weight * camera_weight;
+    if (weight == 1) return L;
+    vp.beta *= weight;  // the photons this visible point gathers count with the sample's weight
+    return L * weight;
 }
 
 // The eye pass of iteration `it`: one stochastic camera path per pixel of this rank's

@@ -88,8 +88,11 @@ std::vector<float> pixel_radii(const Prepared& P, const ProgressiveOptions& o, f
             const size_t i = size_t(y) * size_t(ro.width) + size_t(x);
             Sampler sampler(ro.seed, 0x7663706966ULL, i);
             VisiblePoint vp;
-            const Ray ray = P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f));
+            float camera_weight = 1;
+            const Ray ray =
+                P.camera.generate_ray(float(x) + 0.5f, float(y) + 0.5f, Vec2(0.5f, 0.5f), camera_weight);
             ++rays.camera;
+            if (camera_weight == 0) continue;  // blocked by the camera's lenses: the pixel takes `base`
             trace_eye_path(P, ray, sampler, 0, vp, rays);
             if (!vp.bsdf) continue;
             p[i] = vp.p;

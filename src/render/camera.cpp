@@ -46,6 +46,16 @@ CameraModel::CameraModel(const scene::Camera& camera, int width, int height, con
         half_w_ = half_short;
         half_h_ = half_short * float(height) / float(width);
     }
+    if (camera.projection == scene::Camera::Projection::Realistic) {
+        // pbrt-v4's film: a rectangle of the image's aspect ratio with the given diagonal.
+        if (!(camera.film_diagonal > 0)) throw InputError("camera: the film's diagonal must be positive");
+        const float aspect = float(height) / float(width);
+        const float x = std::sqrt(camera.film_diagonal * camera.film_diagonal / (1 + aspect * aspect));
+        film_half_w_ = 0.5f * x;
+        film_half_h_ = 0.5f * aspect * x;
+        lenses_ = std::make_shared<const LensSystem>(camera.lens_elements, double(camera.lens_focus_distance),
+                                                     camera.aperture);
+    }
 }
 
 scene::Camera CameraModel::frame_bounds(const Bounds& bounds) {
@@ -61,9 +71,11 @@ scene::Camera CameraModel::frame_bounds(const Bounds& bounds) {
     return cam;
 }
 
-Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
+Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens, float& weight) const {
     fx += crop_x0_;
     fy += crop_y0_;
+    weight = 1;
+    if (realistic()) return realistic_ray(fx, fy, u_lens, weight);
     if (spherical()) {
         Ray ray;
         ray.origin = eye_;
@@ -100,18 +112,48 @@ Ray CameraModel::generate_ray(float fx, float fy, Vec2 u_lens) const {
     return ray;
 }
 
+// pbrt-v4's RealisticCamera::GenerateRay (PBR 4th ed., sec. 5.4.5): the film point of (fx, fy) on
+// the sensor, mirrored in x (the lens turns the image over), a ray from it through the lens system,
+// and the camera-space ray turned to world space.
+Ray CameraModel::realistic_ray(float fx, float fy, Vec2 u_lens, float& weight) const {
+    const float px = -film_half_w_ + 2 * film_half_w_ * fx / float(width_);
+    const float py = -film_half_h_ + 2 * film_half_h_ * fy / float(height_);
+    LensSystem::LensRay out;
+    weight = float(lenses_->generate(Vec2(-px, py), u_lens, out));
+    Ray ray;
+    if (!(weight > 0)) {
+        weight = 0;
+        ray.origin = eye_;
+        ray.dir = forward_;
+        ray.tmin = 0;
+        ray.tmax = -1;  // empty: the lenses blocked it
+        return ray;
+    }
+    ray.origin = eye_ + right_ * float(out.o.x) + up_ * float(out.o.y) + forward_ * float(out.o.z);
+    ray.dir = normalize(right_ * float(out.d.x) + up_ * float(out.d.y) + forward_ * float(out.d.z));
+    ray.tmin = 0;
+    ray.tmax = kInf;
+    return ray;
+}
+
 CameraModel::Footprint CameraModel::pixel_footprint() const {
     const float cx = 0.5f * float(width_) - crop_x0_, cy = 0.5f * float(height_) - crop_y0_;
-    const Ray a = generate_ray(cx, cy, {0.5f, 0.5f});
-    const Ray b = generate_ray(cx + 1, cy, {0.5f, 0.5f});
+    float wa = 1, wb = 1;
+    const Ray a = generate_ray(cx, cy, {0.5f, 0.5f}, wa);
+    const Ray b = generate_ray(cx + 1, cy, {0.5f, 0.5f}, wb);
     Footprint f;
+    if (!(wa > 0 && wb > 0)) {
+        // A realistic camera whose centre rays are blocked: one pixel of film over the focal length.
+        f.slope = float(2 * double(film_half_w_) / double(width_) / lenses_->focal_length());
+        return f;
+    }
     f.offset = length(a.origin - b.origin);
     f.slope = length(normalize(a.dir) - normalize(b.dir));
     return f;
 }
 
 float CameraModel::direction_pdf(Vec3 unit_dir) const {
-    if (cam_.projection == scene::Camera::Projection::Orthographic) return 0;
+    if (cam_.projection == scene::Camera::Projection::Orthographic || realistic()) return 0;
     if (spherical()) return spherical_pdf(unit_dir);
     const float c = dot(unit_dir, forward_);
     if (!(c > 0)) return 0;
@@ -122,7 +164,7 @@ float CameraModel::direction_pdf(Vec3 unit_dir) const {
 }
 
 bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
-    if (cam_.projection == scene::Camera::Projection::Orthographic) return false;
+    if (cam_.projection == scene::Camera::Projection::Orthographic || realistic()) return false;
     c.lens = eye_;
     if (cam_.lens_radius > 0) {
         const Vec2 d = warp::concentric_disk(u_lens) * cam_.lens_radius;
@@ -157,6 +199,7 @@ bool CameraModel::connect(Vec3 ref, Vec2 u_lens, Connection& c) const {
 }
 
 bool CameraModel::project(Vec3 p, float& fx, float& fy) const {
+    if (realistic()) return false;  // no pinhole: the lenses decide where a point lands
     const Vec3 d = p - eye_;
     if (spherical()) {
         float u, v;

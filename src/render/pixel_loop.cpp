@@ -31,12 +31,14 @@ void render_tile_samples(const Prepared& prepared, const film::Tile& tile, uint3
                 const PixelFilterSampler::FilmSample at =
                     prepared.filter.sample(pixel_sample_position(s, scramble));
                 const Vec2 lens = sampler.next2();
-                const Ray ray =
-                    prepared.camera.generate_ray(float(x) + at.position.x, float(y) + at.position.y, lens);
+                float camera_weight = 1;
+                const Ray ray = prepared.camera.generate_ray(float(x) + at.position.x,
+                                                             float(y) + at.position.y, lens, camera_weight);
                 ++rays.camera;
                 t_sample_index = s;
                 t_wavelength_sample = spectrum::wavelength_sequence_point(s, hash_combine(scramble, 0x776c));
-                sample(x, y, ray, at.weight, sampler, rays);
+                // A ray the camera's lenses block comes with weight 0: the sample counts as black.
+                sample(x, y, ray, at.weight * camera_weight, sampler, rays);
                 t_sample_index = 0;
                 t_wavelength_sample = -1;
             }
@@ -74,7 +76,9 @@ RenderDone render_pixels(const Prepared& prepared, film::Film& film, const Rende
                          const std::string& integrator, Progress& progress, const RadianceFn& radiance) {
     return render_samples(prepared, film, budget, integrator, progress,
                           [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
-                              film.add_sample(x, y, radiance(ray, sampler, rays) * weight);
+                              // Weight 0 (a ray the lenses blocked) is a black sample, not traced.
+                              film.add_sample(
+                                  x, y, weight != 0 ? radiance(ray, sampler, rays) * weight : Rgb(0.0f));
                           });
 }
 
@@ -89,7 +93,7 @@ RenderDone render_layers(const Prepared& prepared, film::Film& film, const Rende
         prepared, film, budget, integrator, progress,
         [&](int x, int y, const Ray& ray, float weight, Sampler& sampler, RayCounts& rays) {
             RadianceParts p;
-            film.add_sample(x, y, parts(ray, sampler, rays, p) * weight);
+            film.add_sample(x, y, weight != 0 ? parts(ray, sampler, rays, p) * weight : Rgb(0.0f));
             for (const auto& [layer, part] : out) layer->add(x, y, p[part] * weight);
         },
         payload);

@@ -143,7 +143,7 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
     c.camera_to_world = world_to_camera.inverse();
     coord_systems_["camera"] = c.camera_to_world;
     const std::string d = "Camera \"" + type + "\"";
-    if (type != "perspective" && type != "orthographic" && type != "spherical") {
+    if (type != "perspective" && type != "orthographic" && type != "spherical" && type != "realistic") {
         warn(loc,
              d + " is not supported; a perspective camera with the default 90 degree field of view is used");
         params.mark_all_used();
@@ -159,14 +159,17 @@ void SceneBuilder::camera(const std::string& type, const ParamList& params, cons
                 params.find("mapping")->loc.fail(d +
                                                  ": mapping must be \"equalarea\" or \"equirectangular\"");
             c.equirectangular = mapping == "equirectangular";
+        } else if (type == "realistic") {
+            realistic_lens(params, c, loc);
         }
-        if (type != "spherical") {
+        if (type == "perspective" || type == "orthographic") {
             c.lens_radius = params.get_float("lensradius", 0.0f);
             c.focal_distance = params.get_float("focaldistance", 1e6f);
         }
         if (c.lens_radius < 0) params.find("lensradius")->loc.fail("lensradius must not be negative");
         if (!(c.focal_distance > 0)) params.find("focaldistance")->loc.fail("focaldistance must be positive");
-        const std::vector<float> sw = params.get_floats("screenwindow");
+        const std::vector<float> sw =
+            type != "realistic" ? params.get_floats("screenwindow") : std::vector<float>{};
         if (!sw.empty()) {
             if (sw.size() != 4 || !(sw[1] > sw[0]) || !(sw[3] > sw[2]))
                 params.find("screenwindow")->loc.fail("screenwindow needs 4 values: xmin xmax ymin ymax");
@@ -237,6 +240,8 @@ void SceneBuilder::film(const std::string& type, const ParamList& params, const 
     // The sensor (pbrt-v4's PixelSensor): phos's film is the CIE 1931 observer. The imaging ratio
     // exposure time × ISO / 100 is completed by the camera's shutter times (end_of_files).
     film_iso_ = params.get_float("iso", 100.0f);
+    film_diagonal_mm_ = params.get_float("diagonal", 35.0f);
+    if (!(film_diagonal_mm_ > 0)) params.find("diagonal")->loc.fail(d + ": diagonal must be positive");
     if (!(film_iso_ > 0)) params.find("iso")->loc.fail(d + ": iso must be positive");
     float white_balance = params.get_float("whitebalance", 0.0f);
     if (!(white_balance == 0 || (white_balance >= 1000 && white_balance <= 40000)))
@@ -515,6 +520,12 @@ void SceneBuilder::end_of_files(const Loc& loc) {
         cam.projection = scene::Camera::Projection::Orthographic;
         cam.ortho_half_size = half_short;
     } else {
+    } else if (c.type == "realistic") {
+        cam.projection = scene::Camera::Projection::Realistic;
+        cam.lens_elements = c.lens;
+        cam.lens_focus_distance = c.focus_distance;
+        cam.film_diagonal = film_diagonal_mm_ / 1000;
+        cam.aperture = c.aperture;
         const float t = std::tan(0.5f * c.fov_deg * kPi / 180.0f) * half_short;
         cam.fov = 2.0f * std::atan(t);
     }

@@ -100,6 +100,11 @@ private:
         std::optional<std::vector<float>> screen_window;
         float exposure_time = 1;       // shutterclose - shutteropen
         bool equirectangular = false;  // spherical: the mapping (else equal-area)
+        // realistic: the lens elements (metres, the stop narrowed to "aperturediameter") and
+        // "focusdistance"
+        std::vector<scene::LensElement> lens;
+        float focus_distance = 10;
+        scene::ApertureImage aperture;  // realistic: the stop's shape (empty: a circle)
         int medium = -1;
         Loc loc;
     };
@@ -114,6 +119,8 @@ private:
     std::string resolve(const std::string& filename, const Loc& loc) const;
     int current_material();
     void set_ctm(const Transform& t, const Loc& loc);
+    // Camera "realistic": its lens file, aperture and focus into `c` (builder_realistic.cpp).
+    void realistic_lens(const ParamList& params, CameraSpec& c, const Loc& loc) const;
 
     // Colours: an "rgb", "spectrum" or "blackbody" (or "float", as grey) parameter, or nullopt.
     // With `spectrum_out`, also the spectrum whose sRGB the colour is, for a blackbody, a named
@@ -149,7 +156,8 @@ private:
     // The first light directive that could not be used: if no light could, the scene is refused
     // there (its image would be black) rather than rendered.
     std::optional<Loc> skipped_light_;
-    float film_iso_ = 100;  // Film "iso": with the camera's exposure time, scene_.film_response
+    float film_iso_ = 100;         // Film "iso": with the camera's exposure time, scene_.film_response
+    float film_diagonal_mm_ = 35;  // Film "diagonal": the realistic camera's sensor size
     bool world_ = false;
     Loc world_loc_;
     int object_ = -1;  // index into scene_.objects while between ObjectBegin and ObjectEnd
