@@ -516,16 +516,16 @@ void SceneBuilder::end_of_files(const Loc& loc) {
         cam.projection = scene::Camera::Projection::Spherical;
         cam.spherical_mapping = c.equirectangular ? scene::Camera::SphericalMapping::Equirectangular
                                                   : scene::Camera::SphericalMapping::EqualArea;
-    } else if (c.type == "orthographic") {
-        cam.projection = scene::Camera::Projection::Orthographic;
-        cam.ortho_half_size = half_short;
-    } else {
     } else if (c.type == "realistic") {
         cam.projection = scene::Camera::Projection::Realistic;
         cam.lens_elements = c.lens;
         cam.lens_focus_distance = c.focus_distance;
         cam.film_diagonal = film_diagonal_mm_ / 1000;
         cam.aperture = c.aperture;
+    } else if (c.type == "orthographic") {
+        cam.projection = scene::Camera::Projection::Orthographic;
+        cam.ortho_half_size = half_short;
+    } else {
         const float t = std::tan(0.5f * c.fov_deg * kPi / 180.0f) * half_short;
         cam.fov = 2.0f * std::atan(t);
     }
