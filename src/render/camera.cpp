@@ -54,7 +54,7 @@ CameraModel::CameraModel(const scene::Camera& camera, int width, int height, con
         film_half_w_ = 0.5f * x;
         film_half_h_ = 0.5f * aspect * x;
         lenses_ = std::make_shared<const LensSystem>(camera.lens_elements, double(camera.lens_focus_distance),
-                                                     camera.aperture);
+                                                     camera.aperture, 0.5 * double(camera.film_diagonal));
     }
 }
 

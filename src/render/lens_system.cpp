@@ -1,15 +1,18 @@
 // Tracing through a realistic camera's lens system, as pbrt-v4's RealisticCamera defines it (PBR 4th
-// ed., sec. 5.4.2-5.4.5; Kolb et al. 1995): interfaces are intersected in the lens-element space of
+// ed., sec. 5.4.2-5.4.6; Kolb et al. 1995): interfaces are intersected in the lens-element space of
 // the book (film at z = 0, lenses at z < 0, the scene towards -z), refracted by Snell's law, and
-// blocked by their apertures; the rear element is placed by the thick-lens approximation.
+// blocked by their apertures; the rear element is placed by the thick-lens approximation, and rays
+// are sampled over bounds of the exit pupil.
 #include "render/lens_system.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
 
 #include "core/error.h"
 #include "core/format.h"
+#include "core/low_discrepancy.h"
 #include "core/warp.h"
 
 namespace phos::render {
@@ -80,8 +83,8 @@ bool hit_interface(const scene::LensElement& e, double z_vertex, LensRay& r, Poi
 }  // namespace
 
 LensSystem::LensSystem(std::vector<scene::LensElement> elements, double focus_distance,
-                       scene::ApertureImage aperture)
-    : elements_(std::move(elements)), aperture_(std::move(aperture)) {
+                       scene::ApertureImage aperture, double film_radius)
+    : elements_(std::move(elements)), aperture_(std::move(aperture)), film_radius_(film_radius) {
     if (!aperture_.empty() && (aperture_.width <= 0 || aperture_.height <= 0 ||
                                aperture_.values.size() != size_t(aperture_.width) * size_t(aperture_.height)))
         throw InputError("Camera \"realistic\": the aperture image's size does not match its values");
@@ -110,6 +113,40 @@ LensSystem::LensSystem(std::vector<scene::LensElement> elements, double focus_di
             "Camera \"realistic\": focusing at focusdistance %g moves the lens through the film",
             focus_distance));
     elements_.back().thickness = float(rear);
+    if (film_radius_ > 0) {
+        constexpr int kRings = 64;
+        pupil_bounds_.resize(kRings);
+        for (int i = 0; i < kRings; ++i)
+            pupil_bounds_[size_t(i)] =
+                bound_exit_pupil(film_radius_ * i / kRings, film_radius_ * (i + 1) / kRings);
+    }
+}
+
+LensSystem::PupilBounds LensSystem::bound_exit_pupil(double x0, double x1) const {
+    // Rays from film points spread over [x0, x1] to points of a square 1.5 times the rear
+    // element's radius on each side, placed by the (2, 3) Halton sequence; the bounds of those that
+    // pass, widened by twice the points' spacing to cover what passes between them.
+    constexpr uint32_t kRays = 4096;
+    const double half = 1.5 * rear_radius();
+    const auto radical_inverse_3 = [](uint32_t i) {
+        double r = 0, f = 1.0 / 3;
+        for (; i > 0; i /= 3, f /= 3) r += f * double(i % 3);
+        return r;
+    };
+    PupilBounds b{kInf, -kInf, kInf, -kInf};
+    for (uint32_t i = 0; i < kRays; ++i) {
+        const double fx = x0 + (x1 - x0) * (double(i) + 0.5) / kRays;
+        const double px = -half + 2 * half * double(radical_inverse_bits(i)) * 0x1p-32;
+        const double py = -half + 2 * half * radical_inverse_3(i);
+        if (px >= b.x0 && px <= b.x1 && py >= b.y0 && py <= b.y1) continue;  // already inside
+        if (trace({{fx, 0, 0}, {px - fx, py, rear_z()}}, nullptr, true) > 0) {
+            b.x0 = std::min(b.x0, px), b.x1 = std::max(b.x1, px);
+            b.y0 = std::min(b.y0, py), b.y1 = std::max(b.y1, py);
+        }
+    }
+    if (b.x0 > b.x1) return {};  // no ray passes from this ring
+    const double widen = 2 * (2 * half * std::sqrt(2.0)) / std::sqrt(double(kRays));
+    return {b.x0 - widen, b.x1 + widen, b.y0 - widen, b.y1 + widen};
 }
 
 double LensSystem::front_z() const {
@@ -129,7 +166,9 @@ double LensSystem::aperture_transmission(double x, double y, double r) const {
            (1 - dx) * dy * at(x0, y0 + 1) + dx * dy * at(x0 + 1, y0 + 1);
 }
 
-double LensSystem::trace_from_film(const LensRay& in, LensRay* out) const {
+double LensSystem::trace_from_film(const LensRay& in, LensRay* out) const { return trace(in, out, false); }
+
+double LensSystem::trace(const LensRay& in, LensRay* out, bool bounding) const {
     LensRay r = flip_z(in);
     double z = 0, weight = 1;
     for (int i = int(elements_.size()) - 1; i >= 0; --i) {
@@ -139,7 +178,10 @@ double LensSystem::trace_from_film(const LensRay& in, LensRay* out) const {
         const bool stop = e.curvature_radius == 0;
         if (!hit_interface(e, z, r, n, stop && !aperture_.empty())) return 0;
         if (stop) {  // the stop only blocks, or passes a share of the light where it is shaped
-            if (!aperture_.empty()) {
+            if (!aperture_.empty() && bounding) {
+                const double ra = double(e.aperture_radius);
+                if (r.o.x * r.o.x + r.o.y * r.o.y > 2 * ra * ra) return 0;  // beyond the square's corners
+            } else if (!aperture_.empty()) {
                 weight = aperture_transmission(r.o.x, r.o.y, double(e.aperture_radius));
                 if (!(weight > 0)) return 0;
             }
@@ -197,18 +239,30 @@ void LensSystem::thick_lens(double pz[2], double fz[2]) const {
 }
 
 double LensSystem::generate(Vec2 film, Vec2 u, LensRay& out) const {
-    const Vec2 d = warp::concentric_disk(u);
-    const double r = rear_radius();
-    const LensRay from_film{{film.x, film.y, 0}, {d.x * r - film.x, d.y * r - film.y, rear_z()}};
+    // The rear-plane point and the area of the region it is uniform over (1 / its pdf).
+    double px, py, area;
+    if (pupil_bounds_.empty()) {
+        const Vec2 d = warp::concentric_disk(u);
+        const double r = rear_radius();
+        px = d.x * r, py = d.y * r, area = kPi * r * r;
+    } else {
+        // The bounds of the film point's ring, found along +x, turned to the film point's angle.
+        const double rf = std::sqrt(double(film.x) * film.x + double(film.y) * film.y);
+        const size_t ring =
+            std::min(pupil_bounds_.size() - 1, size_t(rf / film_radius_ * double(pupil_bounds_.size())));
+        const PupilBounds& b = pupil_bounds_[ring];
+        if (b.empty()) return 0;
+        const double lx = b.x0 + (b.x1 - b.x0) * u.x, ly = b.y0 + (b.y1 - b.y0) * u.y;
+        const double s = rf > 0 ? film.y / rf : 0, c = rf > 0 ? film.x / rf : 1;
+        px = c * lx - s * ly, py = s * lx + c * ly, area = (b.x1 - b.x0) * (b.y1 - b.y0);
+    }
+    const LensRay from_film{{film.x, film.y, 0}, {px - film.x, py - film.y, rear_z()}};
     const double transmission = trace_from_film(from_film, &out);
     if (!(transmission > 0)) return 0;
     out.d = normalized(out.d);
-    // pbrt-v4's weight cos^4 theta / (pdf rear_z^2), its exit-pupil density replaced by the rear
-    // disk's uniform 1 / (pi r^2): every ray the system passes crosses the rear disk, so both are
-    // estimates of one integral (the disk only wastes more samples on blocked rays).
     const double cos_theta = from_film.d.z / std::sqrt(dot(from_film.d, from_film.d));
     const double c2 = cos_theta * cos_theta;
-    return transmission * c2 * c2 * (kPi * r * r) / (rear_z() * rear_z());
+    return transmission * c2 * c2 * area / (rear_z() * rear_z());
 }
 
 }  // namespace phos::render

@@ -7,9 +7,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "core/error.h"
 #include "render/camera.h"
+#include "support/double_gauss_lens.h"
 
 namespace phos::render {
 namespace {
@@ -143,6 +146,47 @@ TEST(LensSystem, AShapedStopPassesAsMuchLightAsTheCircle) {
     EXPECT_THROW(LensSystem(biconvex(0.001f), 1.0, scene::ApertureImage{2, 2, {1.0f}}), InputError);
 }
 
+// The double-Gauss lens of tests/support in metres, its stop `stop_diameter` mm across.
+std::vector<scene::LensElement> double_gauss(float stop_diameter) {
+    std::istringstream in(testing::kDoubleGaussLens);
+    std::vector<scene::LensElement> e;
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream fields(line.substr(0, line.find('#')));
+        float r, t, eta, a;
+        if (!(fields >> r >> t >> eta >> a)) continue;
+        if (r == 0) a = stop_diameter;
+        e.push_back({r / 1000, t / 1000, eta == 0 ? 1.0f : eta, a / 2000});
+    }
+    return e;
+}
+
+TEST(LensSystem, ExitPupilSamplingIsUnbiasedAndWastesFewerRays) {
+    // pbrt-v4's exit-pupil bounds per film ring against the whole rear disk: the same mean weight
+    // at film points across a 35 mm film, with far fewer blocked rays for a small stop.
+    for (const float stop : {17.0f, 4.0f}) {
+        const LensSystem disk(double_gauss(stop), 2.0), pupil(double_gauss(stop), 2.0, {}, 0.0175);
+        for (const Vec2 film : {Vec2(0, 0), Vec2(0.005f, 0.003f), Vec2(-0.009f, 0.007f)}) {
+            double sum_disk = 0, sum_pupil = 0;
+            int passed_disk = 0, passed_pupil = 0;
+            const int n = stop < 5 ? 800 : 300;  // a small pupil needs more of the disk grid
+            LensSystem::LensRay out;
+            for (int i = 0; i < n; ++i)
+                for (int j = 0; j < n; ++j) {
+                    const Vec2 u((float(i) + 0.5f) / n, (float(j) + 0.5f) / n);
+                    const double a = disk.generate(film, u, out), b = pupil.generate(film, u, out);
+                    sum_disk += a, sum_pupil += b;
+                    passed_disk += a > 0, passed_pupil += b > 0;
+                }
+            ASSERT_GT(sum_disk, 0);
+            EXPECT_NEAR(sum_pupil / sum_disk, 1.0, 0.02) << stop << " mm at " << film.x << ", " << film.y;
+            if (stop < 5) {
+                EXPECT_GT(passed_pupil, 4 * passed_disk);
+            }
+        }
+    }
+}
+
 TEST(LensSystem, FocusingCloserThanTheLensCanIsRefused) {
     EXPECT_THROW(LensSystem(biconvex(), 0.1), InputError);
     std::vector<scene::LensElement> closed = biconvex(0.001f);
@@ -158,7 +202,7 @@ TEST(RealisticCamera, BlockedRaysAreEmptyWithWeightZero) {
     c.flip_x = true;  // camera +x is world +x, as pbrt's LookAt along +z makes it
     c.lens_elements = biconvex(0.002f);
     c.lens_focus_distance = 1;
-    c.film_diagonal = 0.2f;  // far wider than the lens can cover: its corners see nothing
+    c.film_diagonal = 2.0f;  // far wider than the lens can cover: its corners see nothing
     const CameraModel cam(c, 40, 30);
     float w = -1;
     const Ray centre = cam.generate_ray(20, 15, {0.5f, 0.5f}, w);
