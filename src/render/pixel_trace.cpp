@@ -21,7 +21,8 @@ void trace_pixel_samples(const Prepared& P, const film::Film& film, const Radian
             P, pixel, s, s + 1,
             [&](int, int, const Ray& ray, float weight, Sampler& sampler, RayCounts& counts) {
                 RecordingScope scope(trace, s);
-                const Rgb L = radiance(ray, sampler, counts) * weight;
+                // Weight 0: a ray the camera's lenses blocked, a black sample as in the render.
+                const Rgb L = weight != 0 ? radiance(ray, sampler, counts) * weight : Rgb(0.0f);
                 scope.done(L);
                 if (L.is_finite()) ++finite;
             },
