@@ -398,8 +398,12 @@ void SceneBuilder::option(const Param& p, const Loc& loc) {
         // Where pbrt renders (camera, camera-world or world space), its statistics images, its
         // GPU/wavefront mode and texture filtering: none of them changes phos's image.
         log::info(loc.str() + ": note: " + d + " does not change phos's image (ignored)");
+    } else if (p.name == "displacementedgescale") {
+        if (p.type != "float" || p.numbers.size() != 1 || !(p.numbers[0] > 0) || !std::isfinite(p.numbers[0]))
+            p.loc.fail(d + ": takes one positive float");
+        displacement_edge_scale_ = float(p.numbers[0]);
     } else if (p.name == "disablepixeljitter" || p.name == "disablewavelengthjitter" ||
-               p.name == "forcediffuse" || p.name == "displacementedgescale") {
+               p.name == "forcediffuse") {
         warn(loc, d + " is not supported (ignored): phos renders as without it");
     } else {
         warn(loc, d + ": unknown option (ignored)");

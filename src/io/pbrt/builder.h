@@ -152,7 +152,8 @@ private:
     std::optional<CameraSpec> camera_;
     // pbrt-v3 SPPM's "numiterations" (0: not given): the iterations, whatever the Sampler says.
     int sppm_iterations_ = 0;
-    bool filter_given_ = false;  // a PixelFilter directive was read (else pbrt-v4's Gaussian)
+    bool filter_given_ = false;          // a PixelFilter directive was read (else pbrt-v4's Gaussian)
+    float displacement_edge_scale_ = 1;  // Option "displacementedgescale"
     // The first light directive that could not be used: if no light could, the scene is refused
     // there (its image would be black) rather than rendered.
     std::optional<Loc> skipped_light_;

@@ -128,7 +128,8 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
 // float texture (or constant) "displacement" at its uv, the normals recomputed.
 void SceneBuilder::displace(scene::TriangleMesh& mesh, const ParamList& params, const Param& dp,
                             const std::string& d) {
-    const float edge = params.get_float("edgelength", 1.0f);
+    // pbrt-v4 scales every edge length by Option "displacementedgescale".
+    const float edge = params.get_float("edgelength", 1.0f) * displacement_edge_scale_;
     if (!(edge > 0) || !std::isfinite(edge))
         params.find("edgelength")->loc.fail(d + ": \"edgelength\" must be a positive length");
     int texture = -1;

@@ -56,6 +56,25 @@ TEST(PbrtDisplacement, ConstantDisplacementMovesThePlaneAlongItsNormal) {
     for (const Vec3& n : m.normals) EXPECT_NEAR(n.z, 1, 1e-6);
 }
 
+TEST(PbrtDisplacement, OptionDisplacementEdgeScaleScalesEdgeLength) {
+    PbrtTempDir dir;
+    scene::TriangleMesh quad = phos::testing::unit_quad();
+    quad.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    phos::testing::write_ply(dir.file("quad.ply"), quad, false);
+    QuietLog quiet;
+    const std::string shape =
+        "WorldBegin\nShape \"plymesh\" \"string filename\" \"quad.ply\" \"float displacement\" 0.1 "
+        "\"float edgelength\" 0.5\n";
+    const scene::Scene plain = load_pbrt(dir.write("a.pbrt", shape));
+    const scene::Scene finer =
+        load_pbrt(dir.write("b.pbrt", "Option \"float displacementedgescale\" 0.25\n" + shape));
+    EXPECT_LT(max_edge(plain.shapes.at(0).mesh), 0.5f);
+    EXPECT_GE(max_edge(plain.shapes.at(0).mesh), 0.125f);
+    EXPECT_LT(max_edge(finer.shapes.at(0).mesh), 0.125f);  // 0.5 x 0.25
+    expect_pbrt_error(dir.write("c.pbrt", "Option \"float displacementedgescale\" 0\n" + shape), 1, 8,
+                      "takes one positive float");
+}
+
 TEST(PbrtDisplacement, CheckerboardTextureGivesTwoHeights) {
     PbrtTempDir dir;
     const Loaded l = load_with_quad(

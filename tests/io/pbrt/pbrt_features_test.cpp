@@ -131,14 +131,14 @@ TEST(PbrtSettings, SppmIntegratorSamplerAndFilter) {
 }
 
 TEST(PbrtSettings, UnsupportedThingsWarnExactlyOnceEach) {
-    // gaussian filter, mlt integrator, hyperboloid shape, an unknown light, Attribute: one each, even
-    // though they carry parameters; pbrt-v3's WorldEnd is read silently.
+    // an unsupported Option, mlt integrator, hyperboloid shape, an unknown light, TransformTimes: one
+    // each, even though they carry parameters; pbrt-v3's WorldEnd is read silently.
     const Loaded l = load_text(
-        "PixelFilter \"gaussian\" \"float sigma\" 0.5 \"float xradius\" 2\n"
+        "Option \"bool forcediffuse\" true\n"
         "Integrator \"mlt\" \"integer mutationsperpixel\" 10\nWorldBegin\n"
         "Shape \"hyperboloid\" \"point3 p1\" [0 0 0] \"point3 p2\" [1 1 1]\n"
-        "LightSource \"sunsky\" \"string filename\" \"x.exr\"\nAttribute \"shape\" \"float radius\" "
-        "2\nLightSource \"point\"\nWorldEnd\n");
+        "LightSource \"sunsky\" \"string filename\" \"x.exr\"\nTransformTimes 0 1\n"
+        "LightSource \"point\"\nWorldEnd\n");
     EXPECT_EQ(l.warnings, 4);  // the mlt integrator is reported by `phos render` (it may be overridden)
     EXPECT_EQ(l.scene.settings.integrator, "bdpt");  // mlt explores bdpt's paths: bdpt, with a warning
     EXPECT_EQ(l.scene.settings.unavailable_integrator, "mlt");
