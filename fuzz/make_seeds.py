@@ -218,6 +218,22 @@ put("pbrt", "include-and-files.pbrt",
     "ObjectBegin \"o\"\nShape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 0]\nObjectEnd\n"
     "ObjectInstance \"o\"\nInclude \"inc.pbrt\"\n")
 
+put("pbrt", "film-camera-shapes.pbrt",
+    "Option \"integer seed\" 3\nOption \"float displacementedgescale\" 2\n"
+    "PixelFilter \"mitchell\" \"float B\" 0.5 \"float xradius\" 1.5\n"
+    "Film \"gbuffer\" \"integer xresolution\" 32 \"integer yresolution\" 16 "
+    "\"float cropwindow\" [0.25 0.75 0 1] \"integer pixelbounds\" [2 20 0 16]\n"
+    "Camera \"spherical\" \"string mapping\" \"equirectangular\"\nWorldBegin\n"
+    "ColorSpace \"aces2065-1\"\nAttributeBegin\nAttribute \"shape\" \"float radius\" 2\n"
+    "Attribute \"light\" \"float scale\" 3\nLightSource \"point\" \"rgb I\" [1 0.5 0.2]\n"
+    "Shape \"sphere\" \"float zmin\" -0.5 \"float zmax\" 0.8 \"float phimax\" 270\nAttributeEnd\n"
+    "Shape \"loopsubdiv\" \"integer levels\" 2 \"integer indices\" [0 1 2 0 2 3 0 3 1 1 3 2] "
+    "\"point3 P\" [0 0 0 1 0 0 0 1 0 0 0 1]\n"
+    "Shape \"curve\" \"string type\" \"ribbon\" \"point3 P\" [0 0 0 1 1 0 2 1 0 3 0 0] "
+    "\"normal N\" [0 0 1 0 1 1] \"float width0\" 0.2 \"float width1\" 0.05\n"
+    "Shape \"bilinearmesh\" \"point3 P\" [0 0 0 1 0 0 0 1 0 1 1 1]\n"
+    "LightSource \"infinite\" \"rgb L\" [1 1 1] \"point3 portal\" [0 0 0 1 0 0 1 1 0 0 1 0]\n")
+
 put("scene_format", "all-files.scene",
     "mesh a.mesh\nmesh b.mesh\nsphere 0.5 0 1 0 g.mat\nsphere 0.5 2 1 0 t.mat\n"
     "camera 0 1 5 0 1 0 0 1 0 2\nlight point 0 3 0 10 10 10\n"
