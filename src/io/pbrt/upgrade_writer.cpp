@@ -186,8 +186,12 @@ private:
         for (const std::string& str : p.strings) {
             // Files named by the scene move with it; an output name (Film "filename") does not,
             // nor does a named spectrum.
+            // A realistic camera's "aperture" is a file unless it names one of pbrt-v4's shapes.
+            const bool named_stop =
+                str == "gaussian" || str == "square" || str == "pentagon" || str == "star";
             const bool file =
-                !output_names && ((p.type == "string" && (p.name == "filename" || p.name == "lensfile")) ||
+                !output_names && ((p.type == "string" && (p.name == "filename" || p.name == "lensfile" ||
+                                                          (p.name == "aperture" && !named_stop))) ||
                                   (p.type == "spectrum" && !named_spectrum_rgb(str, SpectrumUse::Albedo)));
             s += " " + pbrt_string(file ? moved_path(str, p.loc) : str);
         }

@@ -274,5 +274,25 @@ TEST(PbrtV3, UpgradeWritesOnePbrtV4FileThatLoadsToTheSameScene) {
     EXPECT_EQ(again.substr(again.find('\n')), text.substr(text.find('\n')));  // but the first (comment) line
 }
 
+// A realistic camera's lens file and stop image move with the scene; a named stop shape does not.
+TEST(PbrtV3, UpgradeMovesTheRealisticCamerasFiles) {
+    QuietLog quiet;
+    PbrtTempDir dir;
+    const std::string in = dir.write(
+        "in/scene.pbrt",
+        "Camera \"realistic\" \"string lensfile\" \"lenses/wide.dat\" \"string aperture\" \"stop.pfm\"\n"
+        "WorldBegin\n");
+    const std::string named =
+        dir.write("in/named.pbrt",
+                  "Camera \"realistic\" \"string lensfile\" \"wide.dat\" \"string aperture\" \"pentagon\"\n"
+                  "WorldBegin\n");
+    std::filesystem::create_directories(dir.file("out"));
+    const std::string text = upgrade_pbrt(in, dir.file("out/v4.pbrt"));
+    EXPECT_NE(text.find("\"../in/lenses/wide.dat\""), std::string::npos) << text;
+    EXPECT_NE(text.find("\"../in/stop.pfm\""), std::string::npos) << text;
+    const std::string kept = upgrade_pbrt(named, dir.file("out/named.pbrt"));
+    EXPECT_NE(kept.find("\"pentagon\""), std::string::npos) << kept;
+}
+
 }  // namespace
 }  // namespace phos::io::pbrt
