@@ -73,18 +73,24 @@ void cap(D3 o, D3 d, double z0, double r, double ri, int part, Best& best) {
     best.offer(t, p, part);
 }
 
-void sphere(const Analytic& s, D3 o, D3 d, Best& best) {
+// The ray's two parameters on the canonical sphere of radius s.radius (false: it misses).
+bool sphere_roots(const Analytic& s, D3 o, D3 d, double& t0, double& t1) {
     const double a = dot(d, d);
-    if (a == 0) return;
+    if (a == 0) return false;
     const double b = dot(o, d);
     // b^2 - a c written as a (r^2 - |f|^2) with f the closest approach: no catastrophic
     // cancellation for rays starting far away (pbrt-v4's formulation).
     const D3 f = o - d * (b / a);
     const double disc = a * (s.radius * s.radius - dot(f, f));
-    if (disc < 0) return;
+    if (disc < 0) return false;
     const double c = dot(o, o) - s.radius * s.radius;
-    double t0, t1;
     stable_roots(a, b, c, disc, t0, t1);
+    return true;
+}
+
+void sphere(const Analytic& s, D3 o, D3 d, Best& best) {
+    double t0, t1;
+    if (!sphere_roots(s, o, d, t0, t1)) return;
     best.offer(t0, o + d * t0, kSide);
     best.offer(t1, o + d * t1, kSide);
 }
@@ -92,15 +98,8 @@ void sphere(const Analytic& s, D3 o, D3 d, Best& best) {
 // pbrt-v4's partial sphere: each root's point, moved onto the sphere, is kept only within the z
 // range and the azimuth range, so a ray can pass through the cut and hit the far side.
 void partial_sphere(const Analytic& s, D3 o, D3 d, Best& best) {
-    const double a = dot(d, d);
-    if (a == 0) return;
-    const double b = dot(o, d);
-    const D3 f = o - d * (b / a);
-    const double disc = a * (s.radius * s.radius - dot(f, f));
-    if (disc < 0) return;
-    const double c = dot(o, o) - s.radius * s.radius;
     double roots[2];
-    stable_roots(a, b, c, disc, roots[0], roots[1]);
+    if (!sphere_roots(s, o, d, roots[0], roots[1])) return;
     for (double t : roots) {
         if (!(t > best.tmin && t < best.tmax)) continue;
         const D3 p = o + d * t;

@@ -112,14 +112,15 @@ void ShapeSampler::add_mesh(const scene::Shape& s) {
         indices_ = m.indices;
         patch_indices_ = m.patches;
     }
+    // A vertex in world space, its index checked.
+    const auto corner = [&](uint32_t idx) {
+        if (idx >= m.positions.size())
+            throw InputError("area light on shape " + s.origin + ": vertex index out of range");
+        return identity ? m.positions[idx] : s.to_world.point(m.positions[idx]);
+    };
     for (size_t t = 0; t < m.triangle_count(); ++t) {
         Vec3 v[3];
-        for (int k = 0; k < 3; ++k) {
-            const uint32_t idx = m.indices[3 * t + size_t(k)];
-            if (idx >= m.positions.size())
-                throw InputError("area light on shape " + s.origin + ": vertex index out of range");
-            v[k] = identity ? m.positions[idx] : s.to_world.point(m.positions[idx]);
-        }
+        for (int k = 0; k < 3; ++k) v[k] = corner(m.indices[3 * t + size_t(k)]);
         Patch p;
         p.kind = PatchKind::Triangle;
         p.triangle = uint32_t(t);
@@ -135,12 +136,7 @@ void ShapeSampler::add_mesh(const scene::Shape& s) {
     // Exact bilinear patches: sampled uniformly by area (sample_bilinear), picked by their area.
     for (size_t q = 0; q < m.patch_count(); ++q) {
         scene::PatchCorners c;
-        for (size_t k = 0; k < 4; ++k) {
-            const uint32_t idx = m.patches[4 * q + k];
-            if (idx >= m.positions.size())
-                throw InputError("area light on shape " + s.origin + ": vertex index out of range");
-            c[k] = identity ? m.positions[idx] : s.to_world.point(m.positions[idx]);
-        }
+        for (size_t k = 0; k < 4; ++k) c[k] = corner(m.patches[4 * q + k]);
         Patch p;
         p.kind = PatchKind::Bilinear;
         p.triangle = uint32_t(q);
