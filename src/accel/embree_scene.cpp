@@ -14,12 +14,14 @@
 #include <string>
 #include <vector>
 
+#include "accel/alpha_mask.h"
 #include "accel/analytic.h"
 #include "accel/bilinear_patch.h"
 #include "accel/curves.h"
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/log.h"
+#include "core/rng.h"
 
 namespace phos::accel {
 
@@ -69,6 +71,18 @@ struct MeshGeom {
 struct PatchSet {
     std::vector<std::array<D3, 4>> corners;  // geometry space, pbrt's order p00 p10 p01 p11
     const uint32_t* indices = nullptr;       // 4 per patch into the mesh's vertices
+    const std::vector<Vec2>* uvs = nullptr;  // the mesh's uvs (MeshGeom::uvs), or null
+    const scene::Shape* source = nullptr;    // for its alpha mask
+    bool alpha = false;                      // has_alpha(*source)
+};
+
+// What the alpha filter of a masked triangle mesh or curve set reads (Embree's user data of the
+// geometry): the shape and how a hit's uv is found.
+struct AlphaGeom {
+    const scene::Shape* source = nullptr;
+    const uint32_t* indices = nullptr;       // triangles: 3 per triangle
+    const std::vector<Vec2>* uvs = nullptr;  // triangles: the mesh's uvs, or null
+    const CurveGeom* curves = nullptr;       // curves: the curve set, else null
 };
 
 // The facts of triangle `prim` (defined with mesh_local below).
@@ -90,11 +104,28 @@ struct InstanceData {
 // The intersect context extended with the exact canonical hit of the last accepted analytic
 // intersection (Embree passes our context through to the callbacks unchanged).
 // `hit` is indexed by the ray's id: 0 for single rays (one hit), the lane for packets
-// (EmbreeScene::intersect16, sixteen), so a single-ray query sets up only one.
+// (EmbreeScene::intersect16, sixteen), so a single-ray query sets up only one. `rays` are the
+// world-space rays by the same index and `scene` the scene: what alpha masks decide with (a mask
+// hashes the world ray, not Embree's copy of it in an instance's space).
 struct QueryContext {
     RTCIntersectContext ctx;
     CanonicalHit* hit;
+    const Ray* rays;
+    const scene::Scene* scene;
 };
+
+// Salt of alpha_hash for candidate hit `root` (0: the first along the ray from its tnear) of
+// primitive `prim` of geometry `geom` under instance `inst`.
+inline uint64_t alpha_salt(unsigned geom, unsigned prim, unsigned inst, unsigned root) {
+    return hash_combine(hash_combine(uint64_t(geom) << 32 | prim, inst), root);
+}
+
+// Whether a masked shape keeps the candidate hit at `uv` of lane `i` (see alpha_mask.h).
+inline bool keeps(const QueryContext& qc, const scene::Shape& shape, Vec2 uv, RTCRayN* ray, unsigned N,
+                  unsigned i, uint64_t salt) {
+    const Ray& r = qc.rays[RTCRayN_id(ray, N, i) & 15u];
+    return alpha_keeps(*qc.scene, shape, uv, r.origin, r.dir, salt);
+}
 
 // (Two-argument maxima: the initializer-list form is not inlined, 2 % of photon tracing.)
 inline double max_abs(D3 v) { return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z))); }
@@ -114,12 +145,24 @@ void analytic_bounds_cb(const RTCBoundsFunctionArguments* args) {
 }
 
 // Transforms ray i into canonical space and intersects it; N is 1 for rtcIntersect1 but the
-// packet layout is honoured anyway.
-bool analytic_hit(const Analytic& a, RTCRayN* ray, unsigned N, unsigned i, CanonicalHit& h) {
+// packet layout is honoured anyway. A masked shape skips the hits its alpha drops and reports the
+// next one (an analytic shape has at most two along a ray; `inst` is the instance, for the salt).
+bool analytic_hit(const Analytic& a, const QueryContext& qc, RTCRayN* ray, unsigned N, unsigned i,
+                  unsigned geom, unsigned inst, CanonicalHit& h) {
     const D3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
     const D3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
-    return detail::intersect_canonical(a, a.to_canon.point(o), a.to_canon.vector(d), RTCRayN_tnear(ray, N, i),
-                                       RTCRayN_tfar(ray, N, i), h);
+    const D3 oc = a.to_canon.point(o), dc = a.to_canon.vector(d);
+    double tmin = RTCRayN_tnear(ray, N, i);
+    const double tmax = RTCRayN_tfar(ray, N, i);
+    if (!detail::intersect_canonical(a, oc, dc, tmin, tmax, h)) return false;
+    if (!has_alpha(*a.source)) return true;
+    for (unsigned root = 0; root < 4; ++root) {
+        const Vec2 uv = detail::analytic_surface(a, h, 0.0).uv;
+        if (keeps(qc, *a.source, uv, ray, N, i, alpha_salt(geom, 0, inst, root))) return true;
+        tmin = h.t;
+        if (!detail::intersect_canonical(a, oc, dc, tmin, tmax, h) || !(h.t > tmin)) return false;
+    }
+    return false;
 }
 
 void analytic_intersect_cb(const RTCIntersectFunctionNArguments* args) {
@@ -130,7 +173,7 @@ void analytic_intersect_cb(const RTCIntersectFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         CanonicalHit h;
-        if (!analytic_hit(a, ray, args->N, i, h)) continue;
+        if (!analytic_hit(a, *qc, ray, args->N, i, args->geomID, args->context->instID[0], h)) continue;
         RTCRayN_tfar(ray, args->N, i) = float(h.t);
         // Embree wants some Ng; ours is recomputed exactly from the canonical hit afterwards.
         RTCHitN_Ng_x(hit, args->N, i) = -RTCRayN_dir_x(ray, args->N, i);
@@ -149,10 +192,12 @@ void analytic_intersect_cb(const RTCIntersectFunctionNArguments* args) {
 
 void analytic_occluded_cb(const RTCOccludedFunctionNArguments* args) {
     const auto& a = *static_cast<const Analytic*>(args->geometryUserPtr);
+    const auto& qc = *reinterpret_cast<const QueryContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         CanonicalHit h;
-        if (analytic_hit(a, args->ray, args->N, i, h)) RTCRayN_tfar(args->ray, args->N, i) = -kInf;
+        if (analytic_hit(a, qc, args->ray, args->N, i, args->geomID, args->context->instID[0], h))
+            RTCRayN_tfar(args->ray, args->N, i) = -kInf;
     }
 }
 
@@ -173,12 +218,35 @@ void patch_bounds_cb(const RTCBoundsFunctionArguments* args) {
     b->lower_z = std::nextafter(float(lo.z), -kInf), b->upper_z = std::nextafter(float(hi.z), kInf);
 }
 
-bool patch_hit(const PatchSet& set, unsigned prim, RTCRayN* ray, unsigned N, unsigned i,
-               detail::PatchHit& h) {
+// The uv a hit at the patch's (u, v) reports (patch_local): the corners' uvs interpolated
+// bilinearly, else (u, v).
+Vec2 patch_uv(const PatchSet& set, unsigned prim, double u, double v) {
+    u = std::clamp(u, 0.0, 1.0), v = std::clamp(v, 0.0, 1.0);
+    if (!set.uvs) return {float(u), float(v)};
+    const double w[4] = {(1 - u) * (1 - v), u * (1 - v), (1 - u) * v, u * v};
+    const uint32_t* idx = set.indices + 4 * size_t(prim);
+    const std::vector<Vec2>& t = *set.uvs;
+    return t[idx[0]] * float(w[0]) + t[idx[1]] * float(w[1]) + t[idx[2]] * float(w[2]) +
+           t[idx[3]] * float(w[3]);
+}
+
+// The patch's closest hit of ray i, skipping those a mask drops (at most two along a ray).
+bool patch_hit(const PatchSet& set, const QueryContext& qc, unsigned prim, RTCRayN* ray, unsigned N,
+               unsigned i, unsigned geom, unsigned inst, detail::PatchHit& h) {
     const D3 o(RTCRayN_org_x(ray, N, i), RTCRayN_org_y(ray, N, i), RTCRayN_org_z(ray, N, i));
     const D3 d(RTCRayN_dir_x(ray, N, i), RTCRayN_dir_y(ray, N, i), RTCRayN_dir_z(ray, N, i));
-    return detail::intersect_patch(set.corners[prim], o, d, RTCRayN_tnear(ray, N, i), RTCRayN_tfar(ray, N, i),
-                                   h);
+    double tmin = RTCRayN_tnear(ray, N, i);
+    const double tmax = RTCRayN_tfar(ray, N, i);
+    if (!detail::intersect_patch(set.corners[prim], o, d, tmin, tmax, h)) return false;
+    if (!set.alpha) return true;
+    for (unsigned root = 0; root < 4; ++root) {
+        if (keeps(qc, *set.source, patch_uv(set, prim, h.u, h.v), ray, N, i,
+                  alpha_salt(geom, prim, inst, root)))
+            return true;
+        tmin = h.t;
+        if (!detail::intersect_patch(set.corners[prim], o, d, tmin, tmax, h) || !(h.t > tmin)) return false;
+    }
+    return false;
 }
 
 void patch_intersect_cb(const RTCIntersectFunctionNArguments* args) {
@@ -189,7 +257,8 @@ void patch_intersect_cb(const RTCIntersectFunctionNArguments* args) {
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         detail::PatchHit h;
-        if (!patch_hit(set, args->primID, ray, args->N, i, h)) continue;
+        if (!patch_hit(set, *qc, args->primID, ray, args->N, i, args->geomID, args->context->instID[0], h))
+            continue;
         RTCRayN_tfar(ray, args->N, i) = float(h.t);
         RTCHitN_Ng_x(hit, args->N, i) = -RTCRayN_dir_x(ray, args->N, i);
         RTCHitN_Ng_y(hit, args->N, i) = -RTCRayN_dir_y(ray, args->N, i);
@@ -205,12 +274,68 @@ void patch_intersect_cb(const RTCIntersectFunctionNArguments* args) {
 
 void patch_occluded_cb(const RTCOccludedFunctionNArguments* args) {
     const auto& set = *static_cast<const PatchSet*>(args->geometryUserPtr);
+    const auto& qc = *reinterpret_cast<const QueryContext*>(args->context);
     for (unsigned i = 0; i < args->N; ++i) {
         if (args->valid[i] != -1) continue;
         detail::PatchHit h;
-        if (patch_hit(set, args->primID, args->ray, args->N, i, h))
+        if (patch_hit(set, qc, args->primID, args->ray, args->N, i, args->geomID, args->context->instID[0],
+                      h))
             RTCRayN_tfar(args->ray, args->N, i) = -kInf;
     }
+}
+
+// Embree's barycentrics (u, v) of triangle `prim` clamped to the triangle (its robust test can
+// report them a hair outside) as b, and the uv there: the mesh's uvs interpolated, else (b1, b2).
+Vec2 triangle_uv(const uint32_t* indices, const std::vector<Vec2>* uvs, unsigned prim, float u, float v,
+                 double b[3]) {
+    double b1 = std::clamp(double(u), 0.0, 1.0), b2 = std::clamp(double(v), 0.0, 1.0);
+    if (b1 + b2 > 1) {
+        const double s = b1 + b2;
+        b1 /= s, b2 /= s;
+    }
+    const double b0 = std::max(0.0, 1.0 - b1 - b2);
+    b[0] = b0, b[1] = b1, b[2] = b2;
+    if (!uvs) return {float(b1), float(b2)};
+    const uint32_t i0 = indices[3 * prim], i1 = indices[3 * prim + 1], i2 = indices[3 * prim + 2];
+    const Vec2 t0 = (*uvs)[i0], t1 = (*uvs)[i1], t2 = (*uvs)[i2];
+    return t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
+}
+
+// Embree's intersection and occlusion filter of a masked triangle mesh or curve set: lanes whose
+// candidate hit the mask drops are invalidated, and Embree goes on to the next candidate. The uv
+// is the one the hit reports (triangle_uv; for curves curve_surface's, from the ray as Embree
+// hands it to the filter, in the geometry's space, with the candidate's t in tfar).
+void alpha_filter_cb(const RTCFilterFunctionNArguments* args) {
+    const auto& g = *static_cast<const AlphaGeom*>(args->geometryUserPtr);
+    const auto& qc = *reinterpret_cast<const QueryContext*>(args->context);
+    const unsigned N = args->N;
+    for (unsigned i = 0; i < N; ++i) {
+        if (args->valid[i] != -1) continue;
+        const unsigned prim = RTCHitN_primID(args->hit, N, i);
+        const float u = RTCHitN_u(args->hit, N, i), v = RTCHitN_v(args->hit, N, i);
+        Vec2 uv;
+        if (g.curves) {
+            RTCRayN* r = args->ray;
+            const D3 o(RTCRayN_org_x(r, N, i), RTCRayN_org_y(r, N, i), RTCRayN_org_z(r, N, i));
+            const D3 d(RTCRayN_dir_x(r, N, i), RTCRayN_dir_y(r, N, i), RTCRayN_dir_z(r, N, i));
+            const D3 ng(RTCHitN_Ng_x(args->hit, N, i), RTCHitN_Ng_y(args->hit, N, i),
+                        RTCHitN_Ng_z(args->hit, N, i));
+            uv = detail::curve_surface(*g.curves, prim, u, ng, o, d, RTCRayN_tfar(r, N, i)).uv;
+        } else {
+            double b[3];
+            uv = triangle_uv(g.indices, g.uvs, prim, u, v, b);
+        }
+        const uint64_t salt =
+            alpha_salt(RTCHitN_geomID(args->hit, N, i), prim, RTCHitN_instID(args->hit, N, i, 0), 0);
+        if (!keeps(qc, *g.source, uv, args->ray, N, i, salt)) args->valid[i] = 0;
+    }
+}
+
+// Installs alpha_filter_cb on a geometry of a masked shape (before it is committed).
+void set_alpha_filter(RTCGeometry g, const AlphaGeom* data) {
+    rtcSetGeometryUserData(g, const_cast<AlphaGeom*>(data));
+    rtcSetGeometryIntersectFilterFunction(g, alpha_filter_cb);
+    rtcSetGeometryOccludedFilterFunction(g, alpha_filter_cb);
 }
 
 std::string where(const scene::Shape& s) { return s.origin.empty() ? std::string("shape") : s.origin; }
@@ -237,6 +362,10 @@ struct EmbreeScene::Impl {
     // The meshes' bilinear patches (a deque: Embree keeps pointers to them).
     std::deque<PatchSet> patch_sets;
     std::deque<Analytic> analytics;  // a deque: Embree keeps pointers to the Analytic records
+    // Masked triangle meshes' and curve sets' filter data, and the curve sets they point to
+    // (deques: Embree keeps pointers to them).
+    std::deque<AlphaGeom> alpha_geoms;
+    std::deque<CurveGeom> alpha_curves;
     std::vector<InstanceData> instances;
     std::vector<CurveGeom> curves;                // pbrt curve shapes
     std::vector<Geom> top_geoms;                  // by geomID in `top`
@@ -308,6 +437,8 @@ struct EmbreeScene::Impl {
         const size_t np = mesh.patch_count();
         PatchSet& set = patch_sets.emplace_back();
         set.indices = mesh.patches.data();
+        set.source = &shape;
+        set.alpha = has_alpha(shape);
         set.corners.resize(np);
         const Affine m = Affine::from(shape.to_world);
         for (size_t i = 0; i < np; ++i)
@@ -319,6 +450,7 @@ struct EmbreeScene::Impl {
         mg.source = &shape;
         mg.shape = index;
         vertex_attributes(mg, shape, mesh.positions.size());
+        set.uvs = mg.uvs;
         RTCGeometry g = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
         rtcSetGeometryUserPrimitiveCount(g, unsigned(np));
         rtcSetGeometryUserData(g, &set);
@@ -357,6 +489,8 @@ struct EmbreeScene::Impl {
         mg.source = &shape;
         mg.shape = index;
         if (shape.kind == scene::Shape::Kind::Mesh) vertex_attributes(mg, shape, nv);
+        if (has_alpha(shape))
+            set_alpha_filter(g, &alpha_geoms.emplace_back(AlphaGeom{&shape, ib, mg.uvs, nullptr}));
         if (cached_triangles + nt <= kMaxCachedTriangles) {
             cached_triangles += nt;
             mg.facts.resize(nt);
@@ -443,6 +577,9 @@ struct EmbreeScene::Impl {
             return;
         }
         curves.push_back(c);
+        if (has_alpha(shape))
+            set_alpha_filter(g, &alpha_geoms.emplace_back(
+                                    AlphaGeom{&shape, nullptr, nullptr, &alpha_curves.emplace_back(c)}));
         attach(s, g, ids, {Geom::Curves, int(curves.size() - 1)});
     }
 
@@ -661,23 +798,11 @@ D3 mesh_point(const MeshGeom& m, const TriangleFacts& t, unsigned prim, float u,
               Vec2& uv) {
     const uint32_t i0 = m.indices[3 * prim], i1 = m.indices[3 * prim + 1], i2 = m.indices[3 * prim + 2];
     const D3 p0 = m.vertex(i0), p1 = m.vertex(i1), p2 = m.vertex(i2);
-    // Clamp to the triangle (Embree's robust test can report barycentrics a hair outside): p is
-    // then a convex combination of the vertices and cannot fall outside a neighbouring face's
-    // plane at an axis-aligned edge or corner, where a spawned ray would escape.
-    double b1 = std::clamp(double(u), 0.0, 1.0), b2 = std::clamp(double(v), 0.0, 1.0);
-    if (b1 + b2 > 1) {
-        const double s = b1 + b2;
-        b1 /= s, b2 /= s;
-    }
-    const double b0 = std::max(0.0, 1.0 - b1 - b2);
-    b[0] = b0, b[1] = b1, b[2] = b2;
-    if (m.uvs) {
-        const Vec2 t0 = (*m.uvs)[i0], t1 = (*m.uvs)[i1], t2 = (*m.uvs)[i2];
-        uv = t0 * float(b0) + t1 * float(b1) + t2 * float(b2);
-    } else {
-        uv = {float(b1), float(b2)};
-    }
-    return inset_point(p0, p1, p2, b0, b1, b2, t);
+    // Clamped to the triangle: p is then a convex combination of the vertices and cannot fall
+    // outside a neighbouring face's plane at an axis-aligned edge or corner, where a spawned ray
+    // would escape.
+    uv = triangle_uv(m.indices, m.uvs, prim, u, v, b);
+    return inset_point(p0, p1, p2, b[0], b[1], b[2], t);
 }
 
 Local mesh_local(const MeshGeom& m, unsigned prim, float u, float v) {
@@ -779,7 +904,7 @@ bool EmbreeScene::intersect(const Ray& ray, SurfaceHit& hit) const {
         return false;
     }
     CanonicalHit canonical;
-    QueryContext qc{{}, &canonical};
+    QueryContext qc{{}, &canonical, &ray, &scene_};
     rtcInitIntersectContext(&qc.ctx);
     RTCRayHit rh;
     init_ray(ray, rh.ray);
@@ -804,7 +929,8 @@ void EmbreeScene::intersect16(const Ray* rays, int n, SurfaceHit* hits, bool* fo
     // is read. The thread's own (no call here runs inside another), so that each call does not
     // construct sixteen of them (5 instructions per photon ray).
     thread_local CanonicalHit canonical[16];
-    QueryContext qc{{}, canonical};
+    // (Lanes past n are never traced, so the callbacks read only rays[0, n).)
+    QueryContext qc{{}, canonical, rays, &scene_};
     rtcInitIntersectContext(&qc.ctx);
     for (int k = 0; k < 16; ++k) {
         const Ray& r = k < n ? rays[k] : kEmptyRay;
@@ -962,11 +1088,12 @@ bool EmbreeScene::occluded(const Ray& ray) const {
         note_unusable(ray);
         return false;
     }
-    RTCIntersectContext ctx;
-    rtcInitIntersectContext(&ctx);
+    CanonicalHit canonical;
+    QueryContext qc{{}, &canonical, &ray, &scene_};
+    rtcInitIntersectContext(&qc.ctx);
     RTCRay r;
     init_ray(ray, r);
-    rtcOccluded1(impl_->top, &ctx, &r);
+    rtcOccluded1(impl_->top, &qc.ctx, &r);
     return r.tfar < 0;  // Embree sets tfar to -inf on any hit
 }
 

@@ -56,7 +56,11 @@ struct Shape {
     float z_min = -1.0f, z_max = 1.0f, phi_max = 2 * kPi;
 
     int material = 0;
-    int area_light = -1;               // index into Scene::lights, or -1
+    int area_light = -1;  // index into Scene::lights, or -1
+    // pbrt's "alpha" cut-out: a hit is kept with probability alpha (a constant, or the float texture
+    // `alpha_texture` at the hit's uv when >= 0), so 0 removes the surface for every ray, 1 keeps it.
+    float alpha = 1;
+    int alpha_texture = -1;
     bool reverse_orientation = false;  // flip the outward normal (pbrt ReverseOrientation)
     MediumInterface media;
     Transform to_world;  // object space to world space

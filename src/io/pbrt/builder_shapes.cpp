@@ -162,8 +162,18 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
     s.material = current_material();
     s.media = {gs_.inside, gs_.outside};
     s.origin = loc.filename() + ":" + std::to_string(loc.line);
-    if (const Param* a = params.find("alpha"))
-        warn(a->loc, d + ": \"alpha\" (cut-outs) is not supported; the shape is opaque");
+    if (const Param* a = params.find("alpha")) {
+        // pbrt-v4's cut-out: a float value in [0, 1] or a float texture (scene::Shape::alpha).
+        if (a->type == "texture") {
+            const auto it = float_textures_.find(a->strings[0]);
+            if (it == float_textures_.end())
+                a->loc.fail(d + ": unknown float texture \"" + a->strings[0] + "\"");
+            s.alpha_texture = it->second;
+        } else {
+            s.alpha = params.get_float("alpha", 1.0f);
+            if (!(s.alpha >= 0 && s.alpha <= 1)) a->loc.fail(d + ": \"alpha\" must be in [0, 1]");
+        }
+    }
     for (const char* p : {"emission", "displacement", "edgelength"})
         if (type == "plymesh" && std::string(p) != "emission")
             continue;  // plymesh reads them below
