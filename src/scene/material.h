@@ -3,10 +3,12 @@
 // shading/ turns a Material into a BSDF.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "core/vec.h"
+#include "scene/texture.h"
 #include "spectrum/distribution.h"
 
 namespace phos::scene {
@@ -52,6 +54,9 @@ struct Material {
 
     // pbrt "interface": the surface only bounds a medium and does not scatter light.
     bool interface_only = false;
+
+    int displacement_texture = -1;  // pbrt "displacement": float texture bump-mapping the shading normal
+    std::shared_ptr<const TextureImage> normal_map;  // pbrt "normalmap": tangent-space normals (linear RGB)
 
     static constexpr float kMirrorShininess = 10000.0f;
 };

@@ -138,6 +138,9 @@ private:
 
     scene::Material make_material(const std::string& type, const ParamList& params, const Loc& loc,
                                   const std::string& directive);
+    // A material's "displacement" and "normalmap" (pbrt-v4's bump and normal maps) into `m`;
+    // located errors for an unknown texture or an unreadable image.
+    void read_shading_detail(const ParamList& params, scene::Material& m, const std::string& directive);
     void add_shape(scene::Shape shape, float area, const Loc& loc);
     // Applies a plymesh's "displacement" (the parameter `dp`) to its object-space mesh.
     void displace(scene::TriangleMesh& mesh, const ParamList& params, const Param& dp, const std::string& d);

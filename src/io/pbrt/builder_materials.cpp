@@ -429,4 +429,41 @@ void SceneBuilder::named_material(const std::string& name, const Loc& loc) {
     gs_.material = it->second;
 }
 
+// pbrt-v4 materials' shading detail (shading/bump.h): "displacement", a float texture whose
+// gradient bump-maps the shading normal (a constant displaces every point alike, which changes no
+// normal: nothing to store), and "normalmap", an image file of tangent-space normals read as
+// linear RGB (as pbrt-v4 reads it, whatever the file's encoding). pbrt-v4 uses the normal map when
+// both are given.
+void SceneBuilder::read_shading_detail(const ParamList& params, scene::Material& m, const std::string& d) {
+    if (const Param* p = params.find("displacement")) {
+        if (p->type == "texture") {
+            const auto it = float_textures_.find(p->strings[0]);
+            if (it == float_textures_.end())
+                p->loc.fail(d + ": unknown float texture \"" + p->strings[0] + "\"");
+            m.displacement_texture = it->second;
+        } else if (!std::isfinite(params.get_float("displacement", 0.0f))) {
+            p->loc.fail(d + ": \"displacement\" is not finite");
+        }
+    }
+    if (const Param* p = params.find("normalmap")) {
+        const std::string filename = params.get_string("normalmap", "");
+        if (filename.empty()) return;  // pbrt-v4's default: no normal map
+        const std::string path = resolve(filename, p->loc);
+        Image img;
+        try {
+            img = read_image(path, false);
+        } catch (const std::exception& e) {
+            p->loc.fail(d + ": normal map: " + e.what());
+        }
+        try {
+            m.normal_map = text::to_texture_image(std::move(img));
+        } catch (const std::exception& e) {
+            p->loc.fail(d + ": normal map: " + e.what());
+        }
+        if (m.displacement_texture >= 0)
+            warn(p->loc,
+                 d + ": both \"displacement\" and \"normalmap\": the normal map is used (as pbrt-v4 does)");
+    }
+}
+
 }  // namespace phos::io::pbrt
