@@ -6,9 +6,11 @@
 #include <cmath>
 #include <string>
 
+#include "accel/alpha_mask.h"
 #include "core/error.h"
 #include "core/frame.h"
 #include "core/warp.h"
+#include "scene/texture_eval.h"
 #include "spectrum/rgb_spectrum.h"
 
 namespace phos::shading {
@@ -16,6 +18,17 @@ namespace phos::shading {
 AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape,
                      const std::vector<scene::Texture>* textures)
     : Light(light), sampler_(shape), radiance_(light.color), two_sided_(light.two_sided) {
+    alpha_ = shape.alpha;
+    if (shape.alpha_texture >= 0 && shape.kind == scene::Shape::Kind::Mesh && textures &&
+        size_t(shape.alpha_texture) < textures->size()) {
+        alpha_texture_ = shape.alpha_texture;
+        alpha_textures_ = std::make_unique<scene::Scene>();
+        alpha_textures_->textures = *textures;
+    }
+    if (alpha_texture_ >= 0 || light.texture >= 0) {
+        if (shape.mesh.uvs.size() == shape.mesh.positions.size()) uvs_ = shape.mesh.uvs;
+        indices_ = shape.mesh.indices;
+    }
     if (light.texture < 0) return;
     if (!textures || size_t(light.texture) >= textures->size())
         throw InputError("area light: texture index " + std::to_string(light.texture) + " out of range");
@@ -31,8 +44,6 @@ AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape,
         for (int k = 0; k < 3; ++k) sum[k] += std::max(c[k], 0.0f);
     const double count = double(image_->texels.size());
     image_mean_ = Rgb(float(sum[0] / count), float(sum[1] / count), float(sum[2] / count));
-    if (shape.mesh.uvs.size() == shape.mesh.positions.size()) uvs_ = shape.mesh.uvs;
-    indices_ = shape.mesh.indices;
 }
 
 Rgb AreaLight::radiance_rgb(Vec2 uv) const {
@@ -60,6 +71,16 @@ Vec2 AreaLight::sample_uv(const ShapeSample& s) const {
     return uvs_[idx[0]] * (1 - b.x - b.y) + uvs_[idx[1]] * b.x + uvs_[idx[2]] * b.y;
 }
 
+bool AreaLight::alpha_masked(Vec3 p, const ShapeSample& s) const {
+    if (alpha_texture_ < 0 && alpha_ >= 1) return false;
+    const float a = alpha_texture_ >= 0
+                        ? scene::eval_texture(*alpha_textures_, alpha_texture_, sample_uv(s)).average()
+                        : alpha_;
+    if (a >= 1) return false;
+    if (!(a > 0)) return true;
+    return accel::alpha_hash(p, Vec3(0.0f), 0) > a;
+}
+
 Spectrum AreaLight::Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const {
     if (!(two_sided_ || dot(n, wo) > 0)) return Spectrum(0.0f);
     if (!image_) return emission(lambda);
@@ -85,7 +106,7 @@ Rgb AreaLight::power() const {
 LightLiSample AreaLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const {
     LightLiSample s;
     const ShapeSample ss = sampler_.sample(ref, u);
-    if (!(ss.pdf > 0)) return s;
+    if (!(ss.pdf > 0) || alpha_masked(ss.p, ss)) return s;
     const Vec3 d = ss.p - ref;
     const float dist = length(d);
     if (!(dist > 0)) return s;
@@ -111,7 +132,7 @@ void AreaLight::pdf_Le(Vec3 n, Vec3 w, float& pdf_pos, float& pdf_dir) const {
 LightLeSample AreaLight::sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const {
     LightLeSample s;
     const ShapeSample ss = sampler_.sample_area(u_pos);
-    if (!(ss.pdf > 0)) return s;
+    if (!(ss.pdf > 0) || alpha_masked(ss.p, ss)) return s;
     Vec3 n = ss.n;
     float side_pdf = 1;
     if (two_sided_) {

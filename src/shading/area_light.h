@@ -10,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "scene/scene.h"
 #include "scene/texture.h"
 #include "shading/lights.h"
 #include "shading/shape_sampler.h"
@@ -43,6 +44,10 @@ private:
     // The surface parameters of a sample (the mesh's uvs, or the triangle's barycentrics as the
     // accel layer gives them).
     Vec2 sample_uv(const ShapeSample& s) const;
+    // pbrt-v4's DiffuseAreaLight::AlphaMasked: whether the shape's alpha cut-out (scene::Shape::alpha)
+    // removes the sampled point: alpha 0 always, alpha in (0, 1) when a hash of p exceeds it. An
+    // alpha texture is read at the sample's uv on meshes; other shapes with one are not masked.
+    bool alpha_masked(Vec3 p, const ShapeSample& s) const;
 
     ShapeSampler sampler_;
     Rgb radiance_;
@@ -51,6 +56,10 @@ private:
     Rgb image_mean_{0.0f};
     std::vector<Vec2> uvs_;  // the mesh's, when it has them
     std::vector<uint32_t> indices_;
+    float alpha_ = 1;
+    int alpha_texture_ = -1;
+    // The scene's textures (and nothing else), for evaluating the alpha texture; null without one.
+    std::unique_ptr<scene::Scene> alpha_textures_;
 };
 
 }  // namespace phos::shading
