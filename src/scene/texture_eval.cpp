@@ -1,7 +1,10 @@
-// Texture evaluation (see texture_eval.h for the uv and wrap conventions).
+// Texture evaluation (see texture_eval.h for what each kind gives and the image conventions).
 #include "scene/texture_eval.h"
 
 #include <cmath>
+
+#include "scene/perlin_noise.h"
+#include "scene/procedural_textures.h"
 
 namespace phos::scene {
 namespace {
@@ -28,15 +31,18 @@ Rgb texel(const scene::TextureImage& image, int x, int y, Texture::Wrap wrap) {
     return image.at(xi, yi);
 }
 
-Vec2 map_uv(const Texture& t, Vec2 uv) {
-    return {uv.x * t.u_scale + t.u_offset, uv.y * t.v_scale + t.v_offset};
-}
-
-// Depth-limited so that a (malformed) cycle of checkerboard/scale references cannot recurse
-// forever.
-Rgb eval(const scene::Scene& scene, int index, Vec2 uv, int depth) {
+// Depth-limited so that a (malformed) cycle of texture references cannot recurse forever.
+Rgb eval(const scene::Scene& scene, int index, const TextureContext& ctx, int depth) {
     if (index < 0 || index >= int(scene.textures.size()) || depth > 32) return Rgb(1.0f);
     const Texture& t = scene.textures[size_t(index)];
+    const auto sub = [&](int i) { return eval(scene, i, ctx, depth + 1); };
+    // (1 - w) a + w b, evaluating only the textures with a non-zero weight (as pbrt does).
+    const auto blend = [&](float w, int a, int b) {
+        Rgb out(0.0f);
+        if (w != 1) out += sub(a) * (1 - w);
+        if (w != 0) out += sub(b) * w;
+        return out;
+    };
     switch (t.kind) {
         case Texture::Kind::Constant:
             return t.value;
@@ -44,22 +50,41 @@ Rgb eval(const scene::Scene& scene, int index, Vec2 uv, int depth) {
             if (!t.image || t.image->width <= 0 || t.image->height <= 0 ||
                 t.image->texels.size() < size_t(t.image->width) * size_t(t.image->height))
                 return t.value;
-            const Vec2 st = map_uv(t, uv);
+            const Vec2 st = map_2d(t, ctx);
             const float v = t.invert_v ? st.y : 1 - st.y;
             return t.value * lookup_bilinear(*t.image, st.x * float(t.image->width),
                                              v * float(t.image->height), t.wrap);
         }
         case Texture::Kind::Checkerboard: {
-            const Vec2 st = map_uv(t, uv);
-            const long parity = long(std::floor(st.x)) + long(std::floor(st.y));
-            if (parity % 2 == 0) return t.tex1 >= 0 ? eval(scene, t.tex1, uv, depth + 1) : t.value;
-            return t.tex2 >= 0 ? eval(scene, t.tex2, uv, depth + 1) : t.value2;
+            const bool odd = t.dimension == 3 ? checker_odd(map_3d(t, ctx)) : checker_odd(map_2d(t, ctx));
+            if (!odd) return t.tex1 >= 0 ? sub(t.tex1) : t.value;
+            return t.tex2 >= 0 ? sub(t.tex2) : t.value2;
         }
         case Texture::Kind::Scale: {
-            const Rgb a = t.tex1 >= 0 ? eval(scene, t.tex1, uv, depth + 1) : Rgb(1.0f);
-            const Rgb b = t.tex2 >= 0 ? eval(scene, t.tex2, uv, depth + 1) : t.value;
-            return a * b;
+            const Rgb b = t.tex2 >= 0 ? sub(t.tex2) : t.value;
+            if (b.is_black()) return Rgb(0.0f);
+            return (t.tex1 >= 0 ? sub(t.tex1) : Rgb(1.0f)) * b;
         }
+        case Texture::Kind::Mix:
+            return blend(t.amount >= 0 ? sub(t.amount).average() : t.amount_value, t.tex1, t.tex2);
+        case Texture::Kind::DirectionMix:
+            return blend(1 - std::fabs(dot(ctx.n, t.direction)), t.tex1, t.tex2);
+        case Texture::Kind::Bilerp: {
+            const Vec2 st = map_2d(t, ctx);
+            const float s0 = 1 - st.x, t0 = 1 - st.y;
+            return t.corners[0] * (s0 * t0) + t.corners[1] * (s0 * st.y) + t.corners[2] * (st.x * t0) +
+                   t.corners[3] * (st.x * st.y);
+        }
+        case Texture::Kind::Dots:
+            return sub(inside_polka_dot(map_2d(t, ctx)) ? t.tex1 : t.tex2);
+        case Texture::Kind::FBm:
+            return Rgb(fbm(map_3d(t, ctx), t.roughness, t.octaves));
+        case Texture::Kind::Wrinkled:
+            return Rgb(turbulence(map_3d(t, ctx), t.roughness, t.octaves));
+        case Texture::Kind::Windy:
+            return Rgb(windy(map_3d(t, ctx)));
+        case Texture::Kind::Marble:
+            return marble(map_3d(t, ctx), t.marble_scale, t.variation, t.roughness, t.octaves);
     }
     return Rgb(1.0f);
 }
@@ -80,6 +105,14 @@ Rgb lookup_bilinear(const scene::TextureImage& image, float x, float y, Texture:
            texel(image, x0, y0 + 1, wrap) * ((1 - tx) * ty) + texel(image, x0 + 1, y0 + 1, wrap) * (tx * ty);
 }
 
-Rgb eval_texture(const scene::Scene& scene, int texture, Vec2 uv) { return eval(scene, texture, uv, 0); }
+Rgb eval_texture(const scene::Scene& scene, int texture, const TextureContext& ctx) {
+    return eval(scene, texture, ctx, 0);
+}
+
+Rgb eval_texture(const scene::Scene& scene, int texture, Vec2 uv) {
+    TextureContext ctx;
+    ctx.uv = uv;
+    return eval(scene, texture, ctx, 0);
+}
 
 }  // namespace phos::scene

@@ -8,5 +8,6 @@ namespace phos::shading {
 
 using scene::eval_texture;
 using scene::lookup_bilinear;
+using scene::TextureContext;
 
 }  // namespace phos::shading

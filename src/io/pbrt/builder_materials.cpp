@@ -158,48 +158,144 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
     const bool grey = type == "float";
 
     scene::Texture t;
-    auto uv_mapping = [&] {
-        const std::string mapping = params.get_string("mapping", "uv");
-        if (mapping != "uv")
-            warn(params.find("mapping")->loc,
-                 d + ": mapping \"" + mapping + "\" is not supported; uv mapping is used");
-        t.u_scale = params.get_float("uscale", 1.0f);
-        t.v_scale = params.get_float("vscale", 1.0f);
-        t.u_offset = params.get_float("udelta", 0.0f);
-        t.v_offset = params.get_float("vdelta", 0.0f);
+    // pbrt evaluates texture-space mappings and 3D textures in the space of the CTM at this
+    // directive.
+    t.texture_from_world = gs_.ctm.inverse();
+    const auto finite_float = [&](const std::string& pname, float def) {
+        const float v = params.get_float(pname, def);
+        if (!std::isfinite(v)) params.find(pname)->loc.fail(d + ": \"" + pname + "\" must be finite");
+        return v;
     };
-    // A texture-or-value parameter as a texture index (constants get their own texture).
-    auto tex_arg = [&](const std::string& pname, Rgb def) {
-        int idx = -1;
-        const Rgb v = color_or_texture(params, pname, def, &idx, use, d);
-        return idx >= 0 ? idx : constant_texture(v);
+    const auto finite_vector = [&](const std::string& pname, Vec3 def) {
+        const Vec3 v = params.get_point3(pname, def);
+        if (!is_finite(v)) params.find(pname)->loc.fail(d + ": \"" + pname + "\" must be finite");
+        return v;
+    };
+    // pbrt-v4's 2D mappings (TextureMapping2D::Create): each reads only its own parameters.
+    const auto mapping_2d = [&] {
+        const std::string mapping = params.get_string("mapping", "uv");
+        if (mapping == "uv") {
+            t.mapping = scene::Texture::Mapping::UV;
+            t.u_scale = finite_float("uscale", 1.0f);
+            t.v_scale = finite_float("vscale", 1.0f);
+            t.u_offset = finite_float("udelta", 0.0f);
+            t.v_offset = finite_float("vdelta", 0.0f);
+        } else if (mapping == "spherical") {
+            t.mapping = scene::Texture::Mapping::Spherical;
+        } else if (mapping == "cylindrical") {
+            t.mapping = scene::Texture::Mapping::Cylindrical;
+        } else if (mapping == "planar") {
+            t.mapping = scene::Texture::Mapping::Planar;
+            t.planar_s = finite_vector("v1", Vec3(1, 0, 0));
+            t.planar_t = finite_vector("v2", Vec3(0, 1, 0));
+            t.u_offset = finite_float("udelta", 0.0f);
+            t.v_offset = finite_float("vdelta", 0.0f);
+        } else {
+            params.find("mapping")->loc.fail(d + ": unknown mapping \"" + mapping +
+                                             "\" (uv, spherical, cylindrical or planar)");
+        }
+    };
+    // A texture name: among this texture's type first (pbrt keeps float and spectrum names apart),
+    // then the other type's.
+    const auto named_texture = [&](const Param& p, bool want_float) {
+        const std::string& tn = p.strings[0];
+        const auto& first = want_float ? float_textures_ : spectrum_textures_;
+        const auto& second = want_float ? spectrum_textures_ : float_textures_;
+        if (const auto it = first.find(tn); it != first.end()) return it->second;
+        if (const auto it = second.find(tn); it != second.end()) return it->second;
+        p.loc.fail(d + ": unknown texture \"" + tn + "\"");
+    };
+    // A texture-or-value parameter as a texture index (a value gets a constant texture; a float
+    // texture's value is a float, a spectrum texture's a colour).
+    const auto tex_arg = [&](const std::string& pname, float def) {
+        const Param* p = params.find(pname);
+        if (p && p->type == "texture") return named_texture(*p, grey);
+        return constant_texture(grey ? Rgb(finite_float(pname, def))
+                                     : color(params, pname, use).value_or(Rgb(def)));
+    };
+    // A float texture-or-value parameter: sets *index (a texture) or returns the value.
+    const auto float_arg = [&](const std::string& pname, float def, int* index) {
+        *index = -1;
+        const Param* p = params.find(pname);
+        if (p && p->type == "texture") {
+            *index = named_texture(*p, true);
+            return def;
+        }
+        return finite_float(pname, def);
+    };
+    // The octave count of a noise texture: at least 0; beyond 32 the octaves' frequencies (1.99^i)
+    // exceed float precision and their weights are negligible, so 32 are evaluated.
+    const auto octaves = [&] {
+        const int n = params.get_int("octaves", 8);
+        if (n < 0) params.find("octaves")->loc.fail(d + ": \"octaves\" must not be negative");
+        if (n > 32) {
+            warn(params.find("octaves")->loc,
+                 d + ": " + std::to_string(n) + " octaves: the first 32 are used");
+            return 32;
+        }
+        return n;
     };
 
     if (cls == "constant") {
         t.kind = scene::Texture::Kind::Constant;
-        t.value = color(params, "value", use).value_or(Rgb(1.0f));
+        t.value = grey ? Rgb(finite_float("value", 1.0f)) : color(params, "value", use).value_or(Rgb(1.0f));
     } else if (cls == "scale") {
         t.kind = scene::Texture::Kind::Scale;
-        t.tex1 = tex_arg("tex", Rgb(1.0f));
+        t.tex1 = tex_arg("tex", 1.0f);
         int idx = -1;
         t.value = color_or_texture(params, "scale", Rgb(1.0f), &idx, use, d);
         t.tex2 = idx;
-    } else if (cls == "mix" || cls == "directionmix") {
-        warn(loc, d + " is not supported; its first texture (\"tex1\") is used");
-        const int first = tex_arg("tex1", Rgb(0.0f));
-        params.mark_all_used();
-        names[name] = first;
-        return;
+    } else if (cls == "mix") {
+        t.kind = scene::Texture::Kind::Mix;
+        t.tex1 = tex_arg("tex1", 0.0f);
+        t.tex2 = tex_arg("tex2", 1.0f);
+        t.amount_value = float_arg("amount", 0.5f, &t.amount);
+    } else if (cls == "directionmix") {
+        t.kind = scene::Texture::Kind::DirectionMix;
+        t.tex1 = tex_arg("tex1", 0.0f);
+        t.tex2 = tex_arg("tex2", 1.0f);
+        const Vec3 dir = gs_.ctm.vector(finite_vector("dir", Vec3(0, 1, 0)));
+        if (!(length(dir) > 0) || !is_finite(dir))
+            (params.find("dir") ? params.find("dir")->loc : loc).fail(d + ": \"dir\" must not be zero");
+        t.direction = normalize(dir);
+    } else if (cls == "bilerp") {
+        t.kind = scene::Texture::Kind::Bilerp;
+        mapping_2d();
+        const auto corner = [&](const std::string& pname, float def) {
+            return grey ? Rgb(finite_float(pname, def)) : color(params, pname, use).value_or(Rgb(def));
+        };
+        t.corners = {corner("v00", 0.0f), corner("v01", 1.0f), corner("v10", 0.0f), corner("v11", 1.0f)};
     } else if (cls == "checkerboard") {
         t.kind = scene::Texture::Kind::Checkerboard;
-        if (params.get_int("dimension", 2) != 2)
-            warn(params.find("dimension")->loc, d + ": only 2D checkerboards are supported");
-        uv_mapping();
-        t.tex1 = tex_arg("tex1", Rgb(1.0f));
-        t.tex2 = tex_arg("tex2", Rgb(0.0f));
+        t.dimension = params.get_int("dimension", 2);
+        if (t.dimension != 2 && t.dimension != 3)
+            params.find("dimension")->loc.fail(d + ": \"dimension\" must be 2 or 3");
+        if (t.dimension == 2) mapping_2d();
+        t.tex1 = tex_arg("tex1", 1.0f);
+        t.tex2 = tex_arg("tex2", 0.0f);
+    } else if (cls == "dots") {
+        t.kind = scene::Texture::Kind::Dots;
+        mapping_2d();
+        // pbrt-v4 (as pbrt-v3) hands "inside" to its DotsTexture's outside-the-dot slot and
+        // "outside" to the inside one: the dots show "outside" (default 0) on "inside" (default 1).
+        t.tex1 = tex_arg("outside", 0.0f);
+        t.tex2 = tex_arg("inside", 1.0f);
+    } else if (cls == "fbm" || cls == "wrinkled") {
+        t.kind = cls == "fbm" ? scene::Texture::Kind::FBm : scene::Texture::Kind::Wrinkled;
+        t.octaves = octaves();
+        t.roughness = finite_float("roughness", 0.5f);
+    } else if (cls == "windy") {
+        t.kind = scene::Texture::Kind::Windy;
+    } else if (cls == "marble") {
+        if (grey) loc.fail(d + ": \"marble\" is a spectrum texture (pbrt-v4 has no float marble)");
+        t.kind = scene::Texture::Kind::Marble;
+        t.octaves = octaves();
+        t.roughness = finite_float("roughness", 0.5f);
+        t.marble_scale = finite_float("scale", 1.0f);
+        t.variation = finite_float("variation", 0.2f);
     } else if (cls == "imagemap") {
         t.kind = scene::Texture::Kind::Image;
-        uv_mapping();
+        mapping_2d();
         const Param* fp = params.find("filename");
         if (!fp) loc.fail(d + ": missing \"string filename\"");
         const std::string filename = params.get_string("filename", "");
@@ -249,11 +345,17 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
         t.image = std::move(ti);
         t.filename = path;
         t.invert_v = false;  // pbrt looks images up at (s, 1 - t), i.e. v = 0 is the bottom row: our default
-    } else {
-        warn(loc, d + ": texture class \"" + cls + "\" is not supported; a constant 0.5 is used");
+    } else if (cls == "ptex") {
+        // Ptex needs Disney's Ptex library, which Debian does not package.
+        warn(loc, d + ": ptex textures are not supported (no Ptex library); a constant 0.5 is used");
         params.mark_all_used();
         t.kind = scene::Texture::Kind::Constant;
         t.value = Rgb(0.5f);
+    } else {
+        loc.fail(
+            d + ": unknown texture class \"" + cls +
+            "\" (constant, scale, mix, directionmix, bilerp, imagemap, checkerboard, dots, fbm, wrinkled, "
+            "windy, marble or ptex)");
     }
     done(params, d);
     scene_.textures.push_back(std::move(t));
