@@ -333,7 +333,8 @@ Stack make_stack(const LayeredParams& p, bool coat_smooth, bool base_smooth,
 
 }  // namespace
 
-Spectrum LayeredBxdf::f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode) const {
+Spectrum LayeredBxdf::f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode,
+                        LayeredPart part) const {
     // Two-sided: always enter through the coat. The bases are opaque, so only reflection remains,
     // and the exit is the coat (exit depth = thickness).
     if (wo.z < 0) {
@@ -353,7 +354,8 @@ Spectrum LayeredBxdf::f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMo
     const PhaseFunction phase{p_.g};
 
     // The coat's own reflection.
-    Spectrum f(float(p_.n_samples) * coat.f(wo, wi, mode));
+    if (part == LayeredPart::Coat) return Spectrum(coat.f(wo, wi, mode));
+    Spectrum f(part == LayeredPart::All ? float(p_.n_samples) * coat.f(wo, wi, mode) : 0.0f);
     Sampler rng(p_.seed, hash_floats({wo.x, wo.y, wo.z}), hash_floats({wi.x, wi.y, wi.z}), kEvalStream);
     for (int s = 0; s < p_.n_samples; ++s) {
         // Enter through the coat at wo; the exit's virtual light comes through the coat at wi.
@@ -449,7 +451,7 @@ Spectrum LayeredBxdf::f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMo
 }
 
 std::optional<LayeredSample> LayeredBxdf::sample(Vec3 wo, float uc, Vec2 u, const Wavelengths& lambda,
-                                                 TransportMode mode) const {
+                                                 TransportMode mode, LayeredPart part) const {
     bool flip = false;
     if (wo.z < 0) {
         wo = -wo;
@@ -470,10 +472,15 @@ std::optional<LayeredSample> LayeredBxdf::sample(Vec3 wo, float uc, Vec2 u, cons
     };
 
     // The entrance: the coat reflects (done) or transmits into the slab.
-    const auto bs = coat.sample(wo, uc, u, mode, kAllParts);
+    const unsigned entrance =
+        part == LayeredPart::All ? kAllParts : (part == LayeredPart::Coat ? kReflectPart : kTransmitPart);
+    const auto bs = coat.sample(wo, uc, u, mode, entrance);
     if (!usable(bs)) return std::nullopt;
-    if (bs->reflection)
-        return finish(bs->wi, bs->f, bs->pdf, kReflection | (bs->specular ? kSpecular : kGlossy));
+    if (bs->reflection) {
+        LayeredSample s = finish(bs->wi, bs->f, bs->pdf, kReflection | (bs->specular ? kSpecular : kGlossy));
+        s.pdf_is_proportional = part != LayeredPart::Coat;
+        return s;
+    }
 
     Vec3 w = bs->wi;
     bool specular_path = bs->specular;
@@ -536,7 +543,7 @@ std::optional<LayeredSample> LayeredBxdf::sample(Vec3 wo, float uc, Vec2 u, cons
     return std::nullopt;
 }
 
-float LayeredBxdf::pdf(Vec3 wo, Vec3 wi) const {
+float LayeredBxdf::pdf(Vec3 wo, Vec3 wi, LayeredPart part) const {
     if (wo.z < 0) {
         wo = -wo;
         wi = -wi;
@@ -544,12 +551,13 @@ float LayeredBxdf::pdf(Vec3 wo, Vec3 wi) const {
     const Stack st = make_stack(p_, coat_smooth_, base_smooth_, coat_dist_, base_dist_, nullptr);
     const Coat& coat = st.coat;
     const Base& base = st.base;
+    if (part == LayeredPart::Coat) return wo.z > 0 && wi.z > 0 ? coat.pdf(wo, wi, kReflectPart) : 0.0f;
     Sampler rng(p_.seed, hash_floats({wi.x, wi.y, wi.z}), hash_floats({wo.x, wo.y, wo.z}), kPdfStream);
     float pdf_sum = 0;
     // Only reflection has density (the bases are opaque): the transmission-transmission term of
     // pbrt-v4's estimate is always 0 here.
     if (wo.z > 0 && wi.z > 0) {
-        pdf_sum += float(p_.n_samples) * coat.pdf(wo, wi, kReflectPart);
+        if (part == LayeredPart::All) pdf_sum += float(p_.n_samples) * coat.pdf(wo, wi, kReflectPart);
         for (int s = 0; s < p_.n_samples; ++s) {
             // The transmission-reflection-transmission term (PBR 4th ed., eq. 14.38 and its MIS).
             float uc = rng.next();
@@ -577,6 +585,26 @@ float LayeredBxdf::pdf(Vec3 wo, Vec3 wi) const {
     }
     // pbrt-v4: Lerp(0.9, 1 / (4 pi), estimate).
     return 0.1f * warp::uniform_sphere_pdf() + 0.9f * pdf_sum / float(p_.n_samples);
+}
+
+float LayeredBxdf::coat_albedo(float cos_o) const { return fresnel_dielectric(std::fabs(cos_o), p_.eta); }
+
+float LayeredBxdf::walk_albedo(float cos_o, float base_albedo, float fi) const {
+    const float a = std::clamp(base_albedo, 0.0f, 1.0f);
+    return (1 - coat_albedo(cos_o)) * a * (1 - fi) / (1 - a * fi);
+}
+
+float LayeredBxdf::internal_reflectance(float eta) {
+    // Midpoint rule in mu = cos theta over 2 mu F(mu, 1 / eta) (error ~1e-4 with the kink at the
+    // critical angle).
+    if (eta == 0) eta = 1;
+    const int n = 256;
+    float acc = 0;
+    for (int i = 0; i < n; ++i) {
+        const float mu = (float(i) + 0.5f) / float(n);
+        acc += fresnel_dielectric(mu, 1 / eta) * 2 * mu;
+    }
+    return acc / float(n);
 }
 
 }  // namespace phos::shading

@@ -97,25 +97,52 @@ struct LayeredSample {
     float pdf = 0;
     uint32_t flags = 0;  // LobeFlags: kReflection, kSpecular or kGlossy
     Spectrum weight;
-    // Always true, as pbrt-v4 marks every layered sample (the coat's own reflection included, whose
-    // pdf leaves out the walks): callers use f() and pdf() for MIS.
+    // True (as pbrt-v4 marks every layered sample, the coat's own reflection included, whose pdf
+    // leaves out the walks) except for sample(Coat): callers use f() and pdf() for MIS.
     bool pdf_is_proportional = true;
     bool is_specular() const { return flags & kSpecular; }
 };
+
+// The two parts of a layered BSDF, for callers that split a BSDF into what paths follow and what
+// photon estimates read (bsdf.h's split_lobes): the coat's own reflection (a delta when the coat is
+// smooth) and the light that enters the slab (the walks: diffuse or glossy). All = both, as
+// pbrt-v4 samples and evaluates them.
+enum class LayeredPart { All, Coat, Walk };
 
 class LayeredBxdf {
 public:
     LayeredBxdf() = default;
     explicit LayeredBxdf(const LayeredParams& params);
 
-    // The estimate of f(wo, wi) at `lambda` (spectral; see the conventions above).
-    Spectrum f(Vec3 wo, Vec3 wi, const Wavelengths& lambda,
-               TransportMode mode = TransportMode::Radiance) const;
-    // pbrt-v4's density estimate, mixed with the uniform sphere density (0.9 / 0.1).
-    float pdf(Vec3 wo, Vec3 wi) const;
-    // One walk from wo; nullopt when it is absorbed or terminated.
+    // The estimate of f(wo, wi) at `lambda` (spectral; see the conventions above). Coat: the coat's
+    // reflection alone (exact; 0 when smooth); Walk: the walks alone; with the same inputs
+    // f(All) = f(Coat) + f(Walk).
+    Spectrum f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode = TransportMode::Radiance,
+               LayeredPart part = LayeredPart::All) const;
+    // All: pbrt-v4's density estimate, mixed with the uniform sphere density (0.9 / 0.1). Coat:
+    // the exact density of sample(Coat) (0 when smooth). Walk: pbrt-v4's estimate without the coat's
+    // reflection term, mixed with the uniform density as All is.
+    float pdf(Vec3 wo, Vec3 wi, LayeredPart part = LayeredPart::All) const;
+    // All: one walk from wo as pbrt-v4's (the coat reflects with its Fresnel probability, else the
+    // walk). Coat: the coat's reflection alone (weight = its albedo at wo; the pdf is exact, not
+    // proportional). Walk: entry forced through the coat (the weight carries its transmittance),
+    // then the walk. nullopt when absorbed or terminated. So weight(All) has the expectation of
+    // weight(Coat) + weight(Walk).
     std::optional<LayeredSample> sample(Vec3 wo, float uc, Vec2 u, const Wavelengths& lambda,
-                                        TransportMode mode = TransportMode::Radiance) const;
+                                        TransportMode mode = TransportMode::Radiance,
+                                        LayeredPart part = LayeredPart::All) const;
+
+    // Albedo estimates for choosing between the parts (Russian roulette, lobe selection): the
+    // coat's Fresnel reflectance at wo (exact for a smooth coat, the rough coat's roughly), and the
+    // walk's albedo for a thin clear slab over a base of albedo `base_albedo`:
+    // (1 - F(wo)) a (1 - Fi) / (1 - a Fi), Fi = internal_reflectance(eta) (exact for a smooth coat
+    // over a Lambertian base; an estimate otherwise).
+    float coat_albedo(float cos_o) const;
+    float walk_albedo(float cos_o, float base_albedo, float fi) const;
+    // The cosine-weighted hemispherical reflectance of a smooth interface of relative index eta
+    // seen from inside (the fraction of diffuse light it reflects back), by quadrature: compute it
+    // once per material.
+    static float internal_reflectance(float eta);
 
     uint32_t flags() const { return flags_; }
     const LayeredParams& params() const { return p_; }

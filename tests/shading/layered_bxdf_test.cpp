@@ -203,21 +203,27 @@ TEST(LayeredBxdf, EstimateIsReciprocalInExpectation) {
     const std::pair<Vec3, Vec3> pairs[] = {{sph(20, 0), sph(60, 150)}, {sph(70, 10), sph(35, 250)}};
     for (size_t i = 0; i < cases.size(); ++i)
         for (const auto& [a, c] : pairs) {
-            double fab = 0, fba = 0, var = 0;
+            double fab = 0, fba = 0, var = 0, fimp = 0, var_imp = 0;
             const int n = 4000;
             for (int k = 0; k < n; ++k) {
                 LayeredParams p = cases[i];
                 p.seed = uint64_t(k);
                 const LayeredBxdf b(p);
                 const double x = b.f(a, c, lambda())[0], y = b.f(c, a, lambda())[0];
+                // Importance transport is the adjoint: f_importance(c, a) = f_radiance(a, c).
+                const double z = b.f(c, a, lambda(), TransportMode::Importance)[0];
                 fab += x;
                 fba += y;
+                fimp += z;
                 var += (x - y) * (x - y);
+                var_imp += (x - z) * (x - z);
             }
             fab /= n;
             fba /= n;
-            const double se = std::sqrt(var / n / n);
+            fimp /= n;
+            const double se = std::sqrt(var / n / n), se_imp = std::sqrt(var_imp / n / n);
             EXPECT_NEAR(fab, fba, 4 * se + 1e-3 * fab) << "case " << i << ": " << fab << " vs " << fba;
+            EXPECT_NEAR(fab, fimp, 4 * se_imp + 1e-3 * fab) << "case " << i << ": " << fab << " vs " << fimp;
         }
 }
 
@@ -440,6 +446,7 @@ TEST(LayeredBxdf, SampledDirectionsFollowPdfWhereTheEstimateIsExact) {
     const auto expected = h.expected([&](Vec3 w) { return (double(b.pdf(wo, w)) - 0.1 / (4 * M_PI)) / 0.9; });
     const auto r = test::chi_square(h.counts, expected);
     EXPECT_TRUE(r.passed) << r.detail;
+    std::printf("layered, no interface, sample against pdf: %s\n", r.detail.c_str());
 }
 
 TEST(LayeredBxdf, PdfEstimateApproximatesSampledDensity) {
@@ -495,6 +502,64 @@ TEST(LayeredBxdf, PdfEstimateApproximatesSampledDensity) {
         tv *= 0.5;
         std::printf("layered case %zu: total variation between pdf() and sample()'s density %.3f\n", c, tv);
         EXPECT_LT(tv, 0.2) << "case " << c;
+    }
+}
+
+TEST(LayeredBxdf, PartsSumToTheWhole) {
+    // f(All) = f(Coat) + f(Walk) for the same inputs; the sampled albedos add up; sample(Coat) is
+    // exactly distributed as pdf(Coat) (chi-square); the albedo estimates are exact for a thin,
+    // smooth coat over a Lambertian base.
+    const float fi = LayeredBxdf::internal_reflectance(1.5f);
+    EXPECT_NEAR(fi, internal_diffuse_fresnel(1.5f), 2e-4);
+    EXPECT_NEAR(fi, 0.596, 2e-3);  // the classic value for n = 1.5
+    for (float alpha : {0.0f, 0.25f}) {
+        LayeredParams p = coated_diffuse(1.5f, alpha, 0.7f, 1e-6f);
+        p.max_depth = 100;
+        const LayeredBxdf b(p);
+        for (const auto& [wo, wi] :
+             {std::pair{sph(20, 0), sph(25, 180)}, std::pair{sph(60, 30), sph(10, 100)}}) {
+            const float all = b.f(wo, wi, lambda())[0];
+            const float parts = b.f(wo, wi, lambda(), TransportMode::Radiance, LayeredPart::Coat)[0] +
+                                b.f(wo, wi, lambda(), TransportMode::Radiance, LayeredPart::Walk)[0];
+            EXPECT_NEAR(all, parts, 1e-5f * all);
+        }
+        const Vec3 wo = sph(35, 0);
+        double sums[3] = {0, 0, 0};
+        const LayeredPart kinds[3] = {LayeredPart::All, LayeredPart::Coat, LayeredPart::Walk};
+        const int n = 40000;
+        for (int k = 0; k < 3; ++k) {
+            Sampler s(21, uint64_t(k));
+            for (int i = 0; i < n; ++i) {
+                const auto smp =
+                    b.sample(wo, s.next(), s.next2(), lambda(), TransportMode::Radiance, kinds[k]);
+                if (smp) sums[k] += smp->weight[0] / n;
+            }
+        }
+        EXPECT_NEAR(sums[0], sums[1] + sums[2], 1e-2) << alpha;
+        if (alpha == 0) {
+            EXPECT_NEAR(sums[1], b.coat_albedo(wo.z), 1e-5);
+            EXPECT_NEAR(sums[2], b.walk_albedo(wo.z, 0.7f, fi), 5e-3);
+            continue;
+        }
+        // The rough coat's reflection: sample(Coat) against pdf(Coat).
+        test::DirectionHistogram h(12, 24, M_PI / 2);
+        Sampler s(23, 24);
+        for (int i = 0; i < 200000; ++i) {
+            const auto smp =
+                b.sample(wo, s.next(), s.next2(), lambda(), TransportMode::Radiance, LayeredPart::Coat);
+            if (!smp) {
+                h.add_residual();
+                continue;
+            }
+            EXPECT_FALSE(smp->pdf_is_proportional);
+            EXPECT_NEAR(smp->pdf, b.pdf(wo, smp->wi, LayeredPart::Coat), 1e-3f * smp->pdf);
+            h.add(smp->wi);
+        }
+        h.total = 200000;
+        const auto r =
+            test::chi_square(h.counts, h.expected([&](Vec3 w) { return b.pdf(wo, w, LayeredPart::Coat); }));
+        EXPECT_TRUE(r.passed) << r.detail;
+        std::printf("layered rough coat's reflection, sample against pdf: %s\n", r.detail.c_str());
     }
 }
 
