@@ -479,6 +479,7 @@ std::optional<LayeredSample> LayeredBxdf::sample(Vec3 wo, float uc, Vec2 u, cons
     if (bs->reflection) {
         LayeredSample s = finish(bs->wi, bs->f, bs->pdf, kReflection | (bs->specular ? kSpecular : kGlossy));
         s.pdf_is_proportional = part != LayeredPart::Coat;
+        s.part = LayeredPart::Coat;
         return s;
     }
 

@@ -90,6 +90,12 @@ struct LayeredParams {
     uint64_t seed = 0;                  // pbrt-v4's Options seed
 };
 
+// The two parts of a layered BSDF, for callers that split a BSDF into what paths follow and what
+// photon estimates read (bsdf.h's split_lobes): the coat's own reflection (a delta when the coat is
+// smooth) and the light that enters the slab (the walks: diffuse or glossy). All = both, as
+// pbrt-v4 samples and evaluates them.
+enum class LayeredPart { All, Coat, Walk };
+
 // sample()'s result. weight = f |cos(wi)| / pdf.
 struct LayeredSample {
     Vec3 wi;
@@ -100,14 +106,10 @@ struct LayeredSample {
     // True (as pbrt-v4 marks every layered sample, the coat's own reflection included, whose pdf
     // leaves out the walks) except for sample(Coat): callers use f() and pdf() for MIS.
     bool pdf_is_proportional = true;
+    // Which part produced it: Coat (the coat's reflection at the entrance) or Walk.
+    LayeredPart part = LayeredPart::Walk;
     bool is_specular() const { return flags & kSpecular; }
 };
-
-// The two parts of a layered BSDF, for callers that split a BSDF into what paths follow and what
-// photon estimates read (bsdf.h's split_lobes): the coat's own reflection (a delta when the coat is
-// smooth) and the light that enters the slab (the walks: diffuse or glossy). All = both, as
-// pbrt-v4 samples and evaluates them.
-enum class LayeredPart { All, Coat, Walk };
 
 class LayeredBxdf {
 public:
@@ -145,6 +147,14 @@ public:
     static float internal_reflectance(float eta);
 
     uint32_t flags() const { return flags_; }
+    // The kind of each part (a LobeFlags bit): the coat's reflection is kSpecular when the coat is
+    // smooth, else kGlossy; the walk is kDiffuse over a diffuse base or through a medium, kSpecular
+    // when every event is a delta (smooth coat, smooth conductor, no medium), else kGlossy.
+    uint32_t coat_kind() const { return coat_smooth_ ? kSpecular : kGlossy; }
+    uint32_t walk_kind() const {
+        if (p_.base == LayeredParams::Base::Diffuse || medium_) return kDiffuse;
+        return coat_smooth_ && base_smooth_ ? kSpecular : kGlossy;
+    }
     const LayeredParams& params() const { return p_; }
     // A LayeredBxdf refers to measured eta/k spectra by pointer; a copy made as bytes in another
     // process points at them again through this.

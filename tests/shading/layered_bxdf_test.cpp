@@ -552,6 +552,7 @@ TEST(LayeredBxdf, PartsSumToTheWhole) {
                 continue;
             }
             EXPECT_FALSE(smp->pdf_is_proportional);
+            EXPECT_EQ(smp->part, LayeredPart::Coat);
             EXPECT_NEAR(smp->pdf, b.pdf(wo, smp->wi, LayeredPart::Coat), 1e-3f * smp->pdf);
             h.add(smp->wi);
         }
@@ -571,6 +572,9 @@ TEST(LayeredBxdf, FlagsAsPbrt) {
     cond.conductor_from_reflectance = true;
     cond.reflectance = grey(0.9f);
     EXPECT_EQ(LayeredBxdf(cond).flags(), kReflection | kSpecular);  // smooth over smooth: a delta
+    EXPECT_EQ(LayeredBxdf(cond).walk_kind(), kSpecular);
+    EXPECT_EQ(LayeredBxdf(coated_diffuse(1.5f, 0.2f, 0.5f, 0.01f)).coat_kind(), kGlossy);
+    EXPECT_EQ(LayeredBxdf(coated_diffuse(1.5f, 0.2f, 0.5f, 0.01f)).walk_kind(), kDiffuse);
     const LayeredBxdf mirror(cond);
     Sampler s(1, 2);
     for (int i = 0; i < 100; ++i) {
