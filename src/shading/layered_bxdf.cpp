@@ -13,10 +13,23 @@
 
 #include "core/rng.h"
 #include "core/warp.h"
+#include "shading/bsdf.h"
 #include "shading/fresnel.h"
 #include "shading/phase.h"
 
 namespace phos::shading {
+
+static_assert(TransportMode{} == TransportMode::Radiance, "layered_bxdf.h's default transport mode");
+
+bool LayeredSample::is_specular() const { return flags & kSpecular; }
+
+uint32_t LayeredBxdf::coat_kind() const { return coat_smooth_ ? kSpecular : kGlossy; }
+
+uint32_t LayeredBxdf::walk_kind() const {
+    if (p_.base == LayeredParams::Base::Diffuse || medium_) return kDiffuse;
+    return coat_smooth_ && base_smooth_ ? kSpecular : kGlossy;
+}
+
 namespace {
 
 // Which of an interface's branches a sample or density may use (pbrt's BxDFReflTransFlags).

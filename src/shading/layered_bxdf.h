@@ -46,13 +46,16 @@
 #include <optional>
 
 #include "core/vec.h"
-#include "shading/bsdf.h"
 #include "shading/microfacet.h"
 #include "spectrum/distribution.h"
 #include "spectrum/rgb_spectrum.h"
 #include "spectrum/sampled_spectrum.h"
 
 namespace phos::shading {
+
+// bsdf.h's transport mode, declared here without including bsdf.h (so that a Bsdf can hold a
+// LayeredBxdf); Radiance, its first value, is the default below. Flags are bsdf.h's LobeFlags.
+enum class TransportMode;
 
 // A spectral parameter: an RGB value as a spectrum (rgb_spectrum.h), or a measured distribution
 // (a named metal's eta or k), which the caller keeps alive (the material owns it).
@@ -108,7 +111,7 @@ struct LayeredSample {
     bool pdf_is_proportional = true;
     // Which part produced it: Coat (the coat's reflection at the entrance) or Walk.
     LayeredPart part = LayeredPart::Walk;
-    bool is_specular() const { return flags & kSpecular; }
+    bool is_specular() const;
 };
 
 class LayeredBxdf {
@@ -119,7 +122,7 @@ public:
     // The estimate of f(wo, wi) at `lambda` (spectral; see the conventions above). Coat: the coat's
     // reflection alone (exact; 0 when smooth); Walk: the walks alone; with the same inputs
     // f(All) = f(Coat) + f(Walk).
-    Spectrum f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode = TransportMode::Radiance,
+    Spectrum f(Vec3 wo, Vec3 wi, const Wavelengths& lambda, TransportMode mode = TransportMode{},
                LayeredPart part = LayeredPart::All) const;
     // All: pbrt-v4's density estimate, mixed with the uniform sphere density (0.9 / 0.1). Coat:
     // the exact density of sample(Coat) (0 when smooth). Walk: pbrt-v4's estimate without the coat's
@@ -131,7 +134,7 @@ public:
     // then the walk. nullopt when absorbed or terminated. So weight(All) has the expectation of
     // weight(Coat) + weight(Walk).
     std::optional<LayeredSample> sample(Vec3 wo, float uc, Vec2 u, const Wavelengths& lambda,
-                                        TransportMode mode = TransportMode::Radiance,
+                                        TransportMode mode = TransportMode{},
                                         LayeredPart part = LayeredPart::All) const;
 
     // Albedo estimates for choosing between the parts (Russian roulette, lobe selection): the
@@ -150,11 +153,8 @@ public:
     // The kind of each part (a LobeFlags bit): the coat's reflection is kSpecular when the coat is
     // smooth, else kGlossy; the walk is kDiffuse over a diffuse base or through a medium, kSpecular
     // when every event is a delta (smooth coat, smooth conductor, no medium), else kGlossy.
-    uint32_t coat_kind() const { return coat_smooth_ ? kSpecular : kGlossy; }
-    uint32_t walk_kind() const {
-        if (p_.base == LayeredParams::Base::Diffuse || medium_) return kDiffuse;
-        return coat_smooth_ && base_smooth_ ? kSpecular : kGlossy;
-    }
+    uint32_t coat_kind() const;
+    uint32_t walk_kind() const;
     const LayeredParams& params() const { return p_; }
     // A LayeredBxdf refers to measured eta/k spectra by pointer; a copy made as bytes in another
     // process points at them again through this.

@@ -15,6 +15,7 @@
 
 #include "core/rng.h"
 #include "core/warp.h"
+#include "shading/bsdf.h"
 #include "shading/dielectric.h"
 #include "shading/fresnel.h"
 #include "shading/phase.h"
