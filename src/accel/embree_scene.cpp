@@ -22,6 +22,7 @@
 #include "core/frame.h"
 #include "core/log.h"
 #include "core/rng.h"
+#include "scene/material_mix.h"
 
 namespace phos::accel {
 
@@ -633,7 +634,7 @@ struct EmbreeScene::Impl {
 };
 
 EmbreeScene::EmbreeScene(const scene::Scene& scene, const char* device_config)
-    : scene_(scene), impl_(std::make_unique<Impl>()) {
+    : scene_(scene), mixes_(scene::has_mix_materials(scene)), impl_(std::make_unique<Impl>()) {
     Impl& im = *impl_;
     im.device = rtcNewDevice(device_config);
     if (!im.device)
@@ -1075,6 +1076,7 @@ void EmbreeScene::finish_hit(const RawHit& raw, const detail::CanonicalHit& cano
     hit.uv = L.uv;
     hit.dpdu = L.dpdu.to_float();
     record_shape(*shape, shape_index);
+    if (mixes_) hit.material = scene::resolve_material(scene_, hit.material, hit.p, hit.uv);
     // Also cover the rounding of p itself to float.
     hit.error = float(L.error + 2 * kUlp * max_abs(L.p)) * 1.0001f;
 }

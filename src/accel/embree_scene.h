@@ -45,6 +45,8 @@ public:
     // device configuration (rtcNewDevice; null: its defaults, the best kernels for this CPU); tests
     // pass e.g. "isa=avx2" to run the kernels other CPUs get.
     explicit EmbreeScene(const scene::Scene& scene, const char* device_config = nullptr);
+    // A temporary scene would be gone before the first ray: refused at compile time.
+    explicit EmbreeScene(scene::Scene&& scene, const char* device_config = nullptr) = delete;
     ~EmbreeScene();
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
@@ -77,6 +79,7 @@ private:
     // The SurfaceHit of an Embree hit (exact hit point, normals, tangent, error bound).
     void finish_hit(const RawHit& raw, const detail::CanonicalHit& canonical, SurfaceHit& hit) const;
     const scene::Scene& scene_;
+    bool mixes_ = false;  // the scene has mix materials: hits resolve them (scene/material_mix.h)
     std::unique_ptr<Impl> impl_;
 };
 

@@ -113,10 +113,8 @@ bool delta_light(const scene::Light& l) {
 // --sharp-glossy.
 bool has_delta_surface(const scene::Scene& scene, bool sharp_glossy = false) {
     auto delta = [&](const scene::Shape& s) {
-        if (s.material < 0 || size_t(s.material) >= scene.materials.size()) return false;
-        const scene::Material& m = scene.materials[size_t(s.material)];
-        return sharp_glossy ? photon::is_caustic_caster(m, render::kDefaultSharpGlossy)
-                            : photon::has_delta_lobe(m);
+        return sharp_glossy ? photon::is_caustic_caster(scene, s.material, render::kDefaultSharpGlossy)
+                            : photon::has_delta_lobe(scene, s.material);
     };
     for (const scene::Shape& s : scene.shapes)
         if (delta(s)) return true;

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shading/bsdf.h"
+
 namespace phos::photon {
 namespace {
 
@@ -88,19 +90,31 @@ bool same(Vec3 a, Vec3 b, float tol) { return length(a - b) <= tol; }
 
 }  // namespace
 
+// Both ask the material's BSDF (before textures: a textured roughness counts as its untextured
+// value, 0 unless given, so such a surface counts as a caster).
 bool has_delta_lobe(const scene::Material& m) {
     if (m.interface_only) return false;
-    if (!m.specular.is_black() && m.shininess >= scene::Material::kMirrorShininess) return true;
-    const bool sharp = m.thin || m.ior == 1 || m.transmission_shininess >= scene::Material::kMirrorShininess;
-    return !m.transmission.is_black() && sharp;
+    return shading::Bsdf::of_material(m, {}).flags() & shading::kSpecular;
 }
 
 bool is_caustic_caster(const scene::Material& m, float sharp_exponent) {
     if (m.interface_only) return false;
-    if (has_delta_lobe(m)) return true;
-    const bool sharp_phong = !m.specular.is_black() && m.shininess >= sharp_exponent;
-    const bool sharp_frosted = !m.transmission.is_black() && m.transmission_shininess >= sharp_exponent;
-    return sharp_phong || sharp_frosted;
+    return shading::Bsdf::of_material(m, {}).has_followed(sharp_exponent);
+}
+
+bool is_caustic_caster(const scene::Scene& scene, int material, float sharp_exponent) {
+    if (material < 0 || size_t(material) >= scene.materials.size()) return false;
+    const scene::Material& m = scene.materials[size_t(material)];
+    if (!m.is_mix()) return is_caustic_caster(m, sharp_exponent);
+    return is_caustic_caster(scene, m.mix_a, sharp_exponent) ||
+           is_caustic_caster(scene, m.mix_b, sharp_exponent);
+}
+
+bool has_delta_lobe(const scene::Scene& scene, int material) {
+    if (material < 0 || size_t(material) >= scene.materials.size()) return false;
+    const scene::Material& m = scene.materials[size_t(material)];
+    if (!m.is_mix()) return has_delta_lobe(m);
+    return has_delta_lobe(scene, m.mix_a) || has_delta_lobe(scene, m.mix_b);
 }
 
 bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
@@ -109,10 +123,7 @@ bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
 }
 
 std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, float sharp_exponent) {
-    auto caster = [&](const scene::Shape& s) {
-        return s.material >= 0 && size_t(s.material) < scene.materials.size() &&
-               is_caustic_caster(scene.materials[size_t(s.material)], sharp_exponent);
-    };
+    auto caster = [&](const scene::Shape& s) { return is_caustic_caster(scene, s.material, sharp_exponent); };
     std::vector<BoundingSphere> out;
     auto add = [&](const BoundingSphere& b) {
         if (b.radius >= 0) out.push_back(b);

@@ -32,6 +32,23 @@ struct Material {
     // Measured η and k over wavelength (pbrt's named metals, spectra): used instead of the RGB values
     // above (which then hold their colour) when set.
     std::optional<spectrum::Distribution> conductor_eta_spectrum, conductor_k_spectrum;
+    // A conductor given by its normal-incidence reflectance r (pbrt-v4's conductor "reflectance"):
+    // `specular` (times specular_texture) is r, and the Fresnel factor is that of eta = 1,
+    // k = 2 sqrt(r) / sqrt(1 - r), which reflects r at normal incidence.
+    bool conductor_from_reflectance = false;
+    int specular_texture = -1;
+
+    // Microfacet roughness (pbrt's materials): when `microfacet` is set, the specular lobe is a
+    // Trowbridge-Reitz (GGX) microfacet reflection (times the conductor Fresnel, or `specular`)
+    // and a rough dielectric uses the same distribution, with roughness `roughness_u` along dpdu
+    // and `roughness_v` across (each a float texture when its index is >= 0), mapped to alpha by
+    // alpha = sqrt(roughness) when `remap_roughness` (pbrt-v4's RoughnessToAlpha), else alpha =
+    // roughness. Both alphas below 1e-3 make the lobe a delta (mirror / smooth glass). Without it,
+    // `shininess` and `transmission_shininess` are Phong exponents (.scn, .scene).
+    bool microfacet = false;
+    float roughness_u = 0, roughness_v = 0;
+    int roughness_u_texture = -1, roughness_v_texture = -1;
+    bool remap_roughness = true;
 
     // Dielectric boundary: Fresnel reflection + refraction scaled by `transmission`, index `ior`.
     // Sharp when transmission_shininess >= kMirrorShininess, "frosted" (rough) below.
@@ -54,6 +71,16 @@ struct Material {
 
     // pbrt "interface": the surface only bounds a medium and does not scatter light.
     bool interface_only = false;
+
+    // pbrt "mix": when mix_a >= 0 this material is, at each hit, one of materials mix_a and mix_b
+    // (indices into Scene::materials), mix_b with probability `mix_amount` (times the float
+    // texture mix_amount_texture when >= 0); the choice is a hash of the hit point, so every ray
+    // and photon meeting that point sees the same material (scene/material_mix.h). Its own lobes
+    // are unused.
+    int mix_a = -1, mix_b = -1;
+    float mix_amount = 0.5f;
+    int mix_amount_texture = -1;
+    bool is_mix() const { return mix_a >= 0; }
 
     int displacement_texture = -1;  // pbrt "displacement": float texture bump-mapping the shading normal
     std::shared_ptr<const TextureImage> normal_map;  // pbrt "normalmap": tangent-space normals (linear RGB)

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/warp.h"
+#include "shading/bump.h"
 #include "shading/dielectric.h"
 #include "shading/fresnel.h"
 #include "shading/texture_eval.h"
@@ -13,9 +14,31 @@
 namespace phos::shading {
 namespace {
 
-enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kNumLobes };
+// kMicrofacet is the Trowbridge-Reitz reflection lobe of pbrt's materials (rough conductors,
+// Fresnel-weighted microfacet reflection); a material has at most one of kPhong, kMirror and it.
+enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kMicrofacet, kNumLobes };
 // The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to.
-constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse};
+constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse, kGlossy};
+// The lobes whose sharpness is shininess_ (a Phong exponent or a microfacet lobe's equivalent).
+constexpr uint32_t kGlossyReflection = (1u << kPhong) | (1u << kMicrofacet);
+
+// pbrt-v4's RoughnessToAlpha: alpha = sqrt(roughness) when remapping, the roughness itself if not.
+float roughness_alpha(float roughness, bool remap) {
+    roughness = std::max(roughness, 0.0f);
+    return remap ? std::sqrt(roughness) : roughness;
+}
+// A microfacet lobe is a delta below this roughness (pbrt-v4's EffectivelySmooth).
+constexpr float kSmoothAlpha = 1e-3f;
+// The Phong exponent of the same sharpness as roughness alpha (Walter et al. 2007, sec. 5.2:
+// alpha = sqrt(2 / (n + 2))), the inverse of MicrofacetDistribution::alpha_from_phong.
+float phong_of_alpha(float alpha) { return std::max(2 / (alpha * alpha) - 2, 0.0f); }
+
+// pbrt-v4's conductor given by a reflectance r: eta = 1 and k = 2 sqrt(r) / sqrt(1 - r), whose
+// Fresnel reflectance at normal incidence is r (r kept below 1 so that k stays finite).
+float k_of_reflectance(float r) {
+    r = std::clamp(r, 0.0f, 0.9999f);
+    return 2 * std::sqrt(r) / std::sqrt(1 - r);
+}
 
 // +1 when w is on the side ng points to, -1 on the other, 0 exactly in the tangent plane.
 float side_of(Vec3 w, Vec3 ng) {
@@ -35,11 +58,15 @@ void frame_at(const accel::SurfaceHit& hit, Frame& frame, Vec3& ng) {
     }
 }
 
+// Where a material's textures are looked up at `hit` (pbrt-v4's TextureEvalContext: the point, its
+// uv and the geometric normal).
+scene::TextureContext texture_context(const accel::SurfaceHit& hit) { return {hit.uv, hit.p, hit.ng, {}}; }
+
 // The diffuse reflectance kd of material m at `hit`, its texture applied (Bsdf::apply_textures).
 void texture_diffuse(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
                      Rgb& kd, spectrum::RgbSpectrum& kd_spectrum) {
     if (m.diffuse_texture < 0) return;
-    kd *= eval_texture(scene, m.diffuse_texture, hit.uv);
+    kd *= eval_texture(scene, m.diffuse_texture, texture_context(hit));
     kd_spectrum =
         spectrum::RgbSpectrum(kd, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
 }
@@ -88,7 +115,7 @@ float phong_cos_alpha(Vec3 wo, Vec3 wi) { return dot(wi, Vec3(-wo.x, -wo.y, wo.z
 
 Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
            const BsdfOptions& options) {
-    place(hit);
+    place(has_shading_detail(m) ? with_shading_detail(scene, m, hit) : hit);
     if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
     set_material(m, options);
     apply_textures(m, hit, scene);
@@ -102,14 +129,14 @@ Bsdf Bsdf::of_material(const scene::Material& m, const BsdfOptions& options) {
 
 Bsdf Bsdf::placed(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) const {
     Bsdf b = *this;
-    b.place(hit);
+    b.place(has_shading_detail(m) ? with_shading_detail(scene, m, hit) : hit);
     if (!m.interface_only) b.apply_textures(m, hit, scene);
     return b;
 }
 
 void Bsdf::place_lambert(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
                          LambertLobe& lobe) const {
-    frame_at(hit, lobe.frame, lobe.ng);
+    frame_at(has_shading_detail(m) ? with_shading_detail(scene, m, hit) : hit, lobe.frame, lobe.ng);
     lobe.kd = kd_;
     lobe.kd_spectrum = kd_s_;
     texture_diffuse(m, hit, scene, lobe.kd, lobe.kd_spectrum);
@@ -142,8 +169,10 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     rebind(m);
     schlick_ = options.schlick;
     microfacet_ = options.microfacet;
+    pbrt_microfacet_ = m.microfacet;
+    cond_from_refl_ = m.conductor_from_reflectance;
     // Only the frosted dielectric reads the microfacet distribution.
-    if (!kt_.is_black() && !sharp_glass_)
+    if (!kt_.is_black() && !sharp_glass_ && !pbrt_microfacet_)
         dist_ = MicrofacetDistribution(options.microfacet,
                                        MicrofacetDistribution::alpha_from_phong(t_shininess_));
 
@@ -152,14 +181,37 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     if (!kt_.is_black()) lobes_ |= 1u << kDielectric;
     if (!kdt_.is_black()) lobes_ |= 1u << kDiffTrans;
     if (lobes_ == 0) lobes_ = 1u << kLambert;  // black body: opaque, absorbs everything
+    if (pbrt_microfacet_)
+        set_microfacet_lobes(roughness_alpha(m.roughness_u, m.remap_roughness),
+                             roughness_alpha(m.roughness_v, m.remap_roughness));
 
     set_flags();
+}
+
+void Bsdf::set_microfacet_lobes(float ax, float ay) {
+    const bool smooth = std::max(ax, ay) < kSmoothAlpha;
+    if (lobes_ & ((1u << kPhong) | (1u << kMirror) | (1u << kMicrofacet))) {
+        lobes_ &= ~((1u << kPhong) | (1u << kMirror) | (1u << kMicrofacet));
+        lobes_ |= 1u << (smooth ? kMirror : kMicrofacet);
+        mirror_ = smooth;
+        if (!smooth) {
+            spec_dist_ = MicrofacetDistribution(ax, ay);
+            shininess_ = phong_of_alpha(spec_dist_.alpha());
+        }
+    }
+    if ((lobes_ & (1u << kDielectric)) && !thin_ && ior_ != 1) {
+        sharp_glass_ = smooth;
+        if (!smooth) {
+            dist_ = MicrofacetDistribution(ax, ay);
+            t_shininess_ = phong_of_alpha(dist_.alpha());
+        }
+    }
 }
 
 void Bsdf::set_flags() {
     flags_ = 0;
     if (lobes_ & (1u << kLambert)) flags_ |= kDiffuse | kReflection;
-    if (lobes_ & (1u << kPhong)) flags_ |= kGlossy | kReflection;
+    if (lobes_ & kGlossyReflection) flags_ |= kGlossy | kReflection;
     if (lobes_ & (1u << kMirror)) flags_ |= kSpecular | kReflection;
     if (lobes_ & (1u << kDielectric))
         flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
@@ -169,6 +221,13 @@ void Bsdf::set_flags() {
 Bsdf Bsdf::regularized(float max_exponent) const {
     Bsdf b = *this;
     if ((lobes_ & (1u << kPhong)) && shininess_ > max_exponent) b.shininess_ = max_exponent;
+    // A microfacet lobe sharper than that exponent: each alpha raised to the exponent's.
+    const float alpha_min = MicrofacetDistribution::alpha_from_phong(max_exponent);
+    if ((lobes_ & (1u << kMicrofacet)) && shininess_ > max_exponent) {
+        b.spec_dist_ = MicrofacetDistribution(std::max(spec_dist_.alpha_x(), alpha_min),
+                                              std::max(spec_dist_.alpha_y(), alpha_min));
+        b.shininess_ = phong_of_alpha(b.spec_dist_.alpha());
+    }
     if (lobes_ & (1u << kMirror)) {
         b.lobes_ = (b.lobes_ & ~(1u << kMirror)) | (1u << kPhong);
         b.mirror_ = false;
@@ -179,8 +238,15 @@ Bsdf Bsdf::regularized(float max_exponent) const {
     if (widenable && (sharp_glass_ || t_shininess_ > max_exponent)) {
         b.widened_glass_ = widened_glass_ || sharp_glass_;
         b.sharp_glass_ = false;
-        b.t_shininess_ = max_exponent;
-        b.dist_ = MicrofacetDistribution(microfacet_, MicrofacetDistribution::alpha_from_phong(max_exponent));
+        if (pbrt_microfacet_ && !sharp_glass_) {
+            b.dist_ = MicrofacetDistribution(std::max(dist_.alpha_x(), alpha_min),
+                                             std::max(dist_.alpha_y(), alpha_min));
+            b.t_shininess_ = phong_of_alpha(b.dist_.alpha());
+        } else {
+            b.t_shininess_ = max_exponent;
+            b.dist_ =
+                MicrofacetDistribution(pbrt_microfacet_ ? MicrofacetModel::GGX : microfacet_, alpha_min);
+        }
     }
     b.set_flags();
     return b;
@@ -202,6 +268,19 @@ Bsdf Bsdf::only(uint32_t lobe_mask) const {
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
     texture_diffuse(m, hit, scene, kd_, kd_s_);
+    if (m.specular_texture >= 0) {
+        ks_ *= eval_texture(scene, m.specular_texture, texture_context(hit));
+        ks_s_ =
+            spectrum::RgbSpectrum(ks_, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
+    }
+    if (pbrt_microfacet_ && (m.roughness_u_texture >= 0 || m.roughness_v_texture >= 0)) {
+        const auto rough = [&](int tex, float value) {
+            return tex >= 0 ? eval_texture(scene, tex, texture_context(hit)).average() : value;
+        };
+        set_microfacet_lobes(roughness_alpha(rough(m.roughness_u_texture, m.roughness_u), m.remap_roughness),
+                             roughness_alpha(rough(m.roughness_v_texture, m.roughness_v), m.remap_roughness));
+        set_flags();
+    }
 }
 
 void Bsdf::rebind(const scene::Material& m) {
@@ -213,11 +292,20 @@ void Bsdf::rebind(const scene::Material& m) {
 bool Bsdf::dispersive() const { return ior_spectrum_ != nullptr && (lobes_ & (1u << kDielectric)); }
 
 Rgb Bsdf::specular_reflectance(float cos_o) const {
+    if (cond_from_refl_)
+        return {fresnel_conductor(cos_o, 1.0f, k_of_reflectance(ks_.r)),
+                fresnel_conductor(cos_o, 1.0f, k_of_reflectance(ks_.g)),
+                fresnel_conductor(cos_o, 1.0f, k_of_reflectance(ks_.b))};
     return conductor_ ? ks_ * fresnel_conductor(cos_o, cond_eta_, cond_k_) : ks_;
 }
 
 Spectrum Bsdf::specular_reflectance(float cos_o, const Wavelengths& lambda) const {
     Spectrum r = ks_s_.sample(lambda);
+    if (cond_from_refl_) {
+        for (int i = 0; i < spectrum::kSpectrumSamples; ++i)
+            r[i] = fresnel_conductor(cos_o, 1.0f, k_of_reflectance(r[i]));
+        return r;
+    }
     if (!conductor_) return r;
     const Spectrum eta = cond_eta_spectrum_ ? cond_eta_spectrum_->sample(lambda) : cond_eta_s_.sample(lambda);
     const Spectrum k = cond_k_spectrum_ ? cond_k_spectrum_->sample(lambda) : cond_k_s_.sample(lambda);
@@ -236,6 +324,7 @@ void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) c
                 break;
             case kPhong:
             case kMirror:
+            case kMicrofacet:
                 w[i] = specular_reflectance(cos_o).average();
                 break;
             case kDielectric:
@@ -254,7 +343,7 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
     const float cos_o = std::fabs(dot(wo, frame_.n));
     if (lobes_ & (1u << kLambert)) a.diffuse += kd_;
     if (lobes_ & (1u << kDiffTrans)) a.diffuse += kdt_;
-    if (lobes_ & (1u << kPhong)) a.glossy = specular_reflectance(cos_o);
+    if (lobes_ & kGlossyReflection) a.glossy = specular_reflectance(cos_o);
     if (lobes_ & (1u << kMirror)) a.specular = specular_reflectance(cos_o);
     if (lobes_ & (1u << kDielectric)) a.transmission = kt_;
     return a;
@@ -262,7 +351,7 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
 
 uint32_t Bsdf::sharp_lobes(float sharp_exponent) const {
     uint32_t m = 0;
-    if ((lobes_ & (1u << kPhong)) && shininess_ >= sharp_exponent) m |= kGlossy;
+    if ((lobes_ & kGlossyReflection) && shininess_ >= sharp_exponent) m |= kGlossy;
     if ((lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ >= sharp_exponent) m |= kTransmission;
     return m;
 }
@@ -274,7 +363,7 @@ void Bsdf::part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estima
     if (lobes_ & (1u << kMirror)) followed |= kSpecular;
     if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
     if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) estimated |= kDiffuse;
-    if (lobes_ & (1u << kPhong)) put(kGlossy, sharp & kGlossy);
+    if (lobes_ & kGlossyReflection) put(kGlossy, sharp & kGlossy);
 }
 
 bool Bsdf::has_estimated(float sharp_exponent) const {
@@ -331,7 +420,7 @@ Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wave
         const float ca = phong_cos_alpha(wo_l, wi_l);
         if (ca > 0) {
             Spectrum spec;
-            if (conductor_) {
+            if (conductor_ || cond_from_refl_) {
                 const Vec3 h = wo_l + wi_l;
                 const float cos_h = length_squared(h) > 0 ? dot(wo_l, normalize(h)) : 1.0f;
                 spec = specular_reflectance(cos_h, lambda);
@@ -345,6 +434,16 @@ Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wave
                 f += spec * (warp::power_cosine_pdf(ca, shininess_) / wi_l.z);
             else
                 f += spec * ((shininess_ + 2) * (0.5f * kInvPi) * std::pow(ca, shininess_));
+        }
+    }
+    if (refl && has(kMicrofacet) && wo_l.z > 0) {
+        // Torrance-Sparrow with Trowbridge-Reitz D and height-correlated Smith G (Heitz 2014,
+        // eq. 99): f = F(wo.wm) D(wm) G(wo, wi) / (4 cos_o cos_i), wm the half vector.
+        const Vec3 h = wo_l + wi_l;
+        if (length_squared(h) > 0) {
+            const Vec3 wm = normalize(h);
+            f += specular_reflectance(std::fabs(dot(wo_l, wm)), lambda) *
+                 (spec_dist_.D(wm) * spec_dist_.G(wo_l, wi_l) / (4 * wi_l.z * wo_l.z));
         }
     }
     if (trans && has(kDiffTrans)) f += kdt_s_.sample(lambda) * kInvPi;
@@ -389,6 +488,15 @@ float Bsdf::pdf_local(Vec3 wo_l, Vec3 wi, float s, const float w[]) const {
     if (refl && w[kLambert] > 0) pdf += w[kLambert] * warp::cosine_hemisphere_pdf(wi_l.z);
     if (refl && w[kPhong] > 0)
         pdf += w[kPhong] * warp::power_cosine_pdf(phong_cos_alpha(wo_l, wi_l), shininess_);
+    if (refl && w[kMicrofacet] > 0 && wo_l.z > 0) {
+        // Visible-normal density of the half vector times the reflection Jacobian 1 / (4 wo.wm).
+        const Vec3 h = wo_l + wi_l;
+        if (length_squared(h) > 0) {
+            const Vec3 wm = normalize(h);
+            const float c = std::fabs(dot(wo_l, wm));
+            if (c > 0) pdf += w[kMicrofacet] * spec_dist_.pdf_wm(wo_l, wm) / (4 * c);
+        }
+    }
     if (trans && w[kDiffTrans] > 0) pdf += w[kDiffTrans] * warp::cosine_hemisphere_pdf(-wi_l.z);
     if (w[kDielectric] > 0 && !sharp_glass_) {
         const float eta = s > 0 ? ior_ : 1 / ior_;
@@ -476,6 +584,14 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
             wi_l = Frame(r).to_world(warp::power_cosine(u, shininess_));
             if (wi_l.z <= 0) return std::nullopt;  // below the surface: lost, pdf not renormalised
             bs.flags = kGlossy | kReflection | (widened_mirror_ ? kWidened : 0u);
+            break;
+        }
+        case kMicrofacet: {
+            if (!(wo_l.z > 0)) return std::nullopt;
+            const Vec3 wm = spec_dist_.sample_wm(wo_l, u);  // visible normals (Heitz 2018)
+            wi_l = wm * (2 * dot(wo_l, wm)) - wo_l;
+            if (wi_l.z <= 0) return std::nullopt;
+            bs.flags = kGlossy | kReflection;
             break;
         }
         case kMirror:

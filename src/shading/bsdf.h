@@ -1,7 +1,7 @@
 // The surface scattering model: one BSDF per hit, built from a scene::Material, made of up to five
-// lobes (Lambert, modified-Phong glossy or ideal mirror, smooth or frosted dielectric, Lambertian
-// transmission). eval/pdf cover the non-delta lobes; sample covers all of them. Directions are
-// world-space unit vectors pointing away from the surface.
+// lobes (Lambert; modified-Phong glossy, Trowbridge-Reitz microfacet reflection or ideal mirror;
+// smooth or rough dielectric; Lambertian transmission). eval/pdf cover the non-delta lobes; sample covers all
+// of them. Directions are world-space unit vectors pointing away from the surface.
 //
 // Conventions (precise):
 // - Sides. Reflection lobes (Lambert, Phong, mirror) are two-sided: they reflect on whichever side
@@ -136,10 +136,10 @@ public:
     std::optional<BsdfSample> sample(Vec3 wo, float u_lobe, Vec2 u, const Wavelengths& lambda,
                                      TransportMode mode = TransportMode::Radiance) const;
 
-    // Union of the LobeFlags of all lobes present. Lambert: kDiffuse|kReflection; Phong: kGlossy|
-    // kReflection; mirror: kSpecular|kReflection; smooth dielectric: kSpecular|kReflection|
-    // kTransmission; frosted: kGlossy|kReflection|kTransmission; Lambertian transmission:
-    // kDiffuse|kTransmission. A BsdfSample's flags name the branch taken (reflection or
+    // Union of the LobeFlags of all lobes present. Lambert: kDiffuse|kReflection; Phong and
+    // microfacet reflection: kGlossy|kReflection; mirror: kSpecular|kReflection; smooth dielectric:
+    // kSpecular|kReflection| kTransmission; frosted: kGlossy|kReflection|kTransmission; Lambertian
+    // transmission: kDiffuse|kTransmission. A BsdfSample's flags name the branch taken (reflection or
     // transmission, not both).
     uint32_t flags() const { return flags_; }
     bool has_non_specular() const { return flags_ & (kDiffuse | kGlossy); }
@@ -226,6 +226,8 @@ private:
     uint32_t flags_ = 0;
     Rgb kd_, ks_, kt_, kdt_;                            // the colours (selection, albedos)
     spectrum::RgbSpectrum kd_s_, ks_s_, kt_s_, kdt_s_;  // and their spectra
+    // Phong exponents; for microfacet lobes the exponent of the same sharpness, 2 / alpha^2 - 2 with
+    // alpha = MicrofacetDistribution::alpha() (what sharp_lobes and regularized compare).
     float shininess_ = 0, t_shininess_ = 0;
     bool mirror_ = false, sharp_glass_ = false, thin_ = false, conductor_ = false;
     bool widened_mirror_ = false, widened_glass_ = false;  // regularized(): from delta lobes
@@ -238,8 +240,11 @@ private:
     float ior_ = 1;  // the index (at the d line when dispersive)
     bool schlick_ = false;
     MicrofacetModel microfacet_ = MicrofacetModel::GGX;  // BsdfOptions::microfacet
-    uint32_t lobes_ = 0;  // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
-    MicrofacetDistribution dist_;
+    uint32_t lobes_ = 0;                // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
+    MicrofacetDistribution dist_;       // the rough dielectric's
+    MicrofacetDistribution spec_dist_;  // the microfacet reflection lobe's
+    bool pbrt_microfacet_ = false;      // Material::microfacet (roughness as alphas, not exponents)
+    bool cond_from_refl_ = false;       // Material::conductor_from_reflectance
 
     Bsdf() = default;
     // The constructor's three steps: the frame at the hit, the material's lobes, its textures.
@@ -251,7 +256,10 @@ private:
     void apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene);
     Rgb specular_reflectance(float cos_o) const;
     Spectrum specular_reflectance(float cos_o, const Wavelengths& lambda) const;
-    void selection_weights(Vec3 wo_local, uint32_t mask, float w[5]) const;
+    void selection_weights(Vec3 wo_local, uint32_t mask, float w[]) const;
+    // The specular and dielectric lobes of a microfacet material for alphas (ax, ay): delta when
+    // both are below 1e-3, else microfacet lobes of that distribution.
+    void set_microfacet_lobes(float ax, float ay);
     Spectrum eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, const Wavelengths& lambda,
                          TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;

@@ -1,6 +1,8 @@
-// Isotropic microfacet normal distributions (GGX / Trowbridge-Reitz and Beckmann) for the frosted
-// dielectric: D, Smith masking (height-correlated G), and sampling of microfacet normals with its
-// density. All vectors are in the local shading frame (z = macro normal).
+// Microfacet normal distributions: Trowbridge-Reitz (GGX), isotropic or anisotropic (roughness
+// alpha_x along the shading frame's x = dpdu, alpha_y along y), and isotropic Beckmann: D, Smith
+// masking (height-correlated G), and sampling of microfacet normals with its density. All vectors
+// are in the local shading frame (z = macro normal). Used by the frosted / rough dielectric and the
+// rough conductor (bsdf.h).
 #pragma once
 
 #include <algorithm>
@@ -16,19 +18,37 @@ class MicrofacetDistribution {
 public:
     MicrofacetDistribution() = default;
     MicrofacetDistribution(MicrofacetModel model, float alpha)
-        : model_(model), alpha_(std::max(alpha, 1e-3f)) {}
+        : model_(model), alpha_(std::max(alpha, 1e-3f)), alpha_y_(alpha_) {}
+    // Anisotropic Trowbridge-Reitz (pbrt-v4's TrowbridgeReitzDistribution; Heitz 2014, eq. 85 for
+    // D and eq. 86 for Lambda).
+    MicrofacetDistribution(float alpha_x, float alpha_y)
+        : model_(MicrofacetModel::GGX),
+          alpha_(std::max(alpha_x, 1e-3f)),
+          alpha_y_(std::max(alpha_y, 1e-3f)) {}
 
     // Roughness equivalent to a Phong exponent n (Walter et al. 2007: alpha_b = sqrt(2/(n+2)));
     // used for GGX as well, as the .scn format only gives the Phong exponent.
     static float alpha_from_phong(float n) { return std::sqrt(2 / (std::max(n, 0.0f) + 2)); }
 
     MicrofacetModel model() const { return model_; }
-    float alpha() const { return alpha_; }
+    // The roughness along x and y, and the isotropic roughness of the same lobe solid angle
+    // (sqrt(alpha_x alpha_y)): what sharpness tests compare with a Phong exponent's alpha.
+    float alpha_x() const { return alpha_; }
+    float alpha_y() const { return alpha_y_; }
+    float alpha() const { return alpha_ == alpha_y_ ? alpha_ : std::sqrt(alpha_ * alpha_y_); }
+    bool isotropic() const { return alpha_ == alpha_y_; }
 
     // Density of microfacet normals per unit projected area: integral of D(m) cos(m) dm = 1.
     float D(Vec3 m) const {
         const float c2 = m.z * m.z;
         if (c2 <= 0) return 0;
+        if (model_ == MicrofacetModel::Beckmann && c2 < 1e-8f) return 0;  // exp(-tan^2 / a^2) = 0
+        if (!isotropic() || c2 < 1e-8f) {
+            // GGX in a form without cos^4 (which underflows at grazing normals):
+            // cos^4 (1 + tan^2 (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2 = (z^2 + x^2/ax^2 + y^2/ay^2)^2.
+            const float ex = m.x / alpha_, ey = m.y / alpha_y_, q = c2 + ex * ex + ey * ey;
+            return 1 / (kPi * alpha_ * alpha_y_ * q * q);
+        }
         const float t2 = (1 - c2) / c2, a2 = alpha_ * alpha_;
         if (model_ == MicrofacetModel::Beckmann) return std::exp(-t2 / a2) / (kPi * a2 * c2 * c2);
         const float e = 1 + t2 / a2;
@@ -40,6 +60,10 @@ public:
         const float c2 = w.z * w.z;
         if (c2 >= 1) return 0;
         if (c2 <= 0) return kInf;
+        if (!isotropic()) {
+            const float at2 = (w.x * w.x * alpha_ * alpha_ + w.y * w.y * alpha_y_ * alpha_y_) / c2;
+            return 0.5f * (std::sqrt(1 + at2) - 1);
+        }
         const float tan_t = std::sqrt((1 - c2) / c2);
         if (model_ == MicrofacetModel::GGX) {
             const float at = alpha_ * tan_t;
@@ -65,7 +89,7 @@ public:
             return {r * std::cos(phi), r * std::sin(phi), cz};
         }
         // Stretch wo to the unit-roughness configuration, sample the projected hemisphere there.
-        const Vec3 wh = normalize(Vec3(alpha_ * wo.x, alpha_ * wo.y, wo.z));
+        const Vec3 wh = normalize(Vec3(alpha_ * wo.x, alpha_y_ * wo.y, wo.z));
         const Vec3 t1 = wh.z < 0.99999f ? normalize(cross(Vec3(0, 0, 1), wh)) : Vec3(1, 0, 0);
         const Vec3 t2 = cross(wh, t1);
         const float r = std::sqrt(u.x), phi = 2 * kPi * u.y;
@@ -75,7 +99,7 @@ public:
         py = (1 - s) * h + s * py;
         const float pz = std::sqrt(std::max(0.0f, 1 - px * px - py * py));
         const Vec3 nh = t1 * px + t2 * py + wh * pz;
-        return normalize(Vec3(alpha_ * nh.x, alpha_ * nh.y, std::max(1e-6f, nh.z)));
+        return normalize(Vec3(alpha_ * nh.x, alpha_y_ * nh.y, std::max(1e-6f, nh.z)));
     }
     // Density of sample_wm's result m (per solid angle of m).
     float pdf_wm(Vec3 wo, Vec3 m) const {
@@ -86,7 +110,8 @@ public:
 
 private:
     MicrofacetModel model_ = MicrofacetModel::GGX;
-    float alpha_ = 1;
+    float alpha_ = 1;    // alpha_x (the only roughness of an isotropic distribution)
+    float alpha_y_ = 1;  // alpha_y (Beckmann: always alpha_x)
 };
 
 }  // namespace phos::shading

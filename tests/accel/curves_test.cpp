@@ -109,7 +109,8 @@ TEST(Curves, CylinderCurveMatchesTheAnalyticCylinder) {
 TEST(Curves, RadiusVariesAlongTheCurve) {
     Shape s = straight_curve(CurveSet::Type::Cylinder, 0.1f);
     s.curves.radii = {0.1f, 0.2f, 0.3f, 0.4f};  // linear in u: 0.1 at x = -1 to 0.4 at x = 1
-    const accel::EmbreeScene es(single(s));
+    const scene::Scene sc = single(s);
+    const accel::EmbreeScene es(sc);
     for (float x : {-0.5f, 0.0f, 0.5f}) {
         const float r = 0.1f + 0.3f * (x + 1) / 2;
         accel::SurfaceHit h;
@@ -143,7 +144,8 @@ TEST(Curves, FlatCurveFacesTheRay) {
     Shape rev = straight_curve(CurveSet::Type::Flat, r);
     rev.reverse_orientation = true;
     accel::SurfaceHit h;
-    ASSERT_TRUE(accel::EmbreeScene(single(rev)).intersect({{0, 0, 4}, {0, 0, -1}}, h));
+    const scene::Scene rev_scene = single(rev);
+    ASSERT_TRUE(accel::EmbreeScene(rev_scene).intersect({{0, 0, 4}, {0, 0, -1}}, h));
     expect_vec(h.ng, {0, 0, -1}, 1e-4f);
 }
 
@@ -152,7 +154,8 @@ TEST(Curves, RibbonFollowsItsNormals) {
     // A ribbon in the plane y + z = 0 (normal (0, 1, 1) / sqrt 2) seen from +z: the normal is the
     // ribbon's, not the ray's, and the band's width lies in that plane.
     const Vec3 n = normalize(Vec3(0, 1, 1));
-    const accel::EmbreeScene es(single(straight_curve(CurveSet::Type::Ribbon, r, n)));
+    const scene::Scene sc = single(straight_curve(CurveSet::Type::Ribbon, r, n));
+    const accel::EmbreeScene es(sc);
     accel::SurfaceHit h;
     ASSERT_TRUE(es.intersect({{0.3f, 0, 5}, {0, 0, -1}}, h));
     EXPECT_NEAR(h.t, 5, 1e-3);
@@ -167,7 +170,8 @@ TEST(Curves, RibbonFollowsItsNormals) {
     // Beyond the half-width (0.3 from the axis) nothing.
     EXPECT_FALSE(es.intersect({{0.3f, 0.3f / std::sqrt(2.0f), 5}, {0, 0, -1}}, h));
     // Normals the other way: the ribbon's normal flips with them.
-    const accel::EmbreeScene flipped(single(straight_curve(CurveSet::Type::Ribbon, r, -n)));
+    const scene::Scene flipped_scene = single(straight_curve(CurveSet::Type::Ribbon, r, -n));
+    const accel::EmbreeScene flipped(flipped_scene);
     ASSERT_TRUE(flipped.intersect({{0.3f, 0, 5}, {0, 0, -1}}, h));
     expect_vec(h.ng, -n, 1e-3f);
 }
@@ -184,7 +188,8 @@ TEST(Curves, BSplineBasisAndSeveralSegments) {
         s.curves.radii.push_back(0.2f);
     }
     s.curves.segments = {0, 1};
-    const accel::EmbreeScene es(single(s));
+    const scene::Scene sc = single(s);
+    const accel::EmbreeScene es(sc);
     accel::SurfaceHit h;
     ASSERT_TRUE(es.intersect({{-0.25f, 0, 5}, {0, 0, -1}}, h));
     EXPECT_EQ(h.primitive, 0);
@@ -201,7 +206,8 @@ TEST(Curves, TransformsScaleTheRadiusAndInstancesCarryCurves) {
     Shape s = straight_curve(CurveSet::Type::Cylinder, 0.25f);
     s.to_world = Transform::translate({0, 0, 1}) * Transform::scale(Vec3(2.0f));
     accel::SurfaceHit h;
-    ASSERT_TRUE(accel::EmbreeScene(single(s)).intersect({{1.5f, 0, 5}, {0, 0, -1}}, h));
+    const scene::Scene moved = single(s);
+    ASSERT_TRUE(accel::EmbreeScene(moved).intersect({{1.5f, 0, 5}, {0, 0, -1}}, h));
     EXPECT_NEAR(h.t, 3.5, 1e-3);
     expect_vec(h.ng, {0, 0, 1}, 1e-3f);
 
@@ -268,7 +274,8 @@ TEST(Curves, SpawnedRaysLeaveTheCurve) {
         }
     }
     // A flat ribbon (normal +z): rays leaving either side do not meet it again.
-    const accel::EmbreeScene ribbon(single(straight_curve(CurveSet::Type::Ribbon, r)));
+    const scene::Scene ribbon_scene = single(straight_curve(CurveSet::Type::Ribbon, r));
+    const accel::EmbreeScene ribbon(ribbon_scene);
     for (int i = 0; i < 50; ++i) {
         accel::SurfaceHit h;
         const float z = rng.next() < 0.5f ? 5.0f : -5.0f;
@@ -277,7 +284,8 @@ TEST(Curves, SpawnedRaysLeaveTheCurve) {
         accel::SurfaceHit again;
         EXPECT_FALSE(ribbon.intersect(accel::spawn_ray(h, out), again)) << i << " t " << again.t;
     }
-    const accel::EmbreeScene flat(single(straight_curve(CurveSet::Type::Flat, r)));
+    const scene::Scene flat_scene = single(straight_curve(CurveSet::Type::Flat, r));
+    const accel::EmbreeScene flat(flat_scene);
     for (int i = 0; i < 20; ++i) {
         accel::SurfaceHit h;
         ASSERT_TRUE(flat.intersect({{-0.5f + rng.next(), 0.05f, 5}, {0, 0, -1}}, h));

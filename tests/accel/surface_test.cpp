@@ -353,12 +353,14 @@ TEST(Bounds, TightAroundAllGeometry) {
     const float s = std::sqrt(0.5f);
     expect_vec(b.lo, {-5, -13, -1}, 1e-3f);
     expect_vec(b.hi, {10 + s, 4, 5}, 1e-3f);
-    const Bounds d = accel::EmbreeScene(single(disk({10, 0, 0}, normalize(Vec3(1, 1, 0)), 1))).bounds();
+    const scene::Scene tilted = single(disk({10, 0, 0}, normalize(Vec3(1, 1, 0)), 1));
+    const Bounds d = accel::EmbreeScene(tilted).bounds();
     expect_vec(d.lo, {10 - s, -s, -1}, 1e-4f);
     expect_vec(d.hi, {10 + s, s, 1}, 1e-4f);
     Shape c = cylinder({0, 0, 0}, {0, 1, 0}, 1, 4, true);
     c.to_world = Transform::rotate(90, {0, 0, 1});
-    const Bounds cb = accel::EmbreeScene(single(c)).bounds();
+    const scene::Scene lying = single(c);
+    const Bounds cb = accel::EmbreeScene(lying).bounds();
     expect_vec(cb.lo, {-2, -1, -1}, 1e-4f);
     expect_vec(cb.hi, {2, 1, 1}, 1e-4f);
 }
@@ -366,9 +368,11 @@ TEST(Bounds, TightAroundAllGeometry) {
 TEST(Errors, BadInputThrowsOrIsSkipped) {
     Shape bad = quad({0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0});
     bad.mesh.indices[4] = 9;
-    EXPECT_THROW(accel::EmbreeScene{single(bad)}, InputError);
+    const scene::Scene out_of_range = single(bad);
+    EXPECT_THROW(accel::EmbreeScene{out_of_range}, InputError);
     bad.mesh.indices = {0, 1};
-    EXPECT_THROW(accel::EmbreeScene{single(bad)}, InputError);
+    const scene::Scene incomplete = single(bad);
+    EXPECT_THROW(accel::EmbreeScene{incomplete}, InputError);
     scene::Scene sc;
     sc.instances.push_back({3, Transform()});
     EXPECT_THROW(accel::EmbreeScene{sc}, InputError);

@@ -361,6 +361,37 @@ std::vector<Case> consistency_cases() {
     all.transmission_shininess = 30;
     all.diffuse_transmission = Rgb(0.2f);
     c.push_back({"all-lobes", all, {}});
+    // pbrt's materials: Trowbridge-Reitz reflection and refraction, isotropic and anisotropic.
+    Material tr_cond;
+    tr_cond.specular = Rgb(1.0f);
+    tr_cond.conductor = true;
+    tr_cond.conductor_eta = Rgb(0.2f, 0.9f, 1.1f);
+    tr_cond.conductor_k = Rgb(3.0f, 2.5f, 2.0f);
+    tr_cond.microfacet = true;
+    tr_cond.roughness_u = tr_cond.roughness_v = 0.3f;
+    tr_cond.remap_roughness = false;
+    c.push_back({"tr-conductor", tr_cond, {}});
+    Material tr_aniso = tr_cond;
+    tr_aniso.roughness_u = 0.05f;
+    tr_aniso.roughness_v = 0.4f;
+    c.push_back({"tr-conductor-anisotropic", tr_aniso, {}});
+    Material tr_refl;
+    tr_refl.specular = Rgb(0.9f, 0.6f, 0.3f);
+    tr_refl.conductor_from_reflectance = true;
+    tr_refl.microfacet = true;
+    tr_refl.roughness_u = tr_refl.roughness_v = 0.1f;  // remapped: alpha 0.316
+    c.push_back({"tr-conductor-reflectance", tr_refl, {}});
+    Material tr_glass = glass(1.0f, 1.5f);
+    tr_glass.microfacet = true;
+    tr_glass.roughness_u = 0.1f;
+    tr_glass.roughness_v = 0.35f;
+    tr_glass.remap_roughness = false;
+    c.push_back({"tr-glass-anisotropic", tr_glass, {}});
+    Material tr_coat = lambert(0.5f);  // pbrt's diffuse + microfacet coat without interreflection
+    tr_coat.specular = Rgb(0.04f);
+    tr_coat.microfacet = true;
+    tr_coat.roughness_u = tr_coat.roughness_v = 0.2f;
+    c.push_back({"lambert+tr-reflection", tr_coat, {}});
     return c;
 }
 

@@ -28,13 +28,6 @@ bool read_spectrum_file(const std::string& path, std::vector<float>& lambda, std
     return !lambda.empty() && ss.eof();
 }
 
-// pbrt-v4 Trowbridge-Reitz: alpha = sqrt(roughness) when remapped; phos's Phong-like lobe with the
-// same width has exponent n = 2 / alpha^2 - 2 (the usual Beckmann/Phong correspondence).
-float shininess_from_alpha(float alpha) {
-    if (alpha < 1e-3f) return 1e6f;  // pbrt treats this as perfectly smooth
-    return std::clamp(2.0f / (alpha * alpha) - 2.0f, 0.0f, 1e6f);
-}
-
 }  // namespace
 
 std::optional<Rgb> SceneBuilder::color(const ParamList& params, const std::string& name, SpectrumUse use,
@@ -367,20 +360,32 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
 scene::Material SceneBuilder::make_material(const std::string& type, const ParamList& params, const Loc& loc,
                                             const std::string& d) {
     scene::Material m;
-    for (const char* p : {"displacement", "normalmap"})
-        if (const Param* q = params.find(p))
-            warn(q->loc, d + ": \"" + std::string(p) + "\" is not supported (ignored)");
+    read_shading_detail(params, m, d);
     const SpectrumUse albedo = SpectrumUse::Albedo;
-    auto roughness_shininess = [&](const std::string& prefix) {
-        const bool remap = params.get_bool("remaproughness", true);
-        const float r = float_param(params, prefix + "roughness", 0.0f, d);
-        const float ur = float_param(params, prefix + "uroughness", r, d);
-        const float vr = float_param(params, prefix + "vroughness", r, d);
-        if (ur < 0 || vr < 0) loc.fail(d + ": roughness must not be negative");
-        if (ur != vr) warn(loc, d + ": anisotropic roughness is not supported; the mean is used");
-        float alpha = 0.5f * (ur + vr);
-        if (remap) alpha = std::sqrt(alpha);
-        return shininess_from_alpha(alpha);
+    // pbrt's roughness parameters (`roughness`, or `uroughness` and `vroughness`, each a float or a
+    // float texture; `remaproughness`) as the material's Trowbridge-Reitz roughness.
+    auto microfacet_roughness = [&](const std::string& prefix) {
+        m.microfacet = true;
+        m.remap_roughness = params.get_bool("remaproughness", true);
+        const auto rough = [&](const std::string& name, float def, int def_texture, int& texture) {
+            texture = def_texture;
+            const Param* p = params.find(name);
+            if (!p) return def;
+            if (p->type == "texture") {
+                const auto it = float_textures_.find(p->strings[0]);
+                if (it == float_textures_.end())
+                    p->loc.fail(d + ": unknown float texture \"" + p->strings[0] + "\"");
+                texture = it->second;
+                return 0.0f;
+            }
+            const float v = params.get_float(name, def);
+            if (!(v >= 0) || !std::isfinite(v)) p->loc.fail(d + ": \"" + name + "\" must be finite and >= 0");
+            return v;
+        };
+        int texture = -1;
+        const float r = rough(prefix + "roughness", 0.0f, -1, texture);
+        m.roughness_u = rough(prefix + "uroughness", r, texture, m.roughness_u_texture);
+        m.roughness_v = rough(prefix + "vroughness", r, texture, m.roughness_v_texture);
     };
     // A dielectric's index: a float, a named glass (its Sellmeier index, `ior` at the d line), or
     // a spectrum of wavelength-value pairs inline or in a file (`ior` its value at the d line).
@@ -434,7 +439,7 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         const float f0 = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
         m.specular = Rgb(f0);
         m.diffuse *= 1.0f - f0;
-        m.shininess = roughness_shininess("");
+        microfacet_roughness("");
         for (const char* p : {"thickness", "g", "maxdepth", "nsamples", "albedo"}) params.find(p);
     } else if (type == "conductor" || type == "coatedconductor") {
         const std::string pre = type == "conductor" ? "" : "conductor.";
@@ -445,14 +450,11 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
                                   "interface.eta", "thickness", "g", "maxdepth", "nsamples", "albedo"})
                 params.find(p);
         }
-        m.shininess = roughness_shininess(pre);
+        microfacet_roughness(pre);
         if (params.has(pre + "reflectance")) {
-            int tex = -1;
-            m.specular = color_or_texture(params, pre + "reflectance", Rgb(1.0f), &tex, albedo, d);
-            if (tex >= 0) {
-                warn(loc, d + ": a textured conductor reflectance is not supported; 1 is used");
-                m.specular = Rgb(1.0f);
-            }
+            m.conductor_from_reflectance = true;
+            m.specular =
+                color_or_texture(params, pre + "reflectance", Rgb(1.0f), &m.specular_texture, albedo, d);
         } else {
             m.conductor = true;
             m.specular = Rgb(1.0f);
@@ -474,7 +476,7 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         m.ior = eta_param("eta", 1.5f, &m.ior_spectrum);
         m.transmission = Rgb(1.0f);
         m.thin = type == "thindielectric";
-        m.transmission_shininess = m.thin ? 1e6f : roughness_shininess("");
+        if (!m.thin) microfacet_roughness("");
     } else if (type == "diffusetransmission") {
         const float s = params.get_float("scale", 1.0f);
         m.diffuse = color_or_texture(params, "reflectance", Rgb(0.25f), &m.diffuse_texture, albedo, d) * s;
@@ -489,12 +491,24 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
     } else if (type == "mix") {
         const std::vector<std::string> names = params.get_strings("materials");
         if (names.size() != 2) loc.fail(d + ": needs \"string materials\" with two names");
-        const auto it = named_materials_.find(names[0]);
-        if (it == named_materials_.end())
-            params.find("materials")->loc.fail("unknown material \"" + names[0] + "\"");
-        warn(loc, d + " is not supported; its first material \"" + names[0] + "\" is used");
-        params.mark_all_used();
-        m = scene_.materials[size_t(it->second)];
+        int index[2];
+        for (int k = 0; k < 2; ++k) {
+            const auto it = named_materials_.find(names[size_t(k)]);
+            if (it == named_materials_.end())
+                params.find("materials")->loc.fail(d + ": unknown material \"" + names[size_t(k)] + "\"");
+            index[k] = it->second;
+        }
+        m.mix_a = index[0];
+        m.mix_b = index[1];
+        if (const Param* p = params.find("amount"); p && p->type == "texture") {
+            const auto it = float_textures_.find(p->strings[0]);
+            if (it == float_textures_.end()) p->loc.fail(d + ": unknown float texture \"" + p->strings[0] + "\"");
+            m.mix_amount = 1;
+            m.mix_amount_texture = it->second;
+        } else if (p) {
+            m.mix_amount = float_param(params, "amount", 0.5f, d);
+            if (!std::isfinite(m.mix_amount)) p->loc.fail(d + ": \"amount\" must be finite");
+        }
     } else {
         warn(loc, d + ": material type \"" + type + "\" is not supported; a grey diffuse material is used");
         params.mark_all_used();

@@ -103,15 +103,18 @@ TEST(PbrtBench, CornellGlassMirror) {
     for (const Shape& sh : s.shapes) {
         if (sh.kind != Shape::Kind::Sphere) continue;
         const scene::Material& m = s.materials[size_t(sh.material)];
-        if (sh.to_world.point(sh.center).x < 0) {  // mirror: reflectance form, no conductor Fresnel
+        if (sh.to_world.point(sh.center).x < 0) {  // mirror: reflectance form (eta 1, k from it)
             EXPECT_EQ(m.specular, Rgb(0.99f));
             EXPECT_FALSE(m.conductor);
-            EXPECT_GE(m.shininess, scene::Material::kMirrorShininess);
+            EXPECT_TRUE(m.conductor_from_reflectance);
+            EXPECT_TRUE(m.microfacet);
+            EXPECT_EQ(m.roughness_u, 0.0f);
             EXPECT_EQ(m.diffuse, Rgb(0.0f));
         } else {  // glass
             EXPECT_EQ(m.transmission, Rgb(1.0f));
             EXPECT_FLOAT_EQ(m.ior, 1.5f);
-            EXPECT_GE(m.transmission_shininess, scene::Material::kMirrorShininess);
+            EXPECT_TRUE(m.microfacet);
+            EXPECT_EQ(m.roughness_u, 0.0f);
             EXPECT_FALSE(m.thin);
         }
     }

@@ -385,17 +385,25 @@ TEST(PbrtMaterials, ConductorsDielectricsAndRoughness) {
     EXPECT_EQ(au.specular, Rgb(1.0f));
     EXPECT_EQ(au.conductor_eta, *pbrt::named_spectrum_rgb("metal-Au-eta", pbrt::SpectrumUse::Unbounded));
     EXPECT_GT(au.conductor_k.r, au.conductor_k.b);
-    EXPECT_NEAR(au.shininess, 2 / 0.01f - 2, 1e-2f);  // alpha = sqrt(0.01) = 0.1
-    const scene::Material& cu = material_of(l, 1);    // defaults: copper, smooth
+    // Trowbridge-Reitz roughness as given, remapped (alpha = sqrt(0.01) = 0.1) when shading.
+    EXPECT_TRUE(au.microfacet);
+    EXPECT_TRUE(au.remap_roughness);
+    EXPECT_FLOAT_EQ(au.roughness_u, 0.01f);
+    EXPECT_FLOAT_EQ(au.roughness_v, 0.01f);
+    const scene::Material& cu = material_of(l, 1);  // defaults: copper, smooth
     EXPECT_EQ(cu.conductor_eta, *pbrt::named_spectrum_rgb("metal-Cu-eta", pbrt::SpectrumUse::Unbounded));
-    EXPECT_GE(cu.shininess, scene::Material::kMirrorShininess);
+    EXPECT_TRUE(cu.microfacet);
+    EXPECT_EQ(cu.roughness_u, 0.0f);
     const scene::Material& rgb = material_of(l, 2);
     EXPECT_EQ(rgb.conductor_eta, Rgb(0.2f, 0.9f, 1.1f));
-    EXPECT_NEAR(rgb.shininess, 2 / (0.04f * 0.04f) - 2, 1.0f);  // not remapped: alpha = 0.04
+    EXPECT_FALSE(rgb.remap_roughness);
+    EXPECT_FLOAT_EQ(rgb.roughness_u, 0.04f);
     const scene::Material& glass = material_of(l, 3);
     EXPECT_NEAR(glass.ior, 1.5168f, 1e-4f);
     EXPECT_EQ(glass.transmission, Rgb(1.0f));
-    EXPECT_NEAR(glass.transmission_shininess, 2 / 0.25f - 2, 1e-3f);  // alpha = 0.5
+    EXPECT_TRUE(glass.microfacet);
+    EXPECT_FLOAT_EQ(glass.roughness_u, 0.25f);
+    EXPECT_FLOAT_EQ(glass.roughness_v, 0.25f);
     EXPECT_FALSE(glass.thin);
     EXPECT_TRUE(material_of(l, 4).thin);
     EXPECT_FLOAT_EQ(material_of(l, 4).ior, 1.33f);
@@ -414,11 +422,16 @@ TEST(PbrtMaterials, NamedMaterialsAndApproximations) {
         "Material \"interface\"\nShape \"sphere\"\n"
         "Material \"measured\" \"string filename\" \"x.bsdf\"\nShape \"sphere\"\n"
         "NamedMaterial \"red\"\nShape \"sphere\"\n");
-    EXPECT_EQ(material_of(l, 0).diffuse, Rgb(0.7f, 0.1f, 0.1f));  // mix -> first material
+    const scene::Material& mix = material_of(l, 0);  // a mix of "red" with itself
+    ASSERT_TRUE(mix.is_mix());
+    EXPECT_EQ(l.scene.materials[size_t(mix.mix_a)].diffuse, Rgb(0.7f, 0.1f, 0.1f));
+    EXPECT_EQ(mix.mix_b, mix.mix_a);
+    EXPECT_FLOAT_EQ(mix.mix_amount, 0.3f);
     const scene::Material& coated = material_of(l, 1);
     EXPECT_NEAR(coated.specular.g, 0.04f, 1e-6f);  // Fresnel at normal incidence, eta 1.5
     EXPECT_NEAR(coated.diffuse.g, 0.5f * 0.96f, 1e-6f);
-    EXPECT_GE(coated.shininess, scene::Material::kMirrorShininess);
+    EXPECT_TRUE(coated.microfacet);
+    EXPECT_EQ(coated.roughness_u, 0.0f);
     EXPECT_EQ(material_of(l, 2).diffuse_transmission, Rgb(0.1f, 0.2f, 0.3f));
     EXPECT_EQ(material_of(l, 2).diffuse, Rgb(0.25f));
     EXPECT_TRUE(material_of(l, 3).interface_only);

@@ -30,6 +30,11 @@ void expect_same_material(const scene::Material& a, const scene::Material& b) {
     EXPECT_EQ(a.diffuse, b.diffuse);
     EXPECT_EQ(a.specular, b.specular);
     EXPECT_EQ(a.shininess, b.shininess);
+    EXPECT_EQ(a.microfacet, b.microfacet);
+    EXPECT_EQ(a.roughness_u, b.roughness_u);
+    EXPECT_EQ(a.roughness_v, b.roughness_v);
+    EXPECT_EQ(a.remap_roughness, b.remap_roughness);
+    EXPECT_EQ(a.conductor_from_reflectance, b.conductor_from_reflectance);
     EXPECT_EQ(a.transmission, b.transmission);
     EXPECT_EQ(a.ior, b.ior);
     EXPECT_EQ(a.conductor, b.conductor);
