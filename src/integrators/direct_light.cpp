@@ -52,7 +52,7 @@ Spectrum light_contribution(const Prepared& P, size_t i, const accel::SurfaceHit
         if (r) record_light(*r, i, hit.p, ls, choose_pmf, 1, Spectrum(0.0f), -1, Spectrum(0.0f));
         return Spectrum(0.0f);
     }
-    const Spectrum f = bsdf.eval(wo, ls.wi, lambda) * std::fabs(dot(ls.wi, hit.ns));
+    const Spectrum f = bsdf.eval(wo, ls.wi, lambda) * std::fabs(dot(ls.wi, bsdf.frame().n));
     if (f.is_black()) {
         if (r) record_light(*r, i, hit.p, ls, choose_pmf, 1, Spectrum(0.0f), -1, Spectrum(0.0f));
         return Spectrum(0.0f);

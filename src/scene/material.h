@@ -69,6 +69,25 @@ struct Material {
     // .scn ambient coefficient, used only with --ambient.
     Rgb ambient{0.0f};
 
+    // pbrt's coateddiffuse and coatedconductor (shading/layered_bxdf.h): when `layered` is set the
+    // material is a dielectric coat of index `coat_eta` and microfacet roughness roughness_u/_v
+    // (with their textures and remap_roughness; smooth below alpha 1e-3) over a base, separated by
+    // a slab of `layer_thickness` holding a medium of albedo `layer_albedo` (black: none) and
+    // Henyey-Greenstein `layer_g`; `layer_max_depth` events, `layer_samples` walks per estimate.
+    // The base is Lambertian with `diffuse` (times diffuse_texture), or with
+    // `layered_conductor_base` a conductor: conductor_eta/_k (and their spectra), or
+    // conductor_from_reflectance with `specular` (times specular_texture) as its reflectance, of
+    // roughness base_roughness_u/_v (textures, the same remap). Its other lobes are unused.
+    bool layered = false;
+    float coat_eta = 1.5f;
+    bool layered_conductor_base = false;
+    float base_roughness_u = 0, base_roughness_v = 0;
+    int base_roughness_u_texture = -1, base_roughness_v_texture = -1;
+    float layer_thickness = 0.01f;
+    Rgb layer_albedo{0.0f};
+    float layer_g = 0;
+    int layer_max_depth = 10, layer_samples = 1;
+
     // pbrt "interface": the surface only bounds a medium and does not scatter light.
     bool interface_only = false;
 

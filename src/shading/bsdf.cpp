@@ -16,9 +16,12 @@ namespace {
 
 // kMicrofacet is the Trowbridge-Reitz reflection lobe of pbrt's materials (rough conductors,
 // Fresnel-weighted microfacet reflection); a material has at most one of kPhong, kMirror and it.
-enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kMicrofacet, kNumLobes };
-// The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to.
-constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse, kGlossy};
+// kCoat and kWalk are the two parts of pbrt's layered materials (the coat's own reflection and the
+// light that enters the slab, LayeredPart): a layered material has these two and no other.
+enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kMicrofacet, kCoat, kWalk, kNumLobes };
+// The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to; the layered parts' kinds
+// depend on the material (Bsdf::kind_of).
+constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse, kGlossy, 0, 0};
 // The lobes whose sharpness is shininess_ (a Phong exponent or a microfacet lobe's equivalent).
 constexpr uint32_t kGlossyReflection = (1u << kPhong) | (1u << kMicrofacet);
 
@@ -181,11 +184,76 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     if (!kt_.is_black()) lobes_ |= 1u << kDielectric;
     if (!kdt_.is_black()) lobes_ |= 1u << kDiffTrans;
     if (lobes_ == 0) lobes_ = 1u << kLambert;  // black body: opaque, absorbs everything
-    if (pbrt_microfacet_)
+    if (m.layered) {
+        lobes_ = (1u << kCoat) | (1u << kWalk);
+        layered_fi_ = LayeredBxdf::internal_reflectance(m.coat_eta);
+        set_layered(m, nullptr, nullptr);
+    } else if (pbrt_microfacet_)
         set_microfacet_lobes(roughness_alpha(m.roughness_u, m.remap_roughness),
                              roughness_alpha(m.roughness_v, m.remap_roughness));
 
     set_flags();
+}
+
+uint32_t Bsdf::kind_of(int lobe) const {
+    if (lobe == kCoat) return layered_.coat_kind();
+    if (lobe == kWalk) return layered_.walk_kind();
+    return kKind[lobe];
+}
+
+void Bsdf::set_layered(const scene::Material& m, const scene::Scene* scene, const accel::SurfaceHit* hit) {
+    const bool at_hit = scene && hit;
+    const auto texture = [&](int tex) {
+        return at_hit && tex >= 0 ? eval_texture(*scene, tex, texture_context(*hit)) : Rgb(1.0f);
+    };
+    const auto alpha = [&](float value, int tex) {
+        return roughness_alpha(tex >= 0 ? (at_hit ? texture(tex).average() : 0.0f) : value,
+                               m.remap_roughness);
+    };
+    const auto albedo = [&](Rgb c, int tex) {
+        return at_hit && tex >= 0 ? spectrum::RgbSpectrum(c, spectrum::RgbSpectrum::Use::Albedo,
+                                                          spectrum::RgbSpectrum::Fit::Table)
+                                  : albedo_spectrum(c);
+    };
+    LayeredParams p;
+    p.eta = m.coat_eta;
+    p.coat_alpha_x = alpha(m.roughness_u, m.roughness_u_texture);
+    p.coat_alpha_y = alpha(m.roughness_v, m.roughness_v_texture);
+    if (m.layered_conductor_base) {
+        p.base = LayeredParams::Base::Conductor;
+        p.base_alpha_x = alpha(m.base_roughness_u, m.base_roughness_u_texture);
+        p.base_alpha_y = alpha(m.base_roughness_v, m.base_roughness_v_texture);
+        if (m.conductor_from_reflectance) {
+            const Rgb r = m.specular * texture(m.specular_texture);
+            p.conductor_from_reflectance = true;
+            p.reflectance = albedo(r, m.specular_texture);
+            layered_base_albedo_ = r.average();
+        } else {
+            p.conductor_eta = {unbounded_spectrum(m.conductor_eta),
+                               m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr};
+            p.conductor_k = {unbounded_spectrum(m.conductor_k),
+                             m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr};
+            // Seen through the coat: eta and k relative to it, as the layered BSDF uses them.
+            layered_base_albedo_ =
+                fresnel_conductor(1.0f, m.conductor_eta / m.coat_eta, m.conductor_k / m.coat_eta).average();
+        }
+    } else {
+        const Rgb r = m.diffuse * texture(m.diffuse_texture);
+        p.reflectance = albedo(r, m.diffuse_texture);
+        layered_base_albedo_ = r.average();
+    }
+    p.thickness = m.layer_thickness;
+    p.albedo = albedo_spectrum(m.layer_albedo);
+    p.g = m.layer_g;
+    p.max_depth = m.layer_max_depth;
+    p.n_samples = m.layer_samples;
+    layered_ = LayeredBxdf(p);
+    // Sharpness as a Phong exponent (what --sharp-glossy compares): the coat's own, and the
+    // walk's through the rougher of the coat and the base.
+    const float coat_alpha = std::sqrt(p.coat_alpha_x * p.coat_alpha_y);
+    coat_shininess_ = coat_alpha < kSmoothAlpha ? kInf : phong_of_alpha(coat_alpha);
+    const float base_alpha = std::sqrt(p.base_alpha_x * p.base_alpha_y);
+    walk_shininess_ = phong_of_alpha(std::max({coat_alpha, base_alpha, kSmoothAlpha}));
 }
 
 void Bsdf::set_microfacet_lobes(float ax, float ay) {
@@ -216,6 +284,8 @@ void Bsdf::set_flags() {
     if (lobes_ & (1u << kDielectric))
         flags_ |= (sharp_glass_ ? kSpecular : kGlossy) | kReflection | kTransmission;
     if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
+    if (lobes_ & (1u << kCoat)) flags_ |= kind_of(kCoat) | kReflection;
+    if (lobes_ & (1u << kWalk)) flags_ |= kind_of(kWalk) | kReflection;
 }
 
 Bsdf Bsdf::regularized(float max_exponent) const {
@@ -261,7 +331,7 @@ bool Bsdf::only_widened() const {
 Bsdf Bsdf::only(uint32_t lobe_mask) const {
     Bsdf b = *this;
     for (int i = 0; i < kNumLobes; ++i)
-        if (!(lobe_mask & kKind[i])) b.lobes_ &= ~(1u << i);
+        if (!(lobe_mask & kind_of(i))) b.lobes_ &= ~(1u << i);
     b.set_flags();
     return b;
 }
@@ -272,6 +342,15 @@ void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit
         ks_ *= eval_texture(scene, m.specular_texture, texture_context(hit));
         ks_s_ =
             spectrum::RgbSpectrum(ks_, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
+    }
+    if (m.layered) {
+        if (m.diffuse_texture >= 0 || m.specular_texture >= 0 || m.roughness_u_texture >= 0 ||
+            m.roughness_v_texture >= 0 || m.base_roughness_u_texture >= 0 ||
+            m.base_roughness_v_texture >= 0) {
+            set_layered(m, &scene, &hit);
+            set_flags();  // a textured roughness can make the coat smooth or rough here
+        }
+        return;
     }
     if (pbrt_microfacet_ && (m.roughness_u_texture >= 0 || m.roughness_v_texture >= 0)) {
         const auto rough = [&](int tex, float value) {
@@ -287,6 +366,9 @@ void Bsdf::rebind(const scene::Material& m) {
     cond_eta_spectrum_ = conductor_ && m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr;
     cond_k_spectrum_ = conductor_ && m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr;
     ior_spectrum_ = m.ior_spectrum && !m.ior_spectrum->is_constant() ? &*m.ior_spectrum : nullptr;
+    if (m.layered && m.layered_conductor_base && !m.conductor_from_reflectance)
+        layered_.rebind(m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr,
+                        m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr);
 }
 
 bool Bsdf::dispersive() const { return ior_spectrum_ != nullptr && (lobes_ & (1u << kDielectric)); }
@@ -317,7 +399,7 @@ void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) c
     const float cos_o = std::fabs(wo_local.z);
     for (int i = 0; i < kNumLobes; ++i) {
         w[i] = 0;
-        if (!(lobes_ & (1u << i)) || !(mask & kKind[i])) continue;
+        if (!(lobes_ & (1u << i)) || !(mask & kind_of(i))) continue;
         switch (i) {
             case kLambert:
                 w[i] = kd_.average();
@@ -333,6 +415,14 @@ void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) c
             case kDiffTrans:
                 w[i] = kdt_.average();
                 break;
+            case kCoat:
+                w[i] = layered_.coat_albedo(cos_o);
+                break;
+            case kWalk:
+                // Floored so that a black base under a scattering slab is still sampled.
+                w[i] = std::max(layered_.walk_albedo(cos_o, layered_base_albedo_, layered_fi_),
+                                0.05f * (1 - layered_.coat_albedo(cos_o)));
+                break;
         }
         w[i] = std::max(w[i], 0.0f);
     }
@@ -346,12 +436,22 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
     if (lobes_ & kGlossyReflection) a.glossy = specular_reflectance(cos_o);
     if (lobes_ & (1u << kMirror)) a.specular = specular_reflectance(cos_o);
     if (lobes_ & (1u << kDielectric)) a.transmission = kt_;
+    const auto add = [&](uint32_t kind, float albedo) {
+        (kind == kDiffuse ? a.diffuse : kind == kSpecular ? a.specular : a.glossy) += Rgb(albedo);
+    };
+    if (lobes_ & (1u << kCoat)) add(layered_.coat_kind(), layered_.coat_albedo(cos_o));
+    if (lobes_ & (1u << kWalk))
+        add(layered_.walk_kind(), layered_.walk_albedo(cos_o, layered_base_albedo_, layered_fi_));
     return a;
 }
 
 uint32_t Bsdf::sharp_lobes(float sharp_exponent) const {
     uint32_t m = 0;
     if ((lobes_ & kGlossyReflection) && shininess_ >= sharp_exponent) m |= kGlossy;
+    if ((lobes_ & (1u << kCoat)) && layered_.coat_kind() == kGlossy && coat_shininess_ >= sharp_exponent)
+        m |= kGlossy;
+    if ((lobes_ & (1u << kWalk)) && layered_.walk_kind() == kGlossy && walk_shininess_ >= sharp_exponent)
+        m |= kGlossy;
     if ((lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ >= sharp_exponent) m |= kTransmission;
     return m;
 }
@@ -364,6 +464,13 @@ void Bsdf::part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estima
     if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
     if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) estimated |= kDiffuse;
     if (lobes_ & kGlossyReflection) put(kGlossy, sharp & kGlossy);
+    // The layered parts by their kinds: delta parts followed, diffuse ones estimated, glossy ones
+    // by their sharpness.
+    for (const int lobe : {kCoat, kWalk}) {
+        if (!(lobes_ & (1u << lobe))) continue;
+        const uint32_t kind = kind_of(lobe);
+        put(kind, kind == kSpecular || (kind == kGlossy && (sharp & kGlossy)));
+    }
 }
 
 bool Bsdf::has_estimated(float sharp_exponent) const {
@@ -412,7 +519,7 @@ Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wave
     const float gi = dot(wi, ng_) * s;
     const bool refl = gi > 0 && wi_l.z > 0, trans = gi < 0 && wi_l.z < 0;
     if (!refl && !trans) return Spectrum(0.0f);
-    const auto has = [&](int lobe) { return (lobes_ & (1u << lobe)) && (mask & kKind[lobe]); };
+    const auto has = [&](int lobe) { return (lobes_ & (1u << lobe)) && (mask & kind_of(lobe)); };
 
     Spectrum f(0.0f);
     if (refl && has(kLambert)) f += kd_s_.sample(lambda) * kInvPi;
@@ -446,6 +553,8 @@ Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wave
                  (spec_dist_.D(wm) * spec_dist_.G(wo_l, wi_l) / (4 * wi_l.z * wo_l.z));
         }
     }
+    if (refl && has(kCoat)) f += layered_.f(wo_l, wi_l, lambda, mode, LayeredPart::Coat);
+    if (refl && has(kWalk)) f += layered_.f(wo_l, wi_l, lambda, mode, LayeredPart::Walk);
     if (trans && has(kDiffTrans)) f += kdt_s_.sample(lambda) * kInvPi;
     if (has(kDielectric) && !sharp_glass_) {
         const Spectrum kt = kt_s_.sample(lambda);
@@ -498,6 +607,8 @@ float Bsdf::pdf_local(Vec3 wo_l, Vec3 wi, float s, const float w[]) const {
         }
     }
     if (trans && w[kDiffTrans] > 0) pdf += w[kDiffTrans] * warp::cosine_hemisphere_pdf(-wi_l.z);
+    if (refl && w[kCoat] > 0) pdf += w[kCoat] * layered_.pdf(wo_l, wi_l, LayeredPart::Coat);
+    if (refl && w[kWalk] > 0) pdf += w[kWalk] * layered_.pdf(wo_l, wi_l, LayeredPart::Walk);
     if (w[kDielectric] > 0 && !sharp_glass_) {
         const float eta = s > 0 ? ior_ : 1 / ior_;
         pdf += w[kDielectric] * dielectric::rough_pdf(dist_, wo_l, wi_l, eta, schlick_);
@@ -568,6 +679,9 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     bool delta = false, transmitted = false;
     Spectrum coefficient_over_prob;  // delta lobes: coefficient / branch probability
     float branch_prob = 1;
+    // A layered part's sample: its own weight f |cos| / pdf (its pdf is only proportional to the
+    // density, pbrt-v4's pdfIsProportional), divided by the part's selection probability.
+    std::optional<Spectrum> layered_weight;
     switch (lobe) {
         case kLambert:
             wi_l = warp::cosine_hemisphere(u);
@@ -584,6 +698,22 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
             wi_l = Frame(r).to_world(warp::power_cosine(u, shininess_));
             if (wi_l.z <= 0) return std::nullopt;  // below the surface: lost, pdf not renormalised
             bs.flags = kGlossy | kReflection | (widened_mirror_ ? kWidened : 0u);
+            break;
+        }
+        case kCoat:
+        case kWalk: {
+            const auto ls = layered_.sample(wo_l, u_re, u, lambda, mode,
+                                            lobe == kCoat ? LayeredPart::Coat : LayeredPart::Walk);
+            if (!ls || ls->wi.z <= 0) return std::nullopt;
+            wi_l = ls->wi;
+            bs.flags = ls->is_specular() ? ls->flags : kReflection | kind_of(lobe);
+            if (ls->is_specular()) {
+                delta = true;
+                coefficient_over_prob = ls->weight;
+                branch_prob = ls->pdf;
+            } else {
+                layered_weight = ls->weight;
+            }
             break;
         }
         case kMicrofacet: {
@@ -652,6 +782,11 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
     // eval_masked and pdf_masked of wi (their wo terms are the ones computed above).
     bs.f = eval_local(wo_l, bs.wi, s, lobe_mask, lambda, mode);
     bs.pdf = pdf_local(wo_l, bs.wi, s, w);
+    if (layered_weight) {  // f and pdf (estimates) are for MIS; the walk's weight is the throughput
+        if (!(bs.pdf > 0) || layered_weight->is_black()) return std::nullopt;
+        bs.weight = *layered_weight / sel;
+        return bs;
+    }
     if (!(bs.pdf > 0) || bs.f.is_black()) return std::nullopt;
     bs.weight = bs.f * (abs_cos / bs.pdf);
     return bs;

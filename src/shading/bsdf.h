@@ -29,6 +29,7 @@
 #include "core/frame.h"
 #include "core/vec.h"
 #include "scene/scene.h"
+#include "shading/layered_bxdf.h"
 #include "shading/microfacet.h"
 #include "spectrum/distribution.h"
 #include "spectrum/rgb_spectrum.h"
@@ -245,6 +246,12 @@ private:
     MicrofacetDistribution spec_dist_;  // the microfacet reflection lobe's
     bool pbrt_microfacet_ = false;      // Material::microfacet (roughness as alphas, not exponents)
     bool cond_from_refl_ = false;       // Material::conductor_from_reflectance
+    // pbrt's coateddiffuse / coatedconductor: its two parts are lobes kCoat and kWalk (bsdf.cpp),
+    // whose kinds the layered BSDF says (coat_kind, walk_kind).
+    LayeredBxdf layered_;
+    float layered_fi_ = 0;           // the coat's internal diffuse reflectance (walk selection)
+    float layered_base_albedo_ = 0;  // the base's average albedo (walk selection)
+    float coat_shininess_ = 0, walk_shininess_ = 0;  // Phong-equivalent sharpness of each part
 
     Bsdf() = default;
     // The constructor's three steps: the frame at the hit, the material's lobes, its textures.
@@ -260,6 +267,11 @@ private:
     // The specular and dielectric lobes of a microfacet material for alphas (ax, ay): delta when
     // both are below 1e-3, else microfacet lobes of that distribution.
     void set_microfacet_lobes(float ax, float ay);
+    // The layered lobes of material m (set_material) and at a hit (textured reflectance or
+    // roughness); `scene`/`hit` null for the untextured values.
+    void set_layered(const scene::Material& m, const scene::Scene* scene, const accel::SurfaceHit* hit);
+    // The LobeAlbedos kind of lobe i (fixed, except the layered parts').
+    uint32_t kind_of(int lobe) const;
     Spectrum eval_masked(Vec3 wo, Vec3 wi, uint32_t mask, const Wavelengths& lambda,
                          TransportMode mode) const;
     float pdf_masked(Vec3 wo, Vec3 wi, uint32_t mask) const;

@@ -1,8 +1,6 @@
 // pbrt materials' bump and normal maps rendered by `phos render`: a diffuse floor under an
 // overhead distant light, seen straight down, with a linear-ramp "displacement" or a tilted
 // "normalmap", is dimmed by exactly the cosine of the tilt the closed form gives.
-// DISABLED_ until make_material calls read_shading_detail and the BSDF and the direct-light cosine
-// use the perturbed shading normal (shading/bump.h); enable then.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -58,7 +56,7 @@ double render_mean(TempDir& dir, const std::string& name, const std::string& mat
     return sum / (double(img.width) * img.height);
 }
 
-TEST(PbrtBumpRender, DISABLED_RampAndNormalMapDimTheFloorByTheTiltsCosine) {
+TEST(PbrtBumpRender, RampAndNormalMapDimTheFloorByTheTiltsCosine) {
     TempDir dir;
     write_pfm(dir.file("ramp.pfm"), 2, 2,
               {0.5f, 0.5f, 0.5f, 1.5f, 1.5f, 1.5f, 0.5f, 0.5f, 0.5f, 1.5f, 1.5f, 1.5f});

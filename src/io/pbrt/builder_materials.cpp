@@ -428,50 +428,79 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         return eta;
     };
 
-    if (type == "diffuse") {
-        m.diffuse = color_or_texture(params, "reflectance", Rgb(0.5f), &m.diffuse_texture, albedo, d);
-    } else if (type == "coateddiffuse") {
-        warn_once(
-            "coateddiffuse", loc,
-            d + " is approximated: diffuse base plus a Fresnel-weighted glossy coat (no interreflection)");
-        m.diffuse = color_or_texture(params, "reflectance", Rgb(0.5f), &m.diffuse_texture, albedo, d);
-        const float eta = eta_param("eta", 1.5f);
-        const float f0 = (eta - 1) * (eta - 1) / ((eta + 1) * (eta + 1));
-        m.specular = Rgb(f0);
-        m.diffuse *= 1.0f - f0;
-        microfacet_roughness("");
-        for (const char* p : {"thickness", "g", "maxdepth", "nsamples", "albedo"}) params.find(p);
-    } else if (type == "conductor" || type == "coatedconductor") {
-        const std::string pre = type == "conductor" ? "" : "conductor.";
-        if (type == "coatedconductor") {
-            warn_once("coatedconductor", loc,
-                      d + " is approximated by its conductor base (the coat is ignored)");
-            for (const char* p : {"interface.roughness", "interface.uroughness", "interface.vroughness",
-                                  "interface.eta", "thickness", "g", "maxdepth", "nsamples", "albedo"})
-                params.find(p);
-        }
-        microfacet_roughness(pre);
+    // A conductor's parameters (pbrt-v4's ConductorMaterial, under `prefix`): `reflectance` (a
+    // value or texture), else `eta` and `k`, each defaulting to copper's measured spectra.
+    auto conductor_base = [&](const std::string& pre) {
         if (params.has(pre + "reflectance")) {
             m.conductor_from_reflectance = true;
             m.specular =
                 color_or_texture(params, pre + "reflectance", Rgb(1.0f), &m.specular_texture, albedo, d);
-        } else {
-            m.conductor = true;
-            m.specular = Rgb(1.0f);
-            // Each of eta and k: as given, else pbrt-v4's default, copper; a named metal or a
-            // sampled spectrum keeps its spectrum too.
-            const auto part = [&](const std::string& pname, const std::string& copper, Rgb& rgb,
-                                  std::optional<spectrum::Distribution>& measured) {
-                if (const auto c = color(params, pname, SpectrumUse::Unbounded, &measured)) {
-                    rgb = *c;
-                } else {
-                    rgb = *named_spectrum_rgb(copper, SpectrumUse::Unbounded);
-                    measured = named_material_spectrum(copper);
-                }
-            };
-            part(pre + "eta", "metal-Cu-eta", m.conductor_eta, m.conductor_eta_spectrum);
-            part(pre + "k", "metal-Cu-k", m.conductor_k, m.conductor_k_spectrum);
+            return;
         }
+        m.conductor = true;
+        m.specular = Rgb(1.0f);
+        // Each of eta and k: as given, else pbrt-v4's default, copper; a named metal or a sampled
+        // spectrum keeps its spectrum too.
+        const auto part = [&](const std::string& pname, const std::string& copper, Rgb& rgb,
+                              std::optional<spectrum::Distribution>& measured) {
+            if (const auto c = color(params, pname, SpectrumUse::Unbounded, &measured)) {
+                rgb = *c;
+            } else {
+                rgb = *named_spectrum_rgb(copper, SpectrumUse::Unbounded);
+                measured = named_material_spectrum(copper);
+            }
+        };
+        part(pre + "eta", "metal-Cu-eta", m.conductor_eta, m.conductor_eta_spectrum);
+        part(pre + "k", "metal-Cu-k", m.conductor_k, m.conductor_k_spectrum);
+    };
+    // The slab of pbrt-v4's coated materials: `thickness` (0.01), the medium's `albedo` (0: none)
+    // and `g` (0), `maxdepth` (10) and `nsamples` (1).
+    auto layer_slab = [&] {
+        m.layer_thickness = float_param(params, "thickness", 0.01f, d);
+        if (!(m.layer_thickness >= 0) || !std::isfinite(m.layer_thickness))
+            params.find("thickness")->loc.fail(d + ": \"thickness\" must be finite and >= 0");
+        int tex = -1;
+        m.layer_albedo = color_or_texture(params, "albedo", Rgb(0.0f), &tex, albedo, d);
+        if (tex >= 0) {
+            warn(params.find("albedo")->loc, d + ": a textured \"albedo\" is not supported; 0 is used");
+            m.layer_albedo = Rgb(0.0f);
+        }
+        m.layer_g = float_param(params, "g", 0.0f, d);
+        if (!(m.layer_g >= -1 && m.layer_g <= 1))
+            params.find("g")->loc.fail(d + ": \"g\" must be in [-1, 1]");
+        m.layer_max_depth = params.get_int("maxdepth", 10);
+        if (m.layer_max_depth < 0 || m.layer_max_depth > 10000)
+            params.find("maxdepth")->loc.fail(d + ": \"maxdepth\" must be in [0, 10000]");
+        m.layer_samples = params.get_int("nsamples", 1);
+        if (m.layer_samples < 1 || m.layer_samples > 4096)
+            params.find("nsamples")->loc.fail(d + ": \"nsamples\" must be in [1, 4096]");
+    };
+
+    if (type == "diffuse") {
+        m.diffuse = color_or_texture(params, "reflectance", Rgb(0.5f), &m.diffuse_texture, albedo, d);
+    } else if (type == "coateddiffuse") {
+        m.layered = true;
+        m.diffuse = color_or_texture(params, "reflectance", Rgb(0.5f), &m.diffuse_texture, albedo, d);
+        m.coat_eta = eta_param("eta", 1.5f);
+        microfacet_roughness("");
+        m.microfacet = false;  // the roughness is the coat's (Material::layered)
+        layer_slab();
+    } else if (type == "conductor") {
+        microfacet_roughness("");
+        conductor_base("");
+    } else if (type == "coatedconductor") {
+        m.layered = true;
+        m.layered_conductor_base = true;
+        microfacet_roughness("conductor.");
+        m.base_roughness_u = m.roughness_u;
+        m.base_roughness_v = m.roughness_v;
+        m.base_roughness_u_texture = m.roughness_u_texture;
+        m.base_roughness_v_texture = m.roughness_v_texture;
+        microfacet_roughness("interface.");
+        m.microfacet = false;  // the roughnesses are the coat's and the base's (Material::layered)
+        m.coat_eta = eta_param("interface.eta", 1.5f);
+        conductor_base("conductor.");
+        layer_slab();
     } else if (type == "dielectric" || type == "thindielectric") {
         m.ior = eta_param("eta", 1.5f, &m.ior_spectrum);
         m.transmission = Rgb(1.0f);
@@ -502,7 +531,8 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         m.mix_b = index[1];
         if (const Param* p = params.find("amount"); p && p->type == "texture") {
             const auto it = float_textures_.find(p->strings[0]);
-            if (it == float_textures_.end()) p->loc.fail(d + ": unknown float texture \"" + p->strings[0] + "\"");
+            if (it == float_textures_.end())
+                p->loc.fail(d + ": unknown float texture \"" + p->strings[0] + "\"");
             m.mix_amount = 1;
             m.mix_amount_texture = it->second;
         } else if (p) {

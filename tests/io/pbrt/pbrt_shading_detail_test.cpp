@@ -1,7 +1,6 @@
 // pbrt materials' "displacement" and "normalmap" (pbrt-v4's bump and normal maps) as the loader
 // stores them on scene::Material: a float texture's index, a constant (nothing to store), an image
 // read as linear RGB; errors located at the parameter.
-// DISABLED_ until make_material calls SceneBuilder::read_shading_detail; enable then.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -35,7 +34,7 @@ const scene::Material& material_of(const scene::Scene& s, size_t shape) {
     return s.materials.at(size_t(s.shapes.at(shape).material));
 }
 
-TEST(PbrtShadingDetail, DISABLED_DisplacementTexturesAndNormalMaps) {
+TEST(PbrtShadingDetail, DisplacementTexturesAndNormalMaps) {
     PbrtTempDir dir;
     write_pfm(dir.file("n.pfm"), Rgb(0.5f, 0.5f, 1), Rgb(0.75f, 0.5f, 0.9f));
     int warnings = -1;
@@ -71,7 +70,7 @@ TEST(PbrtShadingDetail, DISABLED_DisplacementTexturesAndNormalMaps) {
     EXPECT_NE(material_of(s, 3).normal_map, nullptr);
 }
 
-TEST(PbrtShadingDetail, DISABLED_UnknownTexturesAndMissingImagesAreLocated) {
+TEST(PbrtShadingDetail, UnknownTexturesAndMissingImagesAreLocated) {
     PbrtTempDir dir;
     expect_pbrt_error(dir.write("a.pbrt",
                                 "WorldBegin\nMaterial \"diffuse\" "

@@ -35,6 +35,8 @@ void expect_same_material(const scene::Material& a, const scene::Material& b) {
     EXPECT_EQ(a.roughness_v, b.roughness_v);
     EXPECT_EQ(a.remap_roughness, b.remap_roughness);
     EXPECT_EQ(a.conductor_from_reflectance, b.conductor_from_reflectance);
+    EXPECT_EQ(a.layered, b.layered);
+    EXPECT_EQ(a.coat_eta, b.coat_eta);
     EXPECT_EQ(a.transmission, b.transmission);
     EXPECT_EQ(a.ior, b.ior);
     EXPECT_EQ(a.conductor, b.conductor);
