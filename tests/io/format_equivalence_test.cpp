@@ -37,13 +37,21 @@ struct Look {
     bool mirror, sharp_glass;
 };
 
+// A delta lobe: a Phong exponent of kMirrorShininess or more (.scn), a microfacet alpha below
+// 1e-3 (pbrt's materials, roughness remapped as they say).
+bool smooth(const scene::Material& m, float exponent) {
+    if (!m.microfacet) return exponent >= scene::Material::kMirrorShininess;
+    const auto alpha = [&](float r) { return m.remap_roughness ? std::sqrt(r) : r; };
+    return std::max(alpha(m.roughness_u), alpha(m.roughness_v)) < 1e-3f;
+}
+
 Look look(const scene::Material& m) {
     return {m.diffuse,
             m.specular,
             m.transmission,
             m.transmission.is_black() ? 1.0f : m.ior,
-            !m.specular.is_black() && m.shininess >= scene::Material::kMirrorShininess,
-            !m.transmission.is_black() && m.transmission_shininess >= scene::Material::kMirrorShininess};
+            !m.specular.is_black() && smooth(m, m.shininess),
+            !m.transmission.is_black() && smooth(m, m.transmission_shininess)};
 }
 
 void expect_same_look(const Look& a, const Look& b, const std::string& what) {

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "core/log.h"
 #include "io/load_scene.h"
@@ -153,7 +154,9 @@ TEST(ShowcaseScenes, CornellBoxUnderTwoBlackbodies) {
         const scene::Material& m = p.scene.materials[size_t(sh.material)];
         if (!m.conductor) continue;
         ASSERT_TRUE(m.conductor_eta_spectrum && m.conductor_k_spectrum);
-        EXPECT_GE(m.shininess, scene::Material::kMirrorShininess);
+        EXPECT_TRUE(m.microfacet);  // smooth: roughness 0
+        EXPECT_EQ(m.roughness_u, 0.0f);
+        EXPECT_EQ(m.roughness_v, 0.0f);
         const auto is = [&](const char* metal) {
             const auto t = spectrum::named_metal(metal);
             for (float lambda : {450.0f, 550.0f, 650.0f})
@@ -167,6 +170,25 @@ TEST(ShowcaseScenes, CornellBoxUnderTwoBlackbodies) {
     }
     EXPECT_EQ(gold, 1);
     EXPECT_EQ(copper, 1);
+}
+
+// The material gallery: every sphere's material as pbrt-v4 defines it, without a warning.
+TEST(ShowcaseScenes, MaterialGalleryHasEachMaterialAsPbrtDefinesIt) {
+    const Loaded g = load("material-gallery.pbrt");
+    EXPECT_EQ(g.warnings, 0);
+    std::vector<const scene::Material*> spheres;
+    for (const scene::Shape& sh : g.scene.shapes)
+        if (sh.kind == scene::Shape::Kind::Sphere) spheres.push_back(&g.scene.materials[size_t(sh.material)]);
+    ASSERT_EQ(spheres.size(), 7u);
+    EXPECT_TRUE(spheres[0]->conductor && spheres[0]->microfacet);  // rough gold
+    EXPECT_FLOAT_EQ(spheres[0]->roughness_u, 0.05f);
+    EXPECT_NE(spheres[1]->roughness_u, spheres[1]->roughness_v);                   // anisotropic copper
+    EXPECT_TRUE(spheres[2]->layered && !spheres[2]->layered_conductor_base);       // coated diffuse
+    EXPECT_TRUE(spheres[3]->layered && spheres[3]->layered_conductor_base);        // coated silver
+    EXPECT_TRUE(spheres[4]->microfacet && spheres[4]->transmission == Rgb(1.0f));  // rough glass
+    EXPECT_TRUE(spheres[5]->is_mix());
+    EXPECT_GE(spheres[6]->displacement_texture, 0);  // bump-mapped
+    EXPECT_EQ(g.scene.lights.size(), 2u);            // the sky and the area light
 }
 
 }  // namespace
