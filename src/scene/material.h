@@ -91,6 +91,11 @@ struct Material {
     // pbrt "interface": the surface only bounds a medium and does not scatter light.
     bool interface_only = false;
 
+    // pbrt "subsurface": the homogeneous medium (index into Scene::media) that a shape of this
+    // material encloses under its dielectric boundary; the pbrt loader makes it the inside of each
+    // such shape's MediumInterface. -1: none.
+    int subsurface_medium = -1;
+
     // pbrt "mix": when mix_a >= 0 this material is, at each hit, one of materials mix_a and mix_b
     // (indices into Scene::materials), mix_b with probability `mix_amount` (times the float
     // texture mix_amount_texture when >= 0); the choice is a hash of the hit point, so every ray

@@ -141,6 +141,13 @@ private:
     // A material's "displacement" and "normalmap" (pbrt-v4's bump and normal maps) into `m`;
     // located errors for an unknown texture or an unreadable image.
     void read_shading_detail(const ParamList& params, scene::Material& m, const std::string& directive);
+    // pbrt-v4's "subsurface" material (builder_subsurface.cpp): its dielectric boundary into `m`
+    // (eta and transmission; the caller reads the roughness) and a homogeneous medium for the
+    // inside of its shapes, from a named measured medium, sigma_a/sigma_s or reflectance/mfp.
+    void subsurface_material(const ParamList& params, scene::Material& m, const Loc& loc,
+                             const std::string& directive);
+    // A shape whose material is (or mixes in) a subsurface material encloses that material's medium.
+    void subsurface_interior(scene::Shape& shape, const Loc& loc);
     void add_shape(scene::Shape shape, float area, const Loc& loc);
     // Applies a plymesh's "displacement" (the parameter `dp`) to its object-space mesh.
     void displace(scene::TriangleMesh& mesh, const ParamList& params, const Param& dp, const std::string& d);

@@ -506,6 +506,9 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         m.transmission = Rgb(1.0f);
         m.thin = type == "thindielectric";
         if (!m.thin) microfacet_roughness("");
+    } else if (type == "subsurface") {
+        subsurface_material(params, m, loc, d);  // builder_subsurface.cpp
+        microfacet_roughness("");
     } else if (type == "diffusetransmission") {
         const float s = params.get_float("scale", 1.0f);
         m.diffuse = color_or_texture(params, "reflectance", Rgb(0.25f), &m.diffuse_texture, albedo, d) * s;

@@ -64,6 +64,7 @@ float linear_scale(const Transform& t) {
 }  // namespace
 
 void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
+    subsurface_interior(shape, loc);  // builder_subsurface.cpp
     if (object_ >= 0) {
         if (gs_.area_light)
             warn_once("instanced area light", loc,
