@@ -243,6 +243,7 @@ bool make_analytic(const scene::Shape& shape, int index, Analytic& out, const ch
     a.capped = shape.capped;
     a.shape = index;
     a.source = &shape;
+    a.pbrt_uv = shape.kind == Kind::Sphere && shape.pbrt_uv;
     if (!(a.radius > 0) || !std::isfinite(a.radius)) return why = "radius must be positive", false;
     if (a.kind == Kind::Sphere && shape.partial) {
         a.partial = true;
@@ -384,7 +385,8 @@ AnalyticSurface analytic_surface(const Analytic& a, const CanonicalHit& hit, dou
                                            1.0))};
                     break;
                 }
-                uv = {u, float(theta / (0.5 * kTwoPi))};
+                const float v = float(theta / (0.5 * kTwoPi));
+                uv = {u, a.pbrt_uv ? 1 - v : v};
                 break;
             }
             case Kind::Disk:

@@ -67,11 +67,12 @@ struct Analytic {
     // are rejected; theta_z_min/max = acos(z_min/max / radius) for pbrt's v.
     bool partial = false;
     double z_min = 0, z_max = 0, phi_max = 0, theta_z_min = 0, theta_z_max = 0;
-    Affine to_space;    // canonical frame -> the geometry's space (world, or the object's space)
-    Affine to_canon;    // inverse of to_space
-    bool flip = false;  // reverse_orientation XOR the shape transform swaps handedness (pbrt)
-    double size = 0;    // rough extent in the geometry's space, for the error bound
-    int shape = -1;     // index of the shape (in Scene::shapes or in its Object)
+    bool pbrt_uv = false;  // a full sphere's v = 1 - theta / pi (scene::Shape::pbrt_uv)
+    Affine to_space;       // canonical frame -> the geometry's space (world, or the object's space)
+    Affine to_canon;       // inverse of to_space
+    bool flip = false;     // reverse_orientation XOR the shape transform swaps handedness (pbrt)
+    double size = 0;       // rough extent in the geometry's space, for the error bound
+    int shape = -1;        // index of the shape (in Scene::shapes or in its Object)
     const scene::Shape* source = nullptr;
 };
 

@@ -121,7 +121,7 @@ bool analytic_derivatives(const detail::Analytic& a, D3 p, bool cap, D3& dpdu, D
                 dpdu = around * a.phi_max;
                 dpdv = dtheta * (a.theta_z_max - a.theta_z_min);
             } else {
-                dpdv = dtheta * (0.5 * kTwoPi);  // v = theta / pi
+                dpdv = dtheta * (a.pbrt_uv ? -0.5 * kTwoPi : 0.5 * kTwoPi);  // v = theta / pi, or 1 - it
             }
             return true;
         }

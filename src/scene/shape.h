@@ -54,6 +54,9 @@ struct Shape {
     // azimuth 0 <= phi <= phi_max radians, phi measured from Frame(axis).s (core/frame.h).
     bool partial = false;
     float z_min = -1.0f, z_max = 1.0f, phi_max = 2 * kPi;
+    // Sphere only: (u, v) as pbrt-v4 gives a full sphere, v = 1 - theta / pi from the +axis pole
+    // (0 at the -axis pole), instead of theta / pi; the pbrt loader sets it, with axis +z.
+    bool pbrt_uv = false;
 
     int material = 0;
     int area_light = -1;  // index into Scene::lights, or -1

@@ -36,6 +36,7 @@ struct Texture {
         Wrinkled,      // turbulence of Perlin noise (3D)
         Windy,         // |fbm(p / 10, 1/2, 3)| * fbm(p, 1/2, 6) (3D)
         Marble,        // pbrt's marble colour spline over sin(y + variation fbm) (3D)
+        UV,            // pbrt-v3's uv texture: (s - floor(s), t - floor(t), 0)
     };
     enum class Wrap { Repeat, Clamp, Black };
     // How a 2D texture (Image, Checkerboard with dimension 2, Bilerp, Dots) finds (s, t): from the

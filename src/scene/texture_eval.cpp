@@ -75,6 +75,10 @@ Rgb eval(const scene::Scene& scene, int index, const TextureContext& ctx, int de
             return t.corners[0] * (s0 * t0) + t.corners[1] * (s0 * st.y) + t.corners[2] * (st.x * t0) +
                    t.corners[3] * (st.x * st.y);
         }
+        case Texture::Kind::UV: {
+            const Vec2 st = map_2d(t, ctx);
+            return {st.x - std::floor(st.x), st.y - std::floor(st.y), 0.0f};
+        }
         case Texture::Kind::Dots:
             return sub(inside_polka_dot(map_2d(t, ctx)) ? t.tex1 : t.tex2);
         case Texture::Kind::FBm:

@@ -10,16 +10,6 @@
 namespace phos::shading::dielectric {
 namespace {
 
-// Refracts `w` (pointing away, on the side of `n`, cos = dot(w, n) > 0) through a boundary with
-// relative index eta; nullopt on total internal reflection.
-std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta) {
-    const float cos_i = dot(w, n);
-    const float sin2_t = std::max(0.0f, 1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1) return std::nullopt;
-    const float cos_t = std::sqrt(1 - sin2_t);
-    return -w / eta + n * (cos_i / eta - cos_t);
-}
-
 // The (generalised) half vector of wo and wi, facing +z; nullopt when degenerate or when either
 // direction sees the back of the microfacet (those pairs carry no energy in this model).
 struct HalfVector {
@@ -41,6 +31,14 @@ std::optional<HalfVector> half_vector(Vec3 wo, Vec3 wi, float eta) {
 }
 
 }  // namespace
+
+std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta) {
+    const float cos_i = dot(w, n);
+    const float sin2_t = std::max(0.0f, 1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return std::nullopt;
+    const float cos_t = std::sqrt(1 - sin2_t);
+    return -w / eta + n * (cos_i / eta - cos_t);
+}
 
 float reflectance(float cos_i, float eta, bool schlick) {
     return schlick ? fresnel_schlick(cos_i, eta) : fresnel_dielectric(cos_i, eta);

@@ -14,6 +14,10 @@ namespace phos::shading::dielectric {
 // Fresnel reflectance at cosine `cos_i` on the wo side, exact or Schlick.
 float reflectance(float cos_i, float eta, bool schlick);
 
+// Refracts `w` (pointing away, on the side of `n`, cos = dot(w, n) > 0) through a boundary with
+// relative index eta; nullopt on total internal reflection.
+std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta);
+
 struct DeltaSample {
     Vec3 wi;
     float coefficient = 0;  // the delta's scalar coefficient (F, or (1-F) [/eta^2]), times kt outside

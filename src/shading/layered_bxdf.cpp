@@ -14,6 +14,7 @@
 #include "core/rng.h"
 #include "core/warp.h"
 #include "shading/bsdf.h"
+#include "shading/dielectric.h"
 #include "shading/fresnel.h"
 #include "shading/phase.h"
 
@@ -57,14 +58,7 @@ TransportMode adjoint(TransportMode m) {
 // Transmittance through a slab of depth dz along w (unit extinction).
 float transmittance(float dz, Vec3 w) { return std::exp(-std::fabs(dz / w.z)); }
 
-// Refracts w (dot(w, n) > 0) through relative index eta = n(other) / n(w's side).
-std::optional<Vec3> refract(Vec3 w, Vec3 n, float eta) {
-    const float cos_i = dot(w, n);
-    const float sin2_t = std::max(0.0f, 1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1) return std::nullopt;
-    const float cos_t = std::sqrt(1 - sin2_t);
-    return -w / eta + n * (cos_i / eta - cos_t);
-}
+using dielectric::refract;
 
 uint64_t hash_floats(std::initializer_list<float> values) {
     uint64_t h = 0x51ed2701a3b5c7e9ULL;
@@ -107,15 +101,7 @@ struct Coat {
             wi = -wi;
             e = 1 / e;
         }
-        const auto h = half(wo, wi, e);
-        if (!h) return 0;
-        const float fr = fresnel_dielectric(dot(wo, h->wm), e);
-        const float dg = dist->D(h->wm) * dist->G(wo, wi);
-        if (h->reflect) return dg * fr / (4 * wi.z * wo.z);
-        const float s = dot(wi, h->wm) + dot(wo, h->wm) / h->etap;
-        float ft = dg * (1 - fr) * std::fabs(dot(wi, h->wm) * dot(wo, h->wm) / (s * s * wi.z * wo.z));
-        if (mode == TransportMode::Radiance) ft /= h->etap * h->etap;
-        return ft;
+        return dielectric::rough_eval(*dist, wo, wi, e, false, mode);  // Walter et al. 2007
     }
 
     float pdf(Vec3 wo, Vec3 wi, unsigned parts) const {

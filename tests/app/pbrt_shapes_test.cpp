@@ -54,6 +54,31 @@ TEST(PbrtPartialSphere, ClampedAsPbrtAndHitOnlyOnThePart) {
     EXPECT_TRUE(load_text(kHead + "Shape \"sphere\" \"float zmin\" 0.3 \"float zmax\" 0.3\n").shapes.empty());
 }
 
+TEST(PbrtFullSphere, UvAndTangentAreThoseOfPbrtV4) {
+    // pbrt-v4: u = phi / 2pi with phi = atan2(y, x) from +x in object space, v = 1 - theta / pi with
+    // theta from +z (v = 0 at the -z pole); dpdu along increasing phi. Rotated so that object +z
+    // is world +y: the top of the sphere has v near 1.
+    const scene::Scene s = load_text(kHead + "Rotate -90 1 0 0\nShape \"sphere\" \"float radius\" 1\n");
+    ASSERT_EQ(s.shapes.size(), 1u);
+    EXPECT_TRUE(s.shapes[0].pbrt_uv);
+    const accel::EmbreeScene es(s);
+    accel::SurfaceHit h;
+    for (const Vec3 o :
+         {Vec3(0.3f, 0.5f, 5), Vec3(-0.4f, -0.2f, 5), Vec3(0.05f, 0.9f, 5), Vec3(-0.6f, 0.1f, 5)}) {
+        ASSERT_TRUE(es.intersect({o, {0, 0, -1}}, h));
+        // Object space: world (x, y, z) is object (x, -z, y) under Rotate -90 about x.
+        const Vec3 q(h.p.x, -h.p.z, h.p.y);
+        float phi = std::atan2(q.y, q.x);
+        if (phi < 0) phi += 2 * kPi;
+        const float theta = std::acos(std::clamp(q.z, -1.0f, 1.0f));
+        EXPECT_NEAR(h.uv.x, phi / (2 * kPi), 1e-4f);
+        EXPECT_NEAR(h.uv.y, 1 - theta / kPi, 1e-4f);
+        // dpdu along increasing phi: object (-sin phi, cos phi, 0), world (-sin phi, 0, -cos phi).
+        EXPECT_NEAR(h.dpdu.x, -std::sin(phi), 1e-4f);
+        EXPECT_NEAR(h.dpdu.z, -std::cos(phi), 1e-4f);
+    }
+}
+
 TEST(PbrtPartialSphere, AreaLightPowerAndSamplesUseThePart) {
     // A hemisphere (phimax 180) between z = 0 and z = 1 of a unit sphere: area pi * 1 * 1.
     const scene::Scene s = load_text(kHead +

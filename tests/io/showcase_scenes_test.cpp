@@ -179,7 +179,7 @@ TEST(ShowcaseScenes, MaterialGalleryHasEachMaterialAsPbrtDefinesIt) {
     std::vector<const scene::Material*> spheres;
     for (const scene::Shape& sh : g.scene.shapes)
         if (sh.kind == scene::Shape::Kind::Sphere) spheres.push_back(&g.scene.materials[size_t(sh.material)]);
-    ASSERT_EQ(spheres.size(), 7u);
+    ASSERT_EQ(spheres.size(), 8u);
     EXPECT_TRUE(spheres[0]->conductor && spheres[0]->microfacet);  // rough gold
     EXPECT_FLOAT_EQ(spheres[0]->roughness_u, 0.05f);
     EXPECT_NE(spheres[1]->roughness_u, spheres[1]->roughness_v);                   // anisotropic copper
@@ -188,6 +188,7 @@ TEST(ShowcaseScenes, MaterialGalleryHasEachMaterialAsPbrtDefinesIt) {
     EXPECT_TRUE(spheres[4]->microfacet && spheres[4]->transmission == Rgb(1.0f));  // rough glass
     EXPECT_TRUE(spheres[5]->is_mix());
     EXPECT_GE(spheres[6]->displacement_texture, 0);  // bump-mapped
+    EXPECT_GE(spheres[7]->subsurface_medium, 0);     // ketchup
     EXPECT_EQ(g.scene.lights.size(), 2u);            // the sky and the area light
 }
 

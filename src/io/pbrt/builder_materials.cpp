@@ -338,6 +338,9 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
         t.image = std::move(ti);
         t.filename = path;
         t.invert_v = false;  // pbrt looks images up at (s, 1 - t), i.e. v = 0 is the bottom row: our default
+    } else if (cls == "uv") {  // pbrt-v3's (pbrt-v4 has none): the 2D mapping's (s, t) as colour
+        t.kind = scene::Texture::Kind::UV;
+        mapping_2d();
     } else if (cls == "ptex") {
         // Ptex needs Disney's Ptex library, which Debian does not package.
         warn(loc, d + ": ptex textures are not supported (no Ptex library); a constant 0.5 is used");
@@ -348,7 +351,7 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
         loc.fail(
             d + ": unknown texture class \"" + cls +
             "\" (constant, scale, mix, directionmix, bilerp, imagemap, checkerboard, dots, fbm, wrinkled, "
-            "windy, marble or ptex)");
+            "windy, marble, ptex, or pbrt-v3's uv)");
     }
     done(params, d);
     scene_.textures.push_back(std::move(t));

@@ -270,6 +270,9 @@ void SceneBuilder::shape(const std::string& type, const ParamList& params, const
         s.center = Vec3(0.0f);
         s.to_world = t;
         s.reverse_orientation = gs_.reverse_orientation;
+        // pbrt's object space and (u, v): the pole along +z, phi from +x, v = 0 at the -z pole.
+        s.axis = {0, 0, 1};
+        s.pbrt_uv = true;
         area = 4 * kPi * s.radius * s.radius * ls * ls;
         if (z_min > -s.radius || z_max < s.radius || phi_deg < 360.0f) {
             if (!(z_max > z_min) || !(phi_max > 0)) {

@@ -93,6 +93,14 @@ TEST(PbrtTextureClasses, BilerpFloatAndSpectrum) {
     expect_rgb(scene::eval_texture(f.scene, reflectance_texture(f.scene), at({}, {1, 0.5f})), Rgb(0.75f));
 }
 
+TEST(PbrtTextureClasses, PbrtV3UvTextureIsTheFractionalMapping) {
+    const Loaded l = load_text(with_texture("Texture \"t\" \"color\" \"uv\" \"float uscale\" 3"));
+    EXPECT_EQ(l.warnings, 0);
+    const int t = reflectance_texture(l.scene);
+    expect_rgb(scene::eval_texture(l.scene, t, at({}, {0.1f, 0.25f})), Rgb(0.3f, 0.25f, 0));
+    expect_rgb(scene::eval_texture(l.scene, t, at({}, {0.5f, 0.75f})), Rgb(0.5f, 0.75f, 0));  // s = 1.5
+}
+
 TEST(PbrtTextureClasses, Checkerboard3DInTheCtmSpace) {
     const Loaded l = load_text(with_texture(
         "AttributeBegin\nScale 2 2 2\nTexture \"t\" \"spectrum\" \"checkerboard\" \"integer dimension\" 3 "
