@@ -99,7 +99,11 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
         L.emission(seen.glow);
 
         if (depth++ == P.options.max_depth) break;
-        const shading::Bsdf bsdf = rough && widest > 0 ? P.bsdf(hit).regularized(widest) : P.bsdf(hit);
+        // A subsurface material's boundary is not widened: the walk inside crosses it many times,
+        // and each widened crossing would lose energy (7 % on a white sphere at 256 spp).
+        const bool widen =
+            rough && widest > 0 && P.scene.materials[size_t(hit.material)].subsurface_medium < 0;
+        const shading::Bsdf bsdf = widen ? P.bsdf(hit).regularized(widest) : P.bsdf(hit);
 
         if (bsdf.has_non_specular())
             L.light(beta * sample_one_light(P, hit, bsdf, wo, sampler, lambda, rays, true, walk.medium()),
