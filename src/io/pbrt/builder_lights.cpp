@@ -9,36 +9,11 @@
 #include "core/log.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
+#include "io/pbrt/measured_media.h"
 #include "io/text/image_texture.h"
 #include "io/volume/volume_grid.h"
 
 namespace phos::io::pbrt {
-namespace {
-
-struct Preset {
-    Rgb sigma_prime_s, sigma_a;
-};
-// Jensen et al. 2001 measured media (reduced scattering and absorption, 1/mm), as pbrt names them.
-const std::map<std::string, Preset>& presets() {
-    static const std::map<std::string, Preset> p = {
-        {"Apple", {{2.29f, 2.39f, 1.97f}, {0.0030f, 0.0034f, 0.046f}}},
-        {"Chicken1", {{0.15f, 0.21f, 0.38f}, {0.015f, 0.077f, 0.19f}}},
-        {"Chicken2", {{0.19f, 0.25f, 0.32f}, {0.018f, 0.088f, 0.20f}}},
-        {"Cream", {{7.38f, 5.47f, 3.15f}, {0.0002f, 0.0028f, 0.0163f}}},
-        {"Ketchup", {{0.18f, 0.07f, 0.03f}, {0.061f, 0.97f, 1.45f}}},
-        {"Marble", {{2.19f, 2.62f, 3.00f}, {0.0021f, 0.0041f, 0.0071f}}},
-        {"Potato", {{0.68f, 0.70f, 0.55f}, {0.0024f, 0.0090f, 0.12f}}},
-        {"Skimmilk", {{0.70f, 1.22f, 1.90f}, {0.0014f, 0.0025f, 0.0142f}}},
-        {"Skin1", {{0.74f, 0.88f, 1.01f}, {0.032f, 0.17f, 0.48f}}},
-        {"Skin2", {{1.09f, 1.59f, 1.79f}, {0.013f, 0.070f, 0.145f}}},
-        {"Spectralon", {{11.6f, 20.4f, 14.9f}, {0.00f, 0.00f, 0.00f}}},
-        {"Wholemilk", {{2.55f, 3.21f, 3.77f}, {0.0011f, 0.0024f, 0.014f}}},
-    };
-    return p;
-}
-
-}  // namespace
-
 void SceneBuilder::light_source(const std::string& type, const ParamList& params, const Loc& loc) {
     require_world(true, "LightSource", loc);
     const std::string d = "LightSource \"" + type + "\"";
@@ -324,8 +299,8 @@ void SceneBuilder::make_named_medium(const std::string& name, const ParamList& p
     m.sigma_s = Rgb(2.55f, 3.21f, 3.77f);
     const std::string preset = params.get_string("preset", "");
     if (!preset.empty()) {
-        const auto it = presets().find(preset);
-        if (it == presets().end())
+        const auto it = measured_media().find(preset);
+        if (it == measured_media().end())
             params.find("preset")->loc.fail(d + ": unknown medium preset \"" + preset + "\"");
         m.sigma_a = it->second.sigma_a;
         m.sigma_s = it->second.sigma_prime_s;
