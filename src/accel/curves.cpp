@@ -20,22 +20,6 @@ D3 normalized(D3 v) {
 }
 double max_abs(D3 v) { return std::max(std::fabs(v.x), std::max(std::fabs(v.y), std::fabs(v.z))); }
 
-// The four basis functions and their derivatives at u in [0, 1].
-void basis(scene::CurveSet::Basis b, double u, double w[4], double dw[4]) {
-    const double s = 1 - u;
-    if (b == scene::CurveSet::Basis::Bezier) {
-        // Bernstein polynomials of degree 3.
-        w[0] = s * s * s, w[1] = 3 * u * s * s, w[2] = 3 * u * u * s, w[3] = u * u * u;
-        dw[0] = -3 * s * s, dw[1] = 3 * s * s - 6 * u * s, dw[2] = 6 * u * s - 3 * u * u, dw[3] = 3 * u * u;
-    } else {
-        // Uniform cubic B-spline.
-        w[0] = s * s * s / 6, w[1] = (3 * u * u * u - 6 * u * u + 4) / 6;
-        w[2] = (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, w[3] = u * u * u / 6;
-        dw[0] = -s * s / 2, dw[1] = (3 * u * u - 4 * u) / 2, dw[2] = (-3 * u * u + 2 * u + 1) / 2,
-        dw[3] = u * u / 2;
-    }
-}
-
 RTCGeometryType embree_type(const scene::CurveSet& c) {
     using T = scene::CurveSet::Type;
     const bool bezier = c.basis == scene::CurveSet::Basis::Bezier;
@@ -54,6 +38,21 @@ RTCGeometryType embree_type(const scene::CurveSet& c) {
 std::string where(const scene::Shape& s) { return s.origin.empty() ? std::string("curve") : s.origin; }
 
 }  // namespace
+
+void curve_basis(scene::CurveSet::Basis b, double u, double w[4], double dw[4]) {
+    const double s = 1 - u;
+    if (b == scene::CurveSet::Basis::Bezier) {
+        // Bernstein polynomials of degree 3.
+        w[0] = s * s * s, w[1] = 3 * u * s * s, w[2] = 3 * u * u * s, w[3] = u * u * u;
+        dw[0] = -3 * s * s, dw[1] = 3 * s * s - 6 * u * s, dw[2] = 6 * u * s - 3 * u * u, dw[3] = 3 * u * u;
+    } else {
+        // Uniform cubic B-spline.
+        w[0] = s * s * s / 6, w[1] = (3 * u * u * u - 6 * u * u + 4) / 6;
+        w[2] = (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, w[3] = u * u * u / 6;
+        dw[0] = -s * s / 2, dw[1] = (3 * u * u - 4 * u) / 2, dw[2] = (-3 * u * u + 2 * u + 1) / 2,
+        dw[3] = u * u / 2;
+    }
+}
 
 RTCGeometry new_curve_geometry(RTCDevice device, const scene::Shape& shape, int index, CurveGeom& out,
                                std::string& why) {
@@ -128,7 +127,7 @@ CurveSurface curve_surface(const CurveGeom& c, unsigned prim, float u, D3 ng, D3
     using T = scene::CurveSet::Type;
     const double uu = std::clamp(double(u), 0.0, 1.0);
     double w[4], dw[4];
-    basis(c.basis, uu, w, dw);
+    curve_basis(c.basis, uu, w, dw);
     const uint32_t first = c.segments[prim];
     D3 centre, tangent, spline_normal;
     double radius = 0;

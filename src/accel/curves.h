@@ -13,6 +13,10 @@
 
 namespace phos::accel::detail {
 
+// The four cubic basis functions w and their derivatives dw at u in [0, 1]: Bernstein polynomials
+// of degree 3 (Bezier) or the uniform cubic B-spline's.
+void curve_basis(scene::CurveSet::Basis b, double u, double w[4], double dw[4]);
+
 // One curve shape as Embree holds it, in the geometry's space (world, or the object's space).
 struct CurveGeom {
     const float* vertices = nullptr;     // Embree's vertex buffer: x y z r per control point

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "accel/analytic.h"
+#include "accel/curves.h"
 
 namespace phos::accel {
 
@@ -141,21 +142,6 @@ bool analytic_derivatives(const detail::Analytic& a, D3 p, bool cap, D3& dpdu, D
     }
 }
 
-// The cubic basis functions and their derivatives at u (Bezier or uniform B-spline), the same as
-// accel/curves.cpp's.
-void basis(scene::CurveSet::Basis b, double u, double w[4], double dw[4]) {
-    const double s = 1 - u;
-    if (b == scene::CurveSet::Basis::Bezier) {
-        w[0] = s * s * s, w[1] = 3 * u * s * s, w[2] = 3 * u * u * s, w[3] = u * u * u;
-        dw[0] = -3 * s * s, dw[1] = 3 * s * s - 6 * u * s, dw[2] = 6 * u * s - 3 * u * u, dw[3] = 3 * u * u;
-    } else {
-        w[0] = s * s * s / 6, w[1] = (3 * u * u * u - 6 * u * u + 4) / 6;
-        w[2] = (-3 * u * u * u + 3 * u * u + 3 * u + 1) / 6, w[3] = u * u * u / 6;
-        dw[0] = -s * s / 2, dw[1] = (3 * u * u - 4 * u) / 2, dw[2] = (-3 * u * u + 2 * u + 1) / 2,
-        dw[3] = u * u / 2;
-    }
-}
-
 }  // namespace
 
 SurfaceDerivatives surface_derivatives(const scene::Scene& scene, const SurfaceHit& hit) {
@@ -228,7 +214,7 @@ SurfaceDerivatives surface_derivatives(const scene::Scene& scene, const SurfaceH
             if (prim >= c.segment_count() || size_t(c.segments[prim]) + 4 > c.points.size())
                 return unit_pair(hit);
             double w[4], dw[4];
-            basis(c.basis, std::clamp(double(hit.uv.x), 0.0, 1.0), w, dw);
+            detail::curve_basis(c.basis, std::clamp(double(hit.uv.x), 0.0, 1.0), w, dw);
             D3 tangent;
             double radius = 0;
             for (size_t k = 0; k < 4; ++k) {
