@@ -743,6 +743,16 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
                 transmitted = ds->transmitted;
                 branch_prob = ds->prob;
                 coefficient_over_prob = kt_s_.sample(lambda) * (ds->coefficient / ds->prob);
+                if (thin_ && ior_spectrum_) {
+                    // A thin sheet does not bend light, so a dispersive one sends every wavelength
+                    // the same way with its own reflectance: the branch, taken with the
+                    // probability at the d line, weighs each wavelength by its own over that one.
+                    for (int i = 0; i < spectrum::kSpectrumSamples; ++i) {
+                        const float ri = thin_sheet_reflectance(dielectric::reflectance(
+                            std::fabs(wo_l.z), (*ior_spectrum_)(lambda[i]), schlick_));
+                        coefficient_over_prob[i] *= (transmitted ? 1 - ri : ri) / ds->coefficient;
+                    }
+                }
                 bs.dispersive = ior_spectrum_ && !thin_;
                 bs.eta = ds->eta;
                 delta = true;

@@ -134,6 +134,44 @@ TEST(SpectralBsdf, DispersiveGlassRefractsTheHeroAtItsOwnIndex) {
     EXPECT_FALSE(ps->dispersive);
 }
 
+// A thin sheet of SF10 does not bend light, so it is not dispersive in direction: every wavelength
+// goes the same way, reflected or straight through, with its own thin-sheet reflectance. The
+// branch is chosen at the d line's reflectance, and each wavelength's weight is its own
+// coefficient over that probability, so the expected weight per wavelength (over the branch) is
+// exactly R(lambda) + T(lambda) = 1 and the reflected weight alone averages to R(lambda).
+TEST(SpectralBsdf, ThinDispersiveSheetWeighsEachWavelengthByItsOwnReflectance) {
+    const auto sf10 = spectrum::named_glass("glass-SF10");
+    ASSERT_TRUE(sf10);
+    Material m;
+    m.transmission = Rgb(1.0f);
+    m.thin = true;
+    m.ior = float(sf10->ior(spectrum::kLineD));
+    m.ior_spectrum = spectrum::Distribution::sellmeier(*sf10);
+    const Bsdf b = make(m);
+    const Vec3 wo = sph(70, 10);
+    const Wavelengths lambda = Wavelengths::visible(0.13f);
+    const float rd = thin_sheet_reflectance(fresnel_dielectric(wo.z, m.ior));
+    for (const float ul : {0.25f * rd, 0.5f + 0.5f * rd}) {  // one reflection, one transmission
+        const auto s = b.sample(wo, ul, Vec2(0.5f, 0.5f), lambda, TransportMode::Radiance);
+        ASSERT_TRUE(s);
+        EXPECT_FALSE(s->dispersive);
+        const bool reflected = s->flags & kReflection;
+        EXPECT_EQ(reflected, ul < rd);
+        const Vec3 expected_wi = reflected ? Vec3(-wo.x, -wo.y, wo.z) : -wo;
+        EXPECT_NEAR(length(s->wi - expected_wi), 0.0f, 1e-6f);
+        for (int i = 0; i < kSpectrumSamples; ++i) {
+            const float ri = thin_sheet_reflectance(fresnel_dielectric(wo.z, float(sf10->ior(lambda[i]))));
+            const float expected = reflected ? ri / rd : (1 - ri) / (1 - rd);
+            EXPECT_NEAR(s->weight[i], expected, 1e-5f) << lambda[i] << " nm";
+        }
+        // The wavelengths differ in reflectance by more than the tolerance (SF10 is strongly
+        // dispersive), so a weight flat over wavelengths would fail above.
+        if (reflected) {
+            EXPECT_GT(std::fabs(s->weight[0] - s->weight[2]), 1e-3f);
+        }
+    }
+}
+
 // Gold as a mirror with pbrt's measured eta and k: at normal incidence each wavelength reflects
 // ((eta - 1)^2 + k^2) / ((eta + 1)^2 + k^2) of its own constants.
 TEST(SpectralBsdf, MeasuredConductorReflectsEachWavelengthByItsFresnel) {
