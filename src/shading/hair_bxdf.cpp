@@ -4,11 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "shading/bsdf.h"
 #include "shading/fresnel.h"
 
 namespace phos::shading {
+
+// A BSDF holding one is copied as bytes between processes (MPI ranks).
+static_assert(std::is_trivially_copyable_v<HairBxdf>);
+
 namespace {
 
 constexpr double kPiD = 3.14159265358979323846;
