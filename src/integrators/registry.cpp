@@ -112,9 +112,11 @@ bool delta_light(const scene::Light& l) {
 // sharp-glass lobe, or with `sharp_glossy` also a glossy lobe followed at the default
 // --sharp-glossy.
 bool has_delta_surface(const scene::Scene& scene, bool sharp_glossy = false) {
+    const std::vector<bool> marked =
+        sharp_glossy ? photon::caustic_caster_materials(scene, render::kDefaultSharpGlossy)
+                     : photon::delta_lobe_materials(scene);
     auto delta = [&](const scene::Shape& s) {
-        return sharp_glossy ? photon::is_caustic_caster(scene, s.material, render::kDefaultSharpGlossy)
-                            : photon::has_delta_lobe(scene, s.material);
+        return s.material >= 0 && size_t(s.material) < marked.size() && marked[size_t(s.material)];
     };
     for (const scene::Shape& s : scene.shapes)
         if (delta(s)) return true;

@@ -102,19 +102,39 @@ bool is_caustic_caster(const scene::Material& m, float sharp_exponent) {
     return shading::Bsdf::of_material(m, {}).has_followed(sharp_exponent);
 }
 
-bool is_caustic_caster(const scene::Scene& scene, int material, float sharp_exponent) {
-    if (material < 0 || size_t(material) >= scene.materials.size()) return false;
-    const scene::Material& m = scene.materials[size_t(material)];
-    if (!m.is_mix()) return is_caustic_caster(m, sharp_exponent);
-    return is_caustic_caster(scene, m.mix_a, sharp_exponent) ||
-           is_caustic_caster(scene, m.mix_b, sharp_exponent);
+namespace {
+
+// `of_plain` of each material, a mix taking the "or" of its two materials' (nested mixes
+// followed; a mix's indices are checked, so a cycle or a bad index counts as false).
+template <class OfPlain>
+std::vector<bool> per_material(const scene::Scene& scene, OfPlain of_plain) {
+    const size_t n = scene.materials.size();
+    std::vector<bool> plain(n);
+    for (size_t i = 0; i < n; ++i) plain[i] = !scene.materials[i].is_mix() && of_plain(scene.materials[i]);
+    auto resolve = [&](auto&& self, int index, int depth) -> bool {
+        if (index < 0 || size_t(index) >= n || depth > 64) return false;
+        const scene::Material& m = scene.materials[size_t(index)];
+        if (!m.is_mix()) return plain[size_t(index)];
+        return self(self, m.mix_a, depth + 1) || self(self, m.mix_b, depth + 1);
+    };
+    std::vector<bool> out(n);
+    for (size_t i = 0; i < n; ++i) out[i] = resolve(resolve, int(i), 0);
+    return out;
 }
 
-bool has_delta_lobe(const scene::Scene& scene, int material) {
-    if (material < 0 || size_t(material) >= scene.materials.size()) return false;
-    const scene::Material& m = scene.materials[size_t(material)];
-    if (!m.is_mix()) return has_delta_lobe(m);
-    return has_delta_lobe(scene, m.mix_a) || has_delta_lobe(scene, m.mix_b);
+bool material_flag(const std::vector<bool>& table, int material) {
+    return material >= 0 && size_t(material) < table.size() && table[size_t(material)];
+}
+
+}  // namespace
+
+std::vector<bool> caustic_caster_materials(const scene::Scene& scene, float sharp_exponent) {
+    return per_material(scene,
+                        [&](const scene::Material& m) { return is_caustic_caster(m, sharp_exponent); });
+}
+
+std::vector<bool> delta_lobe_materials(const scene::Scene& scene) {
+    return per_material(scene, [](const scene::Material& m) { return has_delta_lobe(m); });
 }
 
 bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
@@ -123,7 +143,8 @@ bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent) {
 }
 
 std::vector<BoundingSphere> caustic_caster_bounds(const scene::Scene& scene, float sharp_exponent) {
-    auto caster = [&](const scene::Shape& s) { return is_caustic_caster(scene, s.material, sharp_exponent); };
+    const std::vector<bool> casters = caustic_caster_materials(scene, sharp_exponent);
+    auto caster = [&](const scene::Shape& s) { return material_flag(casters, s.material); };
     std::vector<BoundingSphere> out;
     auto add = [&](const BoundingSphere& b) {
         if (b.radius >= 0) out.push_back(b);

@@ -24,15 +24,17 @@ namespace phos::photon {
 // (mirror, smooth or thin glass) or a glossy lobe (Phong, frosted glass) at least as sharp as a
 // Phong lobe of exponent `sharp_exponent` (shading::Bsdf::sharp_lobes).
 bool is_caustic_caster(const scene::Material& m, float sharp_exponent);
-// The same for material index `material` of the scene, a mix when either of its materials is.
-bool is_caustic_caster(const scene::Scene& scene, int material, float sharp_exponent);
+// is_caustic_caster of each material of the scene, by index, a mix counting when either of its
+// materials is one: built once per scene (a BSDF per material), looked up per shape.
+std::vector<bool> caustic_caster_materials(const scene::Scene& scene, float sharp_exponent);
 // True if some material of the scene is a caustic caster: only then can there be caustic photons.
 bool has_caustic_casters(const scene::Scene& scene, float sharp_exponent);
 // True if the material has a delta lobe (mirror or smooth glass): only then can the scene have
 // L S+ D paths worth a caustic map.
 bool has_delta_lobe(const scene::Material& m);
-// The same for material index `material` of the scene, a mix when either of its materials has one.
-bool has_delta_lobe(const scene::Scene& scene, int material);
+// has_delta_lobe of each material of the scene, by index, a mix counting when either of its
+// materials has one.
+std::vector<bool> delta_lobe_materials(const scene::Scene& scene);
 
 struct BoundingSphere {
     Vec3 center{0.0f};
