@@ -140,6 +140,11 @@ public:
     // sum of the A_p, with the RGB sigma_a. For Russian roulette and lobe selection.
     Rgb albedo(Vec3 wo) const;
 
+    // M_p's variance v_p for p = 0..3 (each longitudinal lobe is about sqrt(v_p) radians wide); the
+    // sharpest is v_1 = v_0 / 4 (TT). A modified-Phong lobe cos^n has about the width of v = 1 / n,
+    // so the hair is as sharp as a Phong lobe of exponent 1 / v_1 (what bsdf.h's sharp_lobes compares).
+    float longitudinal_variance(int p) const { return v_[p]; }
+
     // kGlossy | kReflection | kTransmission (bsdf.h's LobeFlags).
     static uint32_t flags();
     static constexpr int kPMax = 3;

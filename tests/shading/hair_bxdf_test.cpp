@@ -361,6 +361,18 @@ TEST(HairAbsorption, MelaninConcentrations) {
     EXPECT_EQ(d.at(lambda()), want);
 }
 
+TEST(HairBxdf, LongitudinalVariancesAreChiangEq7) {
+    // v_0 = (0.726 b + 0.812 b^2 + 3.7 b^20)^2, v_1 = v_0 / 4, v_2 = v_3 = 4 v_0.
+    const HairBxdf hair = make(0, 0.3f, 0.3f);
+    const float v0 = std::pow(0.726f * 0.3f + 0.812f * 0.09f + 3.7f * std::pow(0.3f, 20.0f), 2.0f);
+    EXPECT_NEAR(hair.longitudinal_variance(0), v0, 1e-6f);
+    EXPECT_NEAR(hair.longitudinal_variance(1), v0 / 4, 1e-6f);
+    EXPECT_NEAR(hair.longitudinal_variance(2), 4 * v0, 1e-6f);
+    EXPECT_NEAR(hair.longitudinal_variance(3), 4 * v0, 1e-6f);
+    // Clamped to pbrt-v4's [0.01, 1].
+    EXPECT_EQ(make(0, 0, 0.3f).longitudinal_variance(0), make(0, 0.01f, 0.3f).longitudinal_variance(0));
+}
+
 TEST(HairBxdf, FiniteAtTheEdges) {
     // pbrt's HOnTheEdge case, h = +-1, directions along the fibre, wi in the tangent plane,
     // the roughest and smoothest betas, an opaque colour.
