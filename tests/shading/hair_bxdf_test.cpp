@@ -189,6 +189,13 @@ TEST(HairBxdf, SampleAgreesWithFAndPdf) {
         ASSERT_TRUE(s.has_value());
         ASSERT_NEAR(length(s->wi), 1.0f, 1e-5f);
         ASSERT_EQ(s->pdf, hair.pdf(wo, s->wi));
+        // The direction and its density do not depend on the path's wavelengths (bsdf.h).
+        const float uc2 = rng.next();
+        const Vec2 u2 = rng.next2();
+        const auto a = hair.sample(wo, uc2, u2, lambda());
+        const auto b = hair.sample(wo, uc2, u2, Wavelengths::visible(0.81f));
+        ASSERT_TRUE(a && b);
+        ASSERT_TRUE(a->wi == b->wi && a->pdf == b->pdf);
         const Spectrum f = hair.f(wo, s->wi, lambda());
         ASSERT_TRUE(s->weight.is_finite());
         EXPECT_EQ(s->flags & kGlossy, uint32_t(kGlossy));
