@@ -67,13 +67,15 @@ PiecewiseLinear2D::PiecewiseLinear2D(const float* values, int nx, int ny,
                           double(cond[size_t(y + 2) * size_t(nx) - 1]));
             marg[y + 1] = float(sum);
         }
-        // A slice without mass (which the readers refuse) is left at 0 rather than divided by 0.
-        const float norm = sum > 0 && std::isfinite(sum) ? float(1.0 / sum) : 0.0f;
+        // Divided in double: 1 / sum overflows a float for a slice of tiny values (found by the
+        // fuzzer). A slice without mass (which the readers refuse) is left at 0.
+        const double total = sum > 0 && std::isfinite(sum) ? sum : 0.0;
+        const auto scale = [total](float& v) { v = total > 0 ? float(double(v) / total) : 0.0f; };
         for (size_t i = 0; i < n; ++i) {
-            cond[i] *= norm;
-            data[i] *= norm;
+            scale(cond[i]);
+            scale(data[i]);
         }
-        for (int y = 0; y < ny; ++y) marg[y] *= norm;
+        for (int y = 0; y < ny; ++y) scale(marg[y]);
     }
 }
 
