@@ -4,7 +4,7 @@
 # runs each target in turn, then prints executions, coverage and findings per target.
 # Usage: scripts/fuzz.sh [--smoke] [--runs N] [SECONDS] [TARGET...]
 #   SECONDS  fuzzing time per target (default 60); TARGET: scn pbrt scene_format off ply obj gzip image
-#            volume checkpoint photon_maps (default: all). --smoke (CI): every seed plus a few seconds per target.
+#            volume checkpoint photon_maps rgl_bsdf (default: all). --smoke (CI): every seed plus a few seconds per target.
 #   --runs N also stops a target after N executions (whichever comes first: `--runs 10000000 3600`
 #            is the "10 M executions or one hour" campaign of docs/testing.md).
 # PHOS_FUZZ_TIMEOUT (seconds, default 10): what counts as a hang. libFuzzer times wall clock, so a
@@ -15,7 +15,7 @@ set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 build="$here/build-fuzz"
 shared="${PHOS_SHARED_DIR:-$here/../shared}"
-all_targets=(scn pbrt scene_format off ply obj gzip image volume checkpoint photon_maps)
+all_targets=(scn pbrt scene_format off ply obj gzip image volume checkpoint photon_maps rgl_bsdf)
 
 smoke=0
 seconds=60
@@ -63,6 +63,7 @@ build_targets=()
 for t in "${targets[@]}"; do build_targets+=(--target "${t}_fuzzer"); done
 [[ " ${targets[*]} " == *" volume "* ]] && build_targets+=(--target volume_seeds)
 [[ " ${targets[*]} " == *" photon_maps "* ]] && build_targets+=(--target photon_maps_seeds)
+[[ " ${targets[*]} " == *" rgl_bsdf "* ]] && build_targets+=(--target rgl_bsdf_seeds)
 cmake --build "$build" -j"$(nproc)" "${build_targets[@]}"
 
 # ---- corpora: generated and shipped seeds (fresh each run) plus what earlier runs found ----
@@ -72,12 +73,13 @@ trap 'rm -rf "$seeds"' EXIT
 python3 "$here/fuzz/make_seeds.py" "$seeds" "$here" "$shared"
 if [[ " ${targets[*]} " == *" volume "* ]]; then "$build/fuzz/volume_seeds" "$seeds/volume"; fi
 if [[ " ${targets[*]} " == *" photon_maps "* ]]; then "$build/fuzz/photon_maps_seeds" "$seeds/photon_maps"; fi
+if [[ " ${targets[*]} " == *" rgl_bsdf "* ]]; then "$build/fuzz/rgl_bsdf_seeds" "$seeds/rgl_bsdf"; fi
 mkdir -p "$build/artifacts" "$build/logs"
 
 dict_of() { case "$1" in scene_format) echo scene ;; *) echo "$1" ;; esac; }
 # Input size caps. Images: a header may claim up to 32768 pixels per byte of file (io/image), so
 # 1 KB keeps valid but extreme images (a 1-bit PNG of 30 million pixels) within -rss_limit_mb.
-max_len_of() { case "$1" in image) echo 1024 ;; checkpoint|volume|photon_maps) echo 4096 ;; *) echo 8192 ;; esac; }
+max_len_of() { case "$1" in image) echo 1024 ;; checkpoint|volume|photon_maps|rgl_bsdf) echo 4096 ;; *) echo 8192 ;; esac; }
 
 failed=()
 rows=()
