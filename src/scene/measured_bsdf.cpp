@@ -1,6 +1,7 @@
 // The measured BSDF's consistency rules and its interpolants (measured_bsdf.h).
 #include "scene/measured_bsdf.h"
 
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -120,6 +121,9 @@ MeasuredBsdf::MeasuredBsdf(MeasuredBsdfTables tables) : t_(std::move(tables)) {
         for (int k = 0; k < 4; ++k) albedo[s * 4 + size_t(k)] = float(sum / double(channels.size()));
     }
     albedo_ = PiecewiseLinear2D(albedo.data(), 2, 2, {t_.phi_i, t_.theta_i}, false);
+    // D at the normal (u(theta) = 0; any phi).
+    const double d0 = ndf_.eval(Vec2(0.0f, 0.5f));
+    equivalent_alpha_ = d0 > 0 ? float(std::min(1.0, 1 / std::sqrt(3.14159265358979323846 * d0))) : 1.0f;
 }
 
 float MeasuredBsdf::albedo(float phi_o, float theta_o) const {

@@ -85,11 +85,16 @@ public:
     // reflectance int f cos dwi (Dupuy & Jakob 2018, sec. 5: the reduced BRDF is the vndf
     // sampling weight). Never negative.
     float albedo(float phi_o, float theta_o) const;
+    // The roughness of the Trowbridge-Reitz distribution with the table's D at the normal
+    // (D(n) = 1 / (pi alpha^2)), at most 1: how sharp the lobe is, for the --sharp-glossy and
+    // regularisation decisions that Phong exponents and microfacet alphas take elsewhere.
+    float equivalent_alpha() const { return equivalent_alpha_; }
 
 private:
     MeasuredBsdfTables t_;
     PiecewiseLinear2D ndf_, sigma_, vndf_, luminance_, spectra_;
     PiecewiseLinear2D albedo_;  // eval-only, [phi_i][theta_i] on a 2 x 2 grid per slice (constant)
+    float equivalent_alpha_ = 1;
 };
 
 }  // namespace phos::scene

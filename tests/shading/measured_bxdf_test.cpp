@@ -193,6 +193,12 @@ TEST(MeasuredBxdf, SampleAgreesWithFAndPdf) {
     }
 }
 
+TEST(MeasuredBxdf, EquivalentRoughness) {
+    EXPECT_NEAR(cases()[0].data->equivalent_alpha(), 0.2f, 1e-3f);                     // gold 0.2
+    EXPECT_NEAR(cases()[1].data->equivalent_alpha(), 1.0f, 1e-3f);                     // lambert
+    EXPECT_NEAR(cases()[2].data->equivalent_alpha(), std::sqrt(0.15f * 0.4f), 1e-3f);  // anisotropic
+}
+
 TEST(MeasuredBxdf, TwoSidedReflectionOnly) {
     const MeasuredBxdf b(*cases()[0].data);
     const Vec3 wo = dir(0.5f, 0.2f), wi = dir(0.7f, 2.9f);
