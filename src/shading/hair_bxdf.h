@@ -137,6 +137,8 @@ public:
     // changes); the rest stays.
     void set_h(float h);
     float h() const { return h_; }
+    // Replaces the absorption (a textured colour evaluated at a hit).
+    void set_sigma_a(const HairAbsorption& sigma_a) { sigma_a_ = sigma_a; }
 
     Spectrum f(Vec3 wo, Vec3 wi, const Wavelengths& lambda) const;
     float pdf(Vec3 wo, Vec3 wi) const;
