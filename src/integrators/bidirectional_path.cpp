@@ -162,6 +162,11 @@ bool trace_light_path(const Prepared& P, const LightSubpathRules& rules, Sampler
             break;
         Vertex v = reach_vertex(P, event, walk, ray, hit, segments, path.beta, path.lambda);
         v.delta_chain = delta_chain;
+        // An infinite light's direct density is that of sampling it from this first vertex (a
+        // portal's depends on the point).
+        if (segments == 1 && light.is_infinite())
+            path.mis.dVCM =
+                mis(direct_density(pmf, e.pdf_pos, light.pdf_Li(v.p, -ray.dir, {}, {}), true) / emit_pdf);
         // The first segment from a light at infinity has no distance to convert (its start is a
         // direction).
         arrive(path.mis, length(v.p - from), cos_at(v, v.wo), !(segments == 1 && at_infinity));

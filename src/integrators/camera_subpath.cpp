@@ -158,8 +158,10 @@ Spectrum direct_light_sample(const Context& C, const Vertex& v, float u_light, V
     light.pdf_Le(ls.n_light, -ls.wi, pdf_pos, pdf_dir);
     const float cos_light = area ? std::fabs(dot(ls.n_light, ls.wi)) : 1.0f;
     const float d2 = at_infinity ? 1.0f : ls.distance * ls.distance;
-    // BSDF sampling competes with area and infinite lights only (vcm_mis.h: direct_density).
-    const float direct_pdf_a = n_mis * direct_density(pmf, pdf_pos, pdf_dir, at_infinity);
+    // BSDF sampling competes with area and infinite lights only (vcm_mis.h: direct_density). An
+    // infinite light's direct density is that of its sample (a portal's depends on the point).
+    const float direct_pdf_a =
+        n_mis * direct_density(pmf, pdf_pos, light.is_infinite() ? ls.pdf : pdf_dir, at_infinity);
     const float direct_pdf_w = ls.delta ? 0.0f : at_infinity ? direct_pdf_a : direct_pdf_a * d2 / cos_light;
     float w = direct_light_weight(v.mis, s.pdf_dir * go_on, s.pdf_rev, direct_pdf_a, pmf * pdf_pos * pdf_dir,
                                   direct_pdf_w, v.mergeable && C.it.strategies.merge_next_to_light(),
@@ -283,13 +285,16 @@ void merge(const Context& C, const Vertex& v, bool first, float go_on, Rgb sum[k
 // The emitter the camera subpath hit (s = 0): area light `li` at a point with normal n, seen along wo.
 // `after_first`: the vertex before the emitter was the camera subpath's first non-delta one, whose
 // light-sampling strategy took C.it.direct_samples samples.
+// `from`: the camera subpath's vertex before the emitter (an infinite light's direct density there).
 float emitter_weight(const Context& C, const SubpathMis& camera, size_t li, Vec3 n, Vec3 wo, bool at_infinity,
-                     bool after_first) {
+                     bool after_first, Vec3 from) {
+    const shading::Light& light = C.P.lights[li];
     float pdf_pos = 0, pdf_dir = 0;
-    C.P.lights[li].pdf_Le(n, wo, pdf_pos, pdf_dir);
+    light.pdf_Le(n, wo, pdf_pos, pdf_dir);
     const float pmf = C.P.lights.pmf(li);
     const float samples = after_first ? C.it.direct_mis : 1.0f;
-    return emitter_hit_weight(camera, samples * direct_density(pmf, pdf_pos, pdf_dir, at_infinity),
+    const float direct_dir = light.is_infinite() ? light.pdf_Li(from, -wo, {}, {}) : pdf_dir;
+    return emitter_hit_weight(camera, samples * direct_density(pmf, pdf_pos, direct_dir, at_infinity),
                               pmf * pdf_pos * pdf_dir, C.it.strategies.merge_next_to_light());
 }
 
@@ -330,9 +335,10 @@ void escaped(const Context& C, const CameraWalk& w, const Ray& ray, int depth, f
         C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * P.background(lambda) * found_scale, lambda);
     if (C.it.strategies.ppm && !w.specular_chain) return;
     for (size_t i : P.lights.infinite_lights()) {
-        const Spectrum Le = P.lights[i].Le(Vec3(0.0f), dir, lambda);
+        const Spectrum Le = P.lights[i].escaped_Le(ray.origin, dir, lambda);
         if (Le.is_black()) continue;
-        const float wt = depth == 1 ? 1.0f : emitter_weight(C, w.path.mis, i, {}, -dir, true, w.after_first);
+        const float wt =
+            depth == 1 ? 1.0f : emitter_weight(C, w.path.mis, i, {}, -dir, true, w.after_first, w.from);
         C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * Le * (wt * found_scale), lambda);
     }
 }
@@ -349,7 +355,7 @@ void emission_at(const Context& C, const CameraWalk& w, const Vertex& v, const a
     if (!Le.is_black() && (!ppm || w.specular_chain)) {
         const float wt = depth == 1 || ppm ? 1.0f
                                            : emitter_weight(C, w.path.mis, size_t(hit.area_light), hit.ng,
-                                                            v.wo, false, w.after_first);
+                                                            v.wo, false, w.after_first, w.from);
         C.parts[w.found_part(depth)] += spectrum::to_srgb(beta * Le * (wt * found_scale), lambda);
     }
     if (w.specular_chain)

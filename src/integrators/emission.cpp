@@ -23,12 +23,12 @@ SeenEmission seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3
     return seen;
 }
 
-Spectrum escaped_emission(const Prepared& P, Vec3 dir, const Spectrum& beta, const Wavelengths& lambda,
-                          const BsdfSampledFrom* from) {
+Spectrum escaped_emission(const Prepared& P, Vec3 origin, Vec3 dir, const Spectrum& beta,
+                          const Wavelengths& lambda, const BsdfSampledFrom* from) {
     Spectrum L(0.0f);
     if (!from || P.options.background_light) L += beta * P.background(lambda);
     for (size_t i : P.lights.infinite_lights()) {
-        const Spectrum Le = P.lights[i].Le(Vec3(0.0f), dir, lambda);
+        const Spectrum Le = P.lights[i].escaped_Le(origin, dir, lambda);
         if (Le.is_black()) continue;
         float w = 1;
         if (from)

@@ -32,11 +32,11 @@ SeenEmission seen_emission(const Prepared& P, const accel::SurfaceHit& hit, Vec3
                            const Wavelengths& lambda, bool camera_chain = true,
                            const BsdfSampledFrom* from = nullptr);
 
-// Radiance times `beta` that a ray leaving the scene in direction `dir` (unit) sees: the infinite
-// lights' emission, MIS-weighted against sampling them when `from` is given (the ray's last
-// bounce sampled a non-delta lobe), and the background, which only rays without such a bounce see
-// (mirror and glass chains from the camera) unless --background-light makes it light the scene.
-Spectrum escaped_emission(const Prepared& P, Vec3 dir, const Spectrum& beta, const Wavelengths& lambda,
-                          const BsdfSampledFrom* from = nullptr);
+// Radiance times `beta` that a ray from `origin` leaving the scene in direction `dir` (unit) sees: the
+// infinite lights' emission, MIS-weighted against sampling them when `from` is given (the ray's last bounce
+// sampled a non-delta lobe), and the background, which only rays without such a bounce see (mirror and glass
+// chains from the camera) unless --background-light makes it light the scene.
+Spectrum escaped_emission(const Prepared& P, Vec3 origin, Vec3 dir, const Spectrum& beta,
+                          const Wavelengths& lambda, const BsdfSampledFrom* from = nullptr);
 
 }  // namespace phos::integrators

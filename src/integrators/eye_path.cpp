@@ -164,7 +164,7 @@ Rgb trace_eye_path(const Prepared& P, Ray ray, Sampler& sampler, int direct_samp
         if (event == shading::SurfaceWalk::Event::Escaped) {
             // Every vertex so far was followed (mirror, glass, sharp glossy): escaped light is seen
             // directly, weighted against light sampling after a glossy bounce.
-            add(escaped_emission(P, normalize(ray.dir), beta, lambda, from), TraceTerm::Emission);
+            add(escaped_emission(P, ray.origin, normalize(ray.dir), beta, lambda, from), TraceTerm::Emission);
             break;
         }
         const Vec3 wo = -normalize(ray.dir);

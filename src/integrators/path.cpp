@@ -88,8 +88,8 @@ Rgb PathIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, RayCo
             continue;
         }
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            L.emission(
-                escaped_emission(P, normalize(ray.dir), beta, lambda, specular_bounce ? nullptr : &from));
+            L.emission(escaped_emission(P, ray.origin, normalize(ray.dir), beta, lambda,
+                                        specular_bounce ? nullptr : &from));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);

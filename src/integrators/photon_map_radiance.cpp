@@ -132,7 +132,7 @@ RadianceParts PhotonMapRadiance::camera_ray(Ray ray, Sampler& sampler, RayCounts
         if (auto* r = recorder()) r->vertex(P_, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            add_spectrum(seen, escaped_emission(P_, normalize(ray.dir), beta, lambda, from),
+            add_spectrum(seen, escaped_emission(P_, ray.origin, normalize(ray.dir), beta, lambda, from),
                          TraceTerm::Emission);
             break;
         }

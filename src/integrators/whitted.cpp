@@ -35,7 +35,7 @@ Rgb WhittedIntegrator::radiance(const Prepared& P, Ray ray, Sampler& sampler, Ra
         if (auto* r = recorder()) r->vertex(P, event, ray, hit, walk, beta);
         if (event == shading::SurfaceWalk::Event::Lost) break;
         if (event == shading::SurfaceWalk::Event::Escaped) {
-            L.emission(beta * (P.background(lambda) + P.escaped(normalize(ray.dir), lambda)));
+            L.emission(beta * (P.background(lambda) + P.escaped(ray.origin, normalize(ray.dir), lambda)));
             break;
         }
         const Vec3 wo = -normalize(ray.dir);

@@ -38,9 +38,9 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
         glow_.push_back(m.emission + (options.ambient ? m.ambient * scene.ambient : Rgb(0.0f)));
 }
 
-Spectrum Prepared::escaped(Vec3 dir, const Wavelengths& lambda) const {
+Spectrum Prepared::escaped(Vec3 origin, Vec3 dir, const Wavelengths& lambda) const {
     Spectrum L(0.0f);
-    for (size_t i : lights.infinite_lights()) L += lights[i].Le(Vec3(0.0f), dir, lambda);
+    for (size_t i : lights.infinite_lights()) L += lights[i].escaped_Le(origin, dir, lambda);
     return L;
 }
 

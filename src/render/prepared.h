@@ -55,9 +55,9 @@ public:
         return hit.area_light >= 0 ? lights[size_t(hit.area_light)].surface_Le(hit.ng, hit.uv, wo, lambda)
                                    : Spectrum(0.0f);
     }
-    // Radiance arriving along an escaped ray with direction `dir` from infinite lights, at `lambda`,
-    // and its colour.
-    Spectrum escaped(Vec3 dir, const Wavelengths& lambda) const;
+    // Radiance arriving along an escaped ray from `origin` with direction `dir` from infinite lights, at
+    // `lambda`, and its colour.
+    Spectrum escaped(Vec3 origin, Vec3 dir, const Wavelengths& lambda) const;
     Rgb escaped_colour(Vec3 dir) const;
     // The scene's background radiance (Scene::background) at `lambda`.
     Spectrum background(const Wavelengths& lambda) const { return background_.sample(lambda); }

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/transform.h"
 #include "core/vec.h"
@@ -46,10 +47,9 @@ struct Light {
     // Area: an image of the radiance over the surface's (u, v) replacing `color` (-1: none).
     int texture = -1;
     bool equal_area = false;
-    // Infinite, pbrt-v4's "portal": the unit normal (world space) of the portal rectangle's plane,
-    // z = normalize((p3 - p0) x (p1 - p0)); the light then emits only from directions w (pointing
-    // at the sky) with w . portal_normal > 0. Zero: no portal.
-    Vec3 portal_normal{0.0f};
+    // Infinite, pbrt-v4's "portal": the four corners p0..p3 (world space) of a rectangle the light
+    // shines through (shading/light_portal.h); empty: no portal.
+    std::vector<Vec3> portal;
     float fov = 1.5707964f;  // projection: the full angle across the image's shorter side (radians)
     Transform to_world;
     // The medium the light sits in (-1 = vacuum) when the file says so (`medium_declared`: pbrt's

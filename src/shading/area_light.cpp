@@ -36,8 +36,17 @@ AreaLight::AreaLight(const scene::Light& light, const scene::Shape& shape,
     if (tex.kind != scene::Texture::Kind::Image || !tex.image || tex.image->width <= 0 ||
         tex.image->height <= 0)
         throw InputError("area light: the emission image must be an image");
-    if (shape.kind != scene::Shape::Kind::Mesh)
-        throw InputError("area light: image emission needs a triangle mesh");
+    if (shape.kind != scene::Shape::Kind::Mesh) {
+        accel::detail::Analytic a;
+        const char* why = "";
+        if (shape.kind == scene::Shape::Kind::Box || shape.kind == scene::Shape::Kind::Curves ||
+            !accel::detail::make_analytic(shape, shape.area_light, a, why))
+            throw InputError(
+                "area light: image emission needs a surface with (u, v): a mesh, sphere, disk, "
+                "cylinder or cone");
+        a.source = nullptr;
+        analytic_ = a;
+    }
     image_ = tex.image;
     double sum[3] = {0, 0, 0};
     for (const Rgb& c : image_->texels)
@@ -64,6 +73,24 @@ Rgb AreaLight::radiance_rgb(Vec2 uv) const {
 }
 
 Vec2 AreaLight::sample_uv(const ShapeSample& s) const {
+    if (analytic_) {
+        // The sampled point's place on the canonical shape; on a capped cylinder or cone, a cap
+        // when it lies off the side's radius.
+        using accel::detail::D3;
+        const accel::detail::Analytic& a = *analytic_;
+        accel::detail::CanonicalHit hit;
+        hit.p = a.to_canon.point(D3(s.p.x, s.p.y, s.p.z));
+        hit.part = accel::detail::kSide;
+        if (a.capped && (a.kind == scene::Shape::Kind::Cylinder || a.kind == scene::Shape::Kind::Cone)) {
+            const double rho = std::sqrt(hit.p.x * hit.p.x + hit.p.y * hit.p.y);
+            const double side = a.kind == scene::Shape::Kind::Cone
+                                    ? a.radius / a.height * (0.5 * a.height - hit.p.z)
+                                    : a.radius;
+            if (std::fabs(rho - side) > 1e-4 * a.radius)
+                hit.part = hit.p.z > 0 ? accel::detail::kCapTop : accel::detail::kCapBottom;
+        }
+        return accel::detail::analytic_surface(a, hit, 0).uv;
+    }
     if (s.triangle < 0) return {0, 0};
     const Vec2 b = s.barycentric;
     if (uvs_.empty()) return b;  // the accel layer's uv of a mesh without uvs

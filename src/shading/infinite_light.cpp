@@ -4,21 +4,20 @@
 // pdf is therefore P(texel) / solid angle(texel) = pdf_uv / (2 pi H (cos_j - cos_j+1)).
 #include "shading/infinite_light.h"
 
+#include <array>
 #include <cmath>
 #include <string>
 
+#include "core/equal_area.h"
 #include "core/error.h"
 #include "core/warp.h"
 
 namespace phos::shading {
 InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene::Texture>& textures,
                              const SceneSphere& sphere)
-    : Light(light),
-      frame_(light_frame(light.to_world)),
-      scale_(light.color),
-      portal_(length_squared(light.portal_normal) > 0),
-      portal_normal_(portal_ ? normalize(light.portal_normal) : Vec3(0.0f)),
-      sphere_(sphere) {
+    : Light(light), frame_(light_frame(light.to_world)), scale_(light.color), sphere_(sphere) {
+    if (!light.portal.empty() && light.portal.size() != 4)
+        throw InputError("infinite light: a portal takes four points");
     if (light.texture >= 0) {
         if (size_t(light.texture) >= textures.size())
             throw InputError("infinite light: texture index " + std::to_string(light.texture) +
@@ -36,10 +35,10 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
         if (width_ > 0 && light.equal_area) {
             if (width_ != height_)
                 throw InputError("infinite light: equal-area map '" + tex.filename + "' is not square");
-            equal_area_ = EqualAreaMap(tex.image->texels, width_,
-                                       portal_ ? frame_.to_local(portal_normal_) : Vec3(0.0f));
+            equal_area_ = EqualAreaMap(tex.image->texels, width_);
             width_ = height_ = 0;
             integral_ = equal_area_.hemisphere_integral() * scale_;
+            make_portal(light);
             return;
         }
         if (width_ > 0) {
@@ -49,10 +48,11 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
         }
     }
     if (width_ == 0) {
-        integral_ = scale_ * (portal_ ? 2 * kPi : 4 * kPi);
+        integral_ = scale_ * (4 * kPi);
         constant_ = light.spectrum
                         ? light.spectrum->scaled(light.color.max() > 0 ? scale_.max() / light.color.max() : 0)
                         : spectrum::Distribution::rgb(scale_, spectrum::RgbSpectrum::Use::Illuminant);
+        make_portal(light);
         return;
     }
     cos_edge_.resize(size_t(height_) + 1);
@@ -73,9 +73,44 @@ InfiniteLight::InfiniteLight(const scene::Light& light, const std::vector<scene:
     }
     integral_ = Rgb(float(sum[0]), float(sum[1]), float(sum[2]));
     distribution_ = Distribution2D(weights, width_, height_);
+    make_portal(light);
 }
 
-Rgb InfiniteLight::power() const { return integral_ * (kPi * sphere_.radius * sphere_.radius); }
+namespace {
+
+// pbrt-v4's bilinear lookup of an equal-area map at (u, v) with the octahedral-sphere wrap.
+Rgb bilinear(const EqualAreaMap& map, Vec2 uv) {
+    const int n = map.resolution();
+    const float x = uv.x * float(n) - 0.5f, y = uv.y * float(n) - 0.5f;
+    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
+    const float dx = x - float(x0), dy = y - float(y0);
+    return map.texel_wrapped(x0, y0) * ((1 - dx) * (1 - dy)) +
+           map.texel_wrapped(x0 + 1, y0) * (dx * (1 - dy)) + map.texel_wrapped(x0, y0 + 1) * ((1 - dx) * dy) +
+           map.texel_wrapped(x0 + 1, y0 + 1) * (dx * dy);
+}
+
+}  // namespace
+
+void InfiniteLight::make_portal(const scene::Light& light) {
+    if (light.portal.empty()) return;
+    const std::array<Vec3, 4> corners{light.portal[0], light.portal[1], light.portal[2], light.portal[3]};
+    if (!equal_area_.empty()) {
+        const int n = equal_area_.resolution();
+        portal_ = LightPortal(corners, n, n, [&](Vec3 w) {
+            return bilinear(equal_area_, equal_area_sphere_to_square(frame_.to_local(normalize(w)))) * scale_;
+        });
+    } else if (width_ > 0) {
+        portal_ = LightPortal(corners, std::max(width_ / 2, 1), height_, [&](Vec3 w) { return Le_rgb(w); });
+    } else {
+        portal_ = LightPortal(corners, 1, 1, [&](Vec3) { return scale_; });
+    }
+    integral_ = portal_.integral();
+}
+
+Rgb InfiniteLight::power() const {
+    if (!portal_.empty()) return portal_.flux();
+    return integral_ * (kPi * sphere_.radius * sphere_.radius);
+}
 
 void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
     const float theta = std::acos(std::clamp(w.z, -1.0f, 1.0f));
@@ -88,15 +123,23 @@ void InfiniteLight::cell(Vec3 w, int& column, int& row, Vec2& uv) const {
 }
 
 Spectrum InfiniteLight::Le(Vec3, Vec3 w, const Wavelengths& lambda) const {
-    if (portal_ && !(dot(w, portal_normal_) > 0)) return Spectrum(0.0f);
-    if (width_ == 0 && equal_area_.empty()) return constant_.sample(lambda);
+    if (width_ == 0 && equal_area_.empty() && portal_.empty()) return constant_.sample(lambda);
     return spectrum::RgbSpectrum(Le_rgb(w), spectrum::RgbSpectrum::Use::Illuminant,
                                  spectrum::RgbSpectrum::Fit::Table)
         .sample(lambda);
 }
 
+Spectrum InfiniteLight::escaped_Le(Vec3 origin, Vec3 w, const Wavelengths& lambda) const {
+    if (!portal_.empty()) {
+        const std::optional<Vec2> uv = portal_.uv_of(normalize(w));
+        const std::optional<UvWindow> win = portal_.window(origin);
+        if (!uv || !win || !win->contains(*uv)) return Spectrum(0.0f);
+    }
+    return Le({}, w, lambda);
+}
+
 Rgb InfiniteLight::Le_rgb(Vec3 w) const {
-    if (portal_ && !(dot(w, portal_normal_) > 0)) return Rgb(0.0f);
+    if (!portal_.empty()) return portal_.radiance(normalize(w));
     if (!equal_area_.empty()) return equal_area_.lookup(frame_.to_local(normalize(w))) * scale_;
     if (width_ == 0) return scale_;
     int i, j;
@@ -106,11 +149,13 @@ Rgb InfiniteLight::Le_rgb(Vec3 w) const {
 }
 
 float InfiniteLight::pdf_direction(Vec3 w) const {
-    if (!equal_area_.empty()) return equal_area_.pdf(frame_.to_local(normalize(w)));
-    if (width_ == 0) {
-        if (portal_) return dot(w, portal_normal_) > 0 ? 1 / (2 * kPi) : 0.0f;
-        return warp::uniform_sphere_pdf();
+    if (!portal_.empty()) {
+        float pdf_pos = 0, pdf_dir = 0;
+        portal_.pdf_emission(normalize(w), pdf_pos, pdf_dir);
+        return pdf_dir;
     }
+    if (!equal_area_.empty()) return equal_area_.pdf(frame_.to_local(normalize(w)));
+    if (width_ == 0) return warp::uniform_sphere_pdf();
     int i, j;
     Vec2 uv;
     cell(frame_.to_local(normalize(w)), i, j, uv);
@@ -123,12 +168,7 @@ Vec3 InfiniteLight::sample_direction(Vec2 u) const {
         float pdf = 0;  // recomputed from the final direction by the callers
         return frame_.to_world(equal_area_.sample(u, &pdf));
     }
-    if (width_ == 0) {
-        if (!portal_) return warp::uniform_sphere(u);
-        // Uniform over the portal's hemisphere: cos uniform in (0, 1].
-        const float z = 1 - u.x, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u.y;
-        return Frame(portal_normal_).to_world({r * std::cos(phi), r * std::sin(phi), z});
-    }
+    if (width_ == 0) return warp::uniform_sphere(u);
     float pdf_uv = 0;
     const Vec2 uv = distribution_.sample(u, &pdf_uv);
     const int row = std::min(int(uv.y * float(height_)), height_ - 1);
@@ -143,9 +183,17 @@ Vec3 InfiniteLight::sample_direction(Vec2 u) const {
 
 LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lambda) const {
     LightLiSample s;
-    const Vec3 w = normalize(sample_direction(u));
-    // Density and radiance are looked up from the final direction, exactly as pdf_Li and Le do.
-    s.pdf = pdf_direction(w);
+    Vec3 w;
+    if (!portal_.empty()) {
+        // pbrt-v4: a direction through the portal from ref, its pdf from the sampled (u, v).
+        const std::optional<Vec3> through = portal_.sample_towards(ref, u, &s.pdf);
+        if (!through) return {};
+        w = *through;
+    } else {
+        w = normalize(sample_direction(u));
+        // Density and radiance are looked up from the final direction, exactly as pdf_Li and Le do.
+        s.pdf = pdf_direction(w);
+    }
     if (!(s.pdf > 0)) return {};
     s.wi = w;
     s.L = Le({}, w, lambda);
@@ -155,9 +203,16 @@ LightLiSample InfiniteLight::sample_Li(Vec3 ref, Vec2 u, const Wavelengths& lamb
     return s;
 }
 
-float InfiniteLight::pdf_Li(Vec3, Vec3 wi, Vec3, Vec3) const { return pdf_direction(wi); }
+float InfiniteLight::pdf_Li(Vec3 ref, Vec3 wi, Vec3, Vec3) const {
+    if (!portal_.empty()) return portal_.pdf_towards(ref, wi);
+    return pdf_direction(wi);
+}
 
 void InfiniteLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
+    if (!portal_.empty()) {
+        portal_.pdf_emission(-w, pdf_pos, pdf_dir);
+        return;
+    }
     const float R = sphere_.radius;
     pdf_pos = R > 0 ? 1 / (kPi * R * R) : 0;
     pdf_dir = pdf_direction(-w);  // light travelling along w comes from the sky direction -w
@@ -165,6 +220,18 @@ void InfiniteLight::pdf_Le(Vec3, Vec3 w, float& pdf_pos, float& pdf_dir) const {
 
 LightLeSample InfiniteLight::sample_Le(Vec2 u_pos, Vec2 u_dir, const Wavelengths& lambda) const {
     LightLeSample s;
+    if (!portal_.empty()) {
+        // Photons start on the portal and travel into the scene (light_portal.h).
+        const std::optional<LightPortal::Emission> e = portal_.sample_emission(u_pos, u_dir);
+        if (!e) return s;
+        s.ray = {e->origin, -e->w};
+        s.n = -e->w;
+        s.Le = Le({}, e->w, lambda);
+        s.pdf_pos = e->pdf_pos;
+        s.pdf_dir = e->pdf_dir;
+        s.weight = s.Le / (s.pdf_pos * s.pdf_dir);
+        return s;
+    }
     const Vec3 w = normalize(sample_direction(u_dir));
     const float pdf_dir = pdf_direction(w);
     const float R = sphere_.radius;

@@ -6,9 +6,12 @@
 // as below and mapped to the square by Clarberg's octahedral map (core/equal_area.h), u the column
 // (left to right) and v the row (row 0 at the top).
 //
-// A portal (scene::Light::portal_normal) keeps the emission to the directions in front of the
-// portal's plane, as pbrt-v4's portal light does; the sampling is restricted to that hemisphere
-// (not to the directions through the portal rectangle, which pbrt-v4 samples).
+// With a portal (scene::Light::portal; pbrt-v4's PortalImageInfiniteLight) the environment, whichever
+// of the three it is, is resampled once into the portal's frame (shading/light_portal.h): the
+// radiance is that image's nearest pixel for directions in front of the portal's plane (0 behind
+// it), sample_Li draws directions through the portal rectangle from the reference point, and
+// photons start on the portal. The resampled image has the equal-area map's N x N pixels, a lat-long
+// map's (W / 2) x H, and one pixel for a constant.
 //
 // Map convention (pbrt-v3's lat-long): a world direction is first taken to light space with the
 // inverse of the light's `to_world` (its linear part orthonormalised: only its rotation / mirroring
@@ -23,6 +26,7 @@
 #include "core/frame.h"
 #include "shading/distribution2d.h"
 #include "shading/equal_area_map.h"
+#include "shading/light_portal.h"
 #include "shading/lights.h"
 
 namespace phos::shading {
@@ -37,6 +41,8 @@ public:
     float pdf_Li(Vec3 ref, Vec3 wi, Vec3 p_light, Vec3 n_light) const override;
     // Radiance arriving from direction `w` (pointing from the scene towards the sky); `n` unused.
     Spectrum Le(Vec3 n, Vec3 w, const Wavelengths& lambda) const override;
+    // With a portal: 0 unless the ray from `origin` along `w` passes through the portal rectangle.
+    Spectrum escaped_Le(Vec3 origin, Vec3 w, const Wavelengths& lambda) const override;
     // The radiance's colour from direction `w` (what the map holds, times the scale).
     Rgb Le_rgb(Vec3 w) const;
     // Direction as for sample_Li, origin uniform on a disk of the scene radius R perpendicular to it
@@ -49,11 +55,16 @@ public:
 
     // Integral of the radiance over the sphere of directions (4 pi L when constant).
     Rgb integral() const { return integral_; }
-    // Solid-angle density of sample_Li's directions (light independent of the reference point).
+    // Solid-angle density of sample_Li's directions without a portal (independent of the reference
+    // point); with one, that of photons' sky directions.
     float pdf_direction(Vec3 w) const;
+    // The portal (empty without one).
+    const LightPortal& portal() const { return portal_; }
 
 private:
     Vec3 sample_direction(Vec2 u) const;
+    // Resamples the environment into the portal's frame when the light has one.
+    void make_portal(const scene::Light& light);
     // Texel (column, row) of a light-space unit direction.
     void cell(Vec3 local, int& column, int& row, Vec2& uv) const;
 
@@ -65,10 +76,7 @@ private:
     std::vector<float> cos_edge_;  // cos(theta) at the row edges, height_ + 1 values from 1 to -1
     Distribution2D distribution_;  // luminance x solid angle of each texel
     EqualAreaMap equal_area_;      // the map when it is an equal-area one (width_ = height_ = 0)
-    // pbrt-v4's portal: only directions w with w . portal_normal_ > 0 emit, and a constant or
-    // equal-area light samples only them (a lat-long map samples the whole sphere).
-    bool portal_ = false;
-    Vec3 portal_normal_{0.0f};
+    LightPortal portal_;           // pbrt-v4's portal: the environment seen through it
     Rgb integral_;
     SceneSphere sphere_;
 };

@@ -80,6 +80,13 @@ public:
     // escapes the scene, the radiance it brings back to o is Le({}, normalize(d)).
     // Delta lights: 0.
     virtual Spectrum Le(Vec3 n, Vec3 wo, const Wavelengths& lambda) const = 0;
+    // Infinite lights: the radiance a ray leaving `origin` along unit `dir` brings back when it
+    // escapes the scene. Le({}, dir) but for a light with a portal, which gives only what passes
+    // through the portal from `origin` (pbrt-v4's PortalImageInfiniteLight::Le).
+    virtual Spectrum escaped_Le(Vec3 origin, Vec3 dir, const Wavelengths& lambda) const {
+        (void)origin;
+        return Le({}, dir, lambda);
+    }
     // Le at a surface point with parameterisation `uv` (SurfaceHit::uv): what an area light whose
     // emission varies over its surface (an image) gives; every other light ignores `uv`.
     virtual Spectrum surface_Le(Vec3 n, Vec2 uv, Vec3 wo, const Wavelengths& lambda) const {

@@ -5,6 +5,7 @@
 // image area light shows its image the right way round.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <string>
@@ -103,10 +104,12 @@ TEST_F(PbrtImageLightsRender, EqualAreaMapLightsTheFloorFromOverhead) {
     }
 }
 
-// A constant environment L = 2 behind a portal whose normal points up lights the floor with
-// E = pi L (radiance 0.5 L); turned the other way (its points in the other order) it leaves the
-// floor black.
-TEST_F(PbrtImageLightsRender, PortalKeepsTheEnvironmentToItsSide) {
+// A constant environment L = 2 behind a 1 x 1 portal at height 2 whose sky is above (+y) lights
+// the floor only through the portal: each pixel's floor point has Lambert's irradiance from the
+// portal rectangle (radiance 0.5 / pi of it; the image's mean within 4 % of the pixel centres'),
+// every integrator agreeing with path; turned the other way (its points in the other order) it
+// leaves the floor black.
+TEST_F(PbrtImageLightsRender, PortalLightsTheFloorThroughItsRectangle) {
     auto scene = [&](const std::string& name, const std::string& points) {
         return dir.write(name + ".pbrt",
                          kView + kFloor + "LightSource \"infinite\" \"rgb L\" [2 2 2] \"point3 portal\" [" +
@@ -115,11 +118,27 @@ TEST_F(PbrtImageLightsRender, PortalKeepsTheEnvironmentToItsSide) {
     // (p3 - p0) x (p1 - p0): (0, 0, 1) x (1, 0, 0) = +y for the first, -y for the second.
     const std::string up = scene("up", "0 2 0  1 2 0  1 2 1  0 2 1"),
                       down = scene("down", "0 2 0  0 2 1  1 2 1  1 2 0");
+    const std::vector<Vec3> portal = {{0, 2, 0}, {1, 2, 0}, {1, 2, 1}, {0, 2, 1}};
+    double expected = 0;
+    const double half = 3 * std::tan(20 * M_PI / 180);
+    for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) {
+            const Vec3 x(float(half * (2 * (i + 0.5) / 16 - 1)), 0, float(half * (1 - 2 * (j + 0.5) / 16)));
+            double sum = 0;
+            for (size_t k = 0; k < 4; ++k) {  // Lambert: E = L / 2 |sum_k Theta_k n . Gamma_k|
+                const Vec3 a = normalize(portal[k] - x), b = normalize(portal[(k + 1) % 4] - x);
+                sum += std::acos(std::clamp(double(dot(a, b)), -1.0, 1.0)) * normalize(cross(a, b)).y;
+            }
+            expected += 0.5 / M_PI * 0.5 * 2 * std::fabs(sum) / 256;
+        }
+    const double path = mean(render(up, "path"));
+    EXPECT_NEAR(path, expected, 0.04 * expected);
     for (const char* integrator : kIntegrators) {
         SCOPED_TRACE(integrator);
-        EXPECT_NEAR(mean(render(up, integrator)), 1.0, 0.03);
-        EXPECT_EQ(mean(render(down, integrator)), 0.0);
+        EXPECT_NEAR(mean(render(up, integrator)), path, 0.06 * path);
     }
+    for (const char* integrator : {"path", "sppm", "vcm"})
+        EXPECT_EQ(mean(render(down, integrator)), 0.0) << integrator;
 }
 
 // A goniometric light 1 above the floor whose map is lit (I = 1) outside the diamond (light-space
@@ -201,6 +220,45 @@ TEST_F(PbrtImageLightsRender, AreaLightImageIsSeenTheRightWayRound) {
         EXPECT_LT(mean(img, 9, 3, 13, 7), 0.05);   // top right
         EXPECT_LT(mean(img, 3, 9, 7, 13), 0.05);   // bottom left
         EXPECT_LT(mean(img, 9, 9, 13, 13), 0.05);  // bottom right
+    }
+}
+
+// Image emission on pbrt's analytic shapes, at their pbrt (u, v) (u = phi / 2 pi from object +x):
+// a 16 x 1 image red (3, 0, 0) on its left half and green on its right lies on a disk facing the
+// camera (object +z turned to world +y, so object phi = atan2(-z, x)) red where phi < pi (less the
+// bilinear blend of the middle pixels) and green beyond: the image's bottom right quadrant (x > 0,
+// z < 0) red, its top right green. A small sphere with the same image above the floor lights the
+// floor below the image's centre (z < 0, facing phi around pi / 2) red and above it green, by camera
+// paths, photons and light subpaths.
+TEST_F(PbrtImageLightsRender, AreaLightImageOnDiskAndSphereFollowsTheirUv) {
+    std::vector<Rgb> rg(16, Rgb(3, 0, 0));
+    for (int x = 8; x < 16; ++x) rg[size_t(x)] = Rgb(0, 3, 0);
+    dir.write("rg.pfm", pfm(16, 1, rg));
+    const std::string emitter = "AreaLightSource \"diffuse\" \"string filename\" \"rg.pfm\"\n";
+    const std::string disk = dir.write("disk.pbrt", kView + "AttributeBegin\nRotate -90 1 0 0\n" + emitter +
+                                                        "Shape \"disk\" \"float radius\" 2\nAttributeEnd\n");
+    const std::string sphere =
+        dir.write("sphere.pbrt", kView + kFloor + "AttributeBegin\nTranslate 0 0.6 0\nRotate -90 1 0 0\n" +
+                                     emitter + "Shape \"sphere\" \"float radius\" 0.2\nAttributeEnd\n");
+    auto channel_mean = [](const Image& img, int c, int x0, int y0, int x1, int y1) {
+        double sum = 0;
+        for (int y = y0; y < y1; ++y)
+            for (int x = x0; x < x1; ++x) sum += img.at(x, y)[c];
+        return sum / double((x1 - x0) * (y1 - y0));
+    };
+    for (const char* integrator : {"path", "photonmap", "bdpt"}) {
+        SCOPED_TRACE(integrator);
+        const Image d = render(disk, integrator);
+        EXPECT_NEAR(channel_mean(d, 0, 10, 10, 14, 14), 3.0, 0.3);  // bottom right: red
+        EXPECT_LT(channel_mean(d, 1, 10, 10, 14, 14), 0.2);
+        EXPECT_NEAR(channel_mean(d, 1, 10, 2, 14, 6), 3.0, 0.3);  // top right: green
+        EXPECT_LT(channel_mean(d, 0, 10, 2, 14, 6), 0.2);
+        const Image s = render(sphere, integrator);
+        const double br_r = channel_mean(s, 0, 6, 12, 10, 16), br_g = channel_mean(s, 1, 6, 12, 10, 16);
+        const double tr_r = channel_mean(s, 0, 6, 0, 10, 4), tr_g = channel_mean(s, 1, 6, 0, 10, 4);
+        EXPECT_GT(br_r, 3 * br_g) << br_r << " " << br_g;
+        EXPECT_GT(tr_g, 3 * tr_r) << tr_r << " " << tr_g;
+        EXPECT_GT(br_r, 0.002);
     }
 }
 

@@ -7,6 +7,7 @@
 
 #include <memory>
 
+#include "accel/embree_scene.h"
 #include "core/equal_area.h"
 #include "core/error.h"
 #include "core/transform.h"
@@ -178,72 +179,6 @@ TEST(InfiniteLightEqualArea, NonSquareMapIsAnInputError) {
     EXPECT_THROW(InfiniteLight(rec, textures, kSphere), InputError);
 }
 
-// A portal keeps a constant environment to the hemisphere in front of it: radiance there only,
-// directions sampled uniformly over it, irradiance pi L on a plane facing the portal's normal and
-// none on one facing away, half the power.
-TEST(InfiniteLightPortal, ConstantEmitsOnlyInFrontOfThePortal) {
-    scene::Light rec;
-    rec.kind = scene::Light::Kind::Infinite;
-    rec.color = Rgb(1, 2, 4);
-    rec.portal_normal = Vec3(0, 1, 0);
-    const InfiniteLight light(rec, {}, kSphere);
-    EXPECT_EQ(light.Le_rgb(normalize(Vec3(0.3f, 0.2f, -0.5f))), Rgb(1, 2, 4));
-    EXPECT_EQ(light.Le_rgb(normalize(Vec3(0.3f, -0.2f, -0.5f))), Rgb(0.0f));
-    EXPECT_NEAR(light.power().g, 2 * 2 * kPi * kPi * 4, 1e-3);
-    Sampler rng(17);
-    SpectralStat up, down;
-    RunningStat inv_pdf;
-    for (int i = 0; i < 20000; ++i) {
-        const LightLiSample s = light.sample_Li({0, 0, 0}, rng.next2(), kLambda);
-        ASSERT_GT(s.pdf, 0);
-        ASSERT_GT(s.wi.y, 0);
-        ASSERT_NEAR(light.pdf_Li({}, s.wi, {}, {}), s.pdf, 1e-6f);
-        inv_pdf.add(1 / s.pdf);
-        up.add(s.L * (std::max(0.0f, s.wi.y) / s.pdf));
-        down.add(s.L * (std::max(0.0f, -s.wi.y) / s.pdf));
-    }
-    expect_mean(inv_pdf, 2 * M_PI, "E[1/pdf]");
-    expect_means(up, texel_spectrum(Rgb(1, 2, 4), kLambda) * kPi, "irradiance facing the portal's side");
-    expect_means(down, Spectrum(0.0f), "irradiance facing away");
-    EXPECT_EQ(light.pdf_direction({0, -1, 0}), 0.0f);
-}
-
-// An equal-area map behind a tilted portal: every direction with radiance can be sampled (the
-// importance-sampled integral of the radiance matches a brute-force uniform one), no sample behind
-// the portal carries radiance, and the power's hemisphere integral is within 3% of it.
-TEST(InfiniteLightPortal, EqualAreaMapSamplesItsHemisphere) {
-    constexpr int n = 16;
-    std::vector<scene::Texture> textures = {image_texture(n, n, varied_map(n))};
-    scene::Light rec;
-    rec.kind = scene::Light::Kind::Infinite;
-    rec.texture = 0;
-    rec.equal_area = true;
-    rec.to_world = Transform::rotate(30, {0, 1, 1});
-    const Vec3 normal = normalize(Vec3(1, 0.3f, -0.5f));
-    rec.portal_normal = normal;
-    const InfiniteLight light(rec, textures, kSphere);
-    Sampler rng(23);
-    RunningStat sampled, uniform;
-    for (int i = 0; i < 100000; ++i) {
-        const LightLiSample s = light.sample_Li({0, 0, 0}, rng.next2(), kLambda);
-        if (s.pdf > 0) {
-            const Rgb L = light.Le_rgb(s.wi);
-            if (L.max() > 0) {
-                ASSERT_GT(dot(s.wi, normal), 0);
-            }
-            ASSERT_NEAR(light.pdf_Li({}, s.wi, {}, {}), s.pdf, 1e-4f * s.pdf);
-            sampled.add(L.g / s.pdf);
-        } else {
-            sampled.add(0);
-        }
-        const Vec3 w = warp::uniform_sphere(rng.next2());
-        uniform.add(light.Le_rgb(w).g * 4 * M_PI);
-    }
-    const double tol = test::kSigmas * std::hypot(sampled.std_error(), uniform.std_error());
-    EXPECT_NEAR(sampled.mean(), uniform.mean(), tol);
-    EXPECT_NEAR(light.integral().g, uniform.mean(), 0.03 * uniform.mean());
-}
-
 // Goniometric: the map's pixel in light space gives the intensity, power 4 pi I mean, photons
 // distributed by the map with weights averaging to the power.
 TEST(GoniometricLight, IntensityFollowsTheMap) {
@@ -405,8 +340,63 @@ TEST(AreaLightImage, RadianceFollowsTheImageOverUv) {
     }
     // Through the film: a grey image's flux pi A 2 x 2.5 (1e-2 for the spectral round trip).
     EXPECT_NEAR(weight.mean(), light.power().g, test::kSigmas * weight.std_error() + 1e-2 * light.power().g);
-    // An image on a shape that is not a mesh is refused (the loader falls back before this).
-    EXPECT_THROW(AreaLight(rec, test::disk({0, 0, 0}, {0, 0, 1}, 1), &textures), InputError);
+    // A box has no (u, v) for an image (the loader has no boxes).
+    EXPECT_THROW(AreaLight(rec, phos::testing::box({0, 0, 0}, {1, 1, 1}), &textures), InputError);
+}
+
+// An image on a disk, a sphere and a capped cylinder: the radiance sample_Li and sample_Le give at a
+// sampled point is the image at the (u, v) a ray hitting that point gets from the accel layer.
+TEST(AreaLightImage, AnalyticShapesUseTheirHitsUv) {
+    std::vector<Rgb> texels;
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 8; ++x)
+            texels.push_back(Rgb(1.0f + float(x), 0.5f + float(y), x < 4 ? 3.0f : 0.2f));
+    const std::vector<scene::Texture> textures = {image_texture(8, 4, texels)};
+    scene::Shape sphere = test::sphere({0.2f, 0.1f, 0}, 0.8f);
+    sphere.pbrt_uv = true;
+    sphere.axis = Vec3(0, 0, 1);
+    for (const scene::Shape& shape :
+         {test::disk({0, 0, 0}, normalize(Vec3(0.2f, 0.1f, 1)), 1, 0.3f), sphere,
+          phos::testing::cylinder({0, 0, 0}, normalize(Vec3(0.3f, 1, 0.2f)), 0.5f, 1.2f, true)}) {
+        SCOPED_TRACE(int(shape.kind));
+        scene::Scene sc;
+        sc.shapes.push_back(shape);
+        sc.textures = textures;
+        const accel::EmbreeScene es(sc);
+        scene::Light rec;
+        rec.kind = scene::Light::Kind::Area;
+        rec.shape = 0;
+        rec.texture = 0;
+        rec.color = Rgb(1.5f);
+        rec.two_sided = true;
+        const AreaLight light(rec, sc.shapes[0], &sc.textures);
+        Sampler rng(43);
+        int checked = 0;
+        for (int i = 0; i < 400; ++i) {
+            const Vec3 ref(3 * (rng.next() - 0.5f), 3 * (rng.next() - 0.5f), 3);
+            const LightLiSample s = light.sample_Li(ref, rng.next2(), kLambda);
+            if (!(s.pdf > 0)) continue;
+            accel::SurfaceHit h;
+            if (!es.intersect({ref, s.wi}, h) || std::fabs(h.t - s.distance) > 1e-3f * s.distance) continue;
+            ASSERT_TRUE(spectral::spectra_near(s.L, light.surface_Le(h.ng, h.uv, -s.wi, kLambda), 2e-3))
+                << h.uv.x << " " << h.uv.y;
+            ++checked;
+        }
+        EXPECT_GT(checked, 100);
+        // Photons: the radiance at their start is the image at the point's hit uv, seen from along the ray.
+        checked = 0;
+        for (int i = 0; i < 400; ++i) {
+            const LightLeSample s = light.sample_Le(rng.next2(), rng.next2(), kLambda);
+            if (!(s.pdf_pos > 0)) continue;
+            const Vec3 from = s.ray.origin + s.ray.dir * 5.0f;
+            accel::SurfaceHit h;
+            if (!es.intersect({from, -s.ray.dir}, h) || length(h.p - s.ray.origin) > 1e-3f) continue;
+            ASSERT_TRUE(spectral::spectra_near(s.Le, light.surface_Le(h.ng, h.uv, s.ray.dir, kLambda), 2e-3))
+                << h.uv.x << " " << h.uv.y;
+            ++checked;
+        }
+        EXPECT_GT(checked, 100);
+    }
 }
 
 TEST(ProjectionLight, MissingImageIsAnInputError) {

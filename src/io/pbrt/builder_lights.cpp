@@ -56,6 +56,51 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         scene_.textures.push_back(std::move(tex));
         return int(scene_.textures.size()) - 1;
     };
+    // pbrt-v3's goniometric "mapname": a lat-long image looked up (bilinearly, repeating, as
+    // pbrt-v3's MIPMap at level 0) at s = phi / 2 pi, t = theta / pi of the direction in the light's
+    // y/z-swapped space (theta from its +z, row 0 at the top), resampled at load into the equal-area
+    // square that pbrt-v4 indexes with the same swapped direction: N x N pixels, N^2 >= 2 W H.
+    auto latlong_to_equal_area = [&](const Param& mp, const std::string& name, const std::string& what) {
+        Image img;
+        try {
+            img = read_image(resolve(name, mp.loc), true);
+        } catch (const std::exception& ex) {
+            mp.loc.fail(what + ": " + std::string(ex.what()));
+        }
+        if (img.width <= 0 || img.height <= 0) mp.loc.fail(what + ": the image has no pixels");
+        for (const Rgb& c : img.pixels)
+            if (!c.is_finite()) mp.loc.fail(what + ": the image has pixels that are not finite");
+        const int w = img.width, h = img.height;
+        auto texel = [&](int x, int y) {
+            x = ((x % w) + w) % w;
+            y = ((y % h) + h) % h;
+            return img.pixels[size_t(y) * size_t(w) + size_t(x)];
+        };
+        const int n = std::min(2048, int(std::ceil(std::sqrt(2.0 * double(w) * double(h)))));
+        auto map = std::make_shared<scene::TextureImage>();
+        map->width = map->height = n;
+        map->texels.resize(size_t(n) * size_t(n));
+        for (int y = 0; y < n; ++y)
+            for (int x = 0; x < n; ++x) {
+                const Vec3 v =
+                    equal_area_square_to_sphere({(float(x) + 0.5f) / float(n), (float(y) + 0.5f) / float(n)});
+                const float theta = std::acos(std::clamp(v.z, -1.0f, 1.0f));
+                float phi = std::atan2(v.y, v.x);
+                if (phi < 0) phi += 2 * kPi;
+                const float fx = phi / (2 * kPi) * float(w) - 0.5f, fy = theta / kPi * float(h) - 0.5f;
+                const int x0 = int(std::floor(fx)), y0 = int(std::floor(fy));
+                const float dx = fx - float(x0), dy = fy - float(y0);
+                map->texels[size_t(y) * size_t(n) + size_t(x)] =
+                    texel(x0, y0) * ((1 - dx) * (1 - dy)) + texel(x0 + 1, y0) * (dx * (1 - dy)) +
+                    texel(x0, y0 + 1) * ((1 - dx) * dy) + texel(x0 + 1, y0 + 1) * (dx * dy);
+            }
+        scene::Texture tex;
+        tex.kind = scene::Texture::Kind::Image;
+        tex.image = std::move(map);
+        tex.filename = name;
+        scene_.textures.push_back(std::move(tex));
+        return int(scene_.textures.size()) - 1;
+    };
     auto required_image = [&]() -> const Param& {
         const Param* fp = params.find("filename");
         if (!fp) loc.fail(d + ": missing \"string filename\"");
@@ -107,6 +152,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
         if (const Param* pp = params.find("portal")) {
             // pbrt-v4: four points in world space (not the current transform) making a rectangle;
             // its frame's z, (p3 - p0) x (p1 - p0), is the side the light shines from.
+            // pbrt-v4 only warns when the points are not a rectangle: phos refuses them.
             const std::vector<Vec3> p = params.get_point3s("portal");
             if (p.size() != 4) pp->loc.fail(d + ": \"portal\" takes four points");
             const Vec3 p01 = p[1] - p[0], p12 = p[2] - p[1], p32 = p[2] - p[3], p03 = p[3] - p[0];
@@ -118,7 +164,7 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
             if (std::fabs(dot(a, b)) > 0.001f || std::fabs(dot(b, c)) > 0.001f ||
                 std::fabs(dot(c, e03)) > 0.001f || std::fabs(dot(e03, a)) > 0.001f)
                 pp->loc.fail(d + ": the portal's edges are not perpendicular");
-            light.portal_normal = normalize(cross(e03, a));
+            light.portal = p;
         }
         const float e = positive("illuminance");
         if (!fp) {
@@ -134,12 +180,6 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
                 if (e > 0)
                     warn(loc,
                          d + ": \"illuminance\" with a latitude-longitude map is not supported (ignored)");
-                if (length_squared(light.portal_normal) > 0) {
-                    warn(params.find("portal")->loc,
-                         d + ": a portal needs a square equal-area map (pbrt-v4); "
-                             "ignored with a latitude-longitude map");
-                    light.portal_normal = Vec3(0.0f);
-                }
                 warn(fp->loc, d + ": a non-square map is read as a latitude-longitude map (pbrt-v4 expects "
                                   "equal-area square maps)");
             } else if (e > 0) {
@@ -162,7 +202,13 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
     } else if (type == "goniometric") {
         light.kind = scene::Light::Kind::Goniometric;
         light.color = emitted("I");
-        light.texture = image_texture(required_image());
+        if (const Param* mp = params.find("mapname")) {
+            // pbrt-v3 (its "mapname", which the v3 upgrade keeps): a lat-long map.
+            if (params.has("filename")) loc.fail(d + ": give either \"filename\" or \"mapname\", not both");
+            light.texture = latlong_to_equal_area(*mp, params.get_string("mapname", ""), d);
+        } else {
+            light.texture = image_texture(required_image());
+        }
         const scene::TextureImage& img = *scene_.textures[size_t(light.texture)].image;
         if (img.width != img.height)
             required_image().loc.fail(d + ": the image is " + std::to_string(img.width) + " x " +

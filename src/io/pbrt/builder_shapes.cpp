@@ -81,10 +81,13 @@ void SceneBuilder::add_shape(scene::Shape shape, float area, const Loc& loc) {
     Rgb L = al.L;
     std::optional<spectrum::Distribution> emission = al.spectrum;
     int texture = al.texture;
-    if (texture >= 0 && shape.kind != scene::Shape::Kind::Mesh) {
+    // Meshes, spheres, disks and cylinders have pbrt's (u, v) for the image (shading/area_light.h).
+    using K = scene::Shape::Kind;
+    if (texture >= 0 && shape.kind != K::Mesh && shape.kind != K::Sphere && shape.kind != K::Disk &&
+        shape.kind != K::Cylinder) {
         warn_once("area light image on an analytic shape", al.loc,
-                  "image emission (\"filename\") is supported on triangle meshes; other shapes emit the "
-                  "image's mean radiance");
+                  "image emission (\"filename\") is supported on meshes, spheres, disks and cylinders; "
+                  "other shapes emit the image's mean radiance");
         L = L * al.image_mean;
         texture = -1;
     }

@@ -157,7 +157,9 @@ void upgrade_light(std::string& type, ParamList& params, const Loc& loc, bool ar
             factor *= e->numbers[1];
             e->numbers.resize(1);
         }
-    if (!area) {
+    // pbrt-v3's goniometric "mapname" is a latitude-longitude map, which the scene builder reads
+    // itself (pbrt-v4's "filename" is an equal-area square): it stays "mapname".
+    if (!area && type != "goniometric") {
         if (std::optional<Param> map = params.take("mapname")) {
             if (type == "infinite") {
                 if (const Param* L = params.peek("L")) {

@@ -21,7 +21,8 @@ namespace phos::io::pbrt {
 // - LightSource and AreaLightSource: a spectrum-valued "scale" (pbrt-v3: "rgb"/"color"/"spectrum")
 //   becomes the float "scale" (a grey value multiplies it; a coloured one multiplies an "rgb" L or
 //   I), a two-value blackbody [T s] keeps T and multiplies "scale" by s, "mapname" becomes
-//   "filename" (with an infinite light's constant L folded into "scale"), "samples"/"nsamples" are
+//   "filename" (with an infinite light's constant L folded into "scale"; a goniometric light's
+//   lat-long "mapname" stays for the scene builder), "samples"/"nsamples" are
 //   dropped, and AreaLightSource "area" is "diffuse".
 // - Film "image" is "rgb"; its "scale" multiplies the image (pbrt-v4: "iso" = 100 × scale) and
 //   "maxsampleluminance" is "maxcomponentvalue".

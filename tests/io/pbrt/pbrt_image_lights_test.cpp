@@ -114,8 +114,8 @@ TEST(PbrtImageLights, ProjectionConventions) {
 }
 
 // AreaLightSource "diffuse" with "filename": the mesh's light carries the image, L = scale, and
-// "power" is normalised by the image's mean luminance; on a sphere the image's mean is emitted
-// uniformly (with a warning); "L" and "filename" together are an error.
+// "power" is normalised by the image's mean luminance; a sphere carries the image too (read at its
+// (u, v)); "L" and "filename" together are an error.
 TEST(PbrtImageLights, AreaLightImage) {
     PbrtTempDir dir;
     dir.write("e.pfm", pfm(2, 1, {Rgb(1, 2, 3), Rgb(3, 2, 1)}));
@@ -135,9 +135,9 @@ TEST(PbrtImageLights, AreaLightImage) {
     EXPECT_EQ(a.color, Rgb(2.0f));
     // power: pi A L mean-luminance = 10 with A = 4 and the mean (2, 2, 2) of luminance 2.
     EXPECT_NEAR(s.lights[1].color.g * kPi * 4 * 2, 10.0f, 1e-4f);
-    EXPECT_EQ(s.lights[2].texture, -1);           // the sphere: the image's mean, uniformly
-    const float k = 10.0f / (kPi * 4 * kPi * 2);  // the power normalisation on the unit sphere's area
-    EXPECT_NEAR(s.lights[2].color.g, 2 * k, 1e-4f);
+    EXPECT_EQ(s.lights[2].texture, s.lights[1].texture);  // the sphere: the image
+    const float k = 10.0f / (kPi * 4 * kPi * 2);          // the power normalisation on the unit sphere's area
+    EXPECT_NEAR(s.lights[2].color.g, k, 1e-4f);
     QuietLog quiet;
     expect_pbrt_error(dir.write("both.pbrt",
                                 "WorldBegin\nAreaLightSource \"diffuse\" \"string filename\" "
@@ -146,8 +146,8 @@ TEST(PbrtImageLights, AreaLightImage) {
                       2, 1, "either \"L\" or \"filename\"");
 }
 
-// "portal": four world-space points of a rectangle; the light shines from the side of
-// (p3 - p0) x (p1 - p0). A non-rectangle is a located error; with a lat-long map it is ignored.
+// "portal": four world-space points of a rectangle (with any map or a constant L), kept as given
+// whatever the current transform. A non-rectangle is a located error.
 TEST(PbrtImageLights, Portal) {
     PbrtTempDir dir;
     dir.write("sky.pfm", pfm(4, 4, std::vector<Rgb>(16, Rgb(1.0f))));
@@ -160,10 +160,8 @@ TEST(PbrtImageLights, Portal) {
                 "LightSource \"infinite\" \"string filename\" \"wide.pfm\" \"point3 portal\" [0 0 0  0 1 0  "
                 "1 1 0  1 0 0]\n");
     ASSERT_EQ(s.lights.size(), 3u);
-    // (p3 - p0) x (p1 - p0) = x cross y = +z, whatever the current transform.
-    EXPECT_EQ(s.lights[0].portal_normal, Vec3(0, 0, 1));
-    EXPECT_EQ(s.lights[1].portal_normal, Vec3(0, 0, 1));
-    EXPECT_EQ(s.lights[2].portal_normal, Vec3(0.0f));
+    const std::vector<Vec3> corners = {{0, 0, 0}, {0, 1, 0}, {1, 1, 0}, {1, 0, 0}};
+    for (const scene::Light& l : s.lights) EXPECT_EQ(l.portal, corners);
     QuietLog quiet;
     expect_pbrt_error(dir.write("skew.pbrt",
                                 "WorldBegin\nLightSource \"infinite\" \"point3 portal\" "
@@ -173,6 +171,34 @@ TEST(PbrtImageLights, Portal) {
                                 "WorldBegin\nLightSource \"infinite\" \"point3 portal\" "
                                 "[0 0 0  0 1 0  1 1 0]\n"),
                       2, 24, "four points");
+}
+
+// pbrt-v3's goniometric "mapname" is a lat-long map in the light's y/z-swapped space: s = phi / 2 pi,
+// t = theta / pi of wp = (x, z, y) (pbrt-v3's GonioPhotometricLight::Scale). A 32 x 16 map lit only in
+// its top-left quarter (theta < pi/2, phi in [0, pi/2): light-space x > 0, z > 0, y > 0) becomes an
+// equal-area map that pbrt-v4's swapped lookup finds bright towards (1, 1, 1) and dark towards the
+// directions that differ from it in one sign.
+TEST(PbrtImageLights, GoniometricV3LatLongMapKeepsItsOrientation) {
+    PbrtTempDir dir;
+    std::vector<Rgb> px(32 * 16, Rgb(0.25f));
+    for (int y = 0; y < 8; ++y)
+        for (int x = 0; x < 8; ++x) px[size_t(y * 32 + x)] = Rgb(4.0f);
+    dir.write("gonio.pfm", pfm(32, 16, px));
+    const scene::Scene s = load_in(dir, "LightSource \"goniometric\" \"string mapname\" \"gonio.pfm\"\n");
+    ASSERT_EQ(s.lights.size(), 1u);
+    const scene::Light& l = s.lights[0];
+    ASSERT_GE(l.texture, 0);
+    const scene::TextureImage& map = *s.textures[size_t(l.texture)].image;
+    ASSERT_EQ(map.width, map.height);
+    auto profile = [&](Vec3 world) {
+        const Vec3 local = normalize(l.to_world.inverse().vector(world));
+        const Vec2 uv = equal_area_sphere_to_square(local);
+        const int n = map.width;
+        return map.at(std::min(int(uv.x * float(n)), n - 1), std::min(int(uv.y * float(n)), n - 1)).g;
+    };
+    EXPECT_NEAR(profile({1, 1, 1}), 4.0f, 1e-4f);
+    for (const Vec3 w : {Vec3(-1, 1, 1), Vec3(1, -1, 1), Vec3(1, 1, -1), Vec3(-1, -1, -1)})
+        EXPECT_NEAR(profile(w), 0.25f, 1e-4f) << w.x << " " << w.y << " " << w.z;
 }
 
 TEST(PbrtImageLights, BadInputIsLocated) {
