@@ -43,7 +43,7 @@ LightPortal::LightPortal(const std::array<Vec3, 4>& p, int nu, int nv,
 
 std::optional<Vec2> LightPortal::uv_of(Vec3 world, float* jacobian) const {
     const Vec3 w = frame_.to_local(world);
-    if (!(w.z > 0)) return std::nullopt;
+    if (!(w.z > 0) || !std::isfinite(w.x) || !std::isfinite(w.y)) return std::nullopt;
     if (jacobian) *jacobian = kPi * kPi * (1 - w.x * w.x) * (1 - w.y * w.y) / w.z;
     const float alpha = std::atan2(w.x, w.z), beta = std::atan2(w.y, w.z);
     return Vec2(std::clamp((alpha + 0.5f * kPi) / kPi, 0.0f, 1.0f),

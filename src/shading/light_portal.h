@@ -1,5 +1,5 @@
-// pbrt-v4's portal for an infinite light (PortalImageInfiniteLight; Bitterli et al. 2015, "Portal-
-// masked environment map sampling", as PBRT 4th ed. sec. 12.5.3 reparameterises it): the
+// pbrt-v4's portal for an infinite light (PortalImageInfiniteLight, PBRT 4th ed. ch. 12; after
+// Bitterli et al. 2015, "Portal-masked environment map sampling", with pbrt's angle mapping): the
 // environment is resampled once into the portal's own frame (x along p3 - p0, y along p1 - p0,
 // z = x × y, the side the sky is on), as an image over the square of angles
 //   u = (atan2(w.x, w.z) + pi/2) / pi,   v = (atan2(w.y, w.z) + pi/2) / pi   (w.z > 0),

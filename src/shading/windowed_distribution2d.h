@@ -1,5 +1,5 @@
 // Piecewise-constant 2D distribution on [0,1]^2 over an nu x nv grid that can be sampled restricted
-// to any axis-aligned window (pbrt-v4's WindowedPiecewiseConstant2D, PBRT 4th ed. sec. A.5.6): what
+// to any axis-aligned window (pbrt-v4's WindowedPiecewiseConstant2D; Bitterli et al. 2015): what
 // the portal light samples, the window being the part of its image seen through the portal from the
 // reference point. A summed-area table (Crow 1984) gives the integral over any window in O(1) (the
 // integral of a piecewise-constant function from the origin is bilinear inside each cell), so the

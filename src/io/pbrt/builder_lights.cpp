@@ -171,6 +171,9 @@ void SceneBuilder::light_source(const std::string& type, const ParamList& params
             light.color = emitted("L");
             // A uniform environment of radiance L gives illuminance pi * L on an upward surface.
             if (e > 0) times(e / kPi);
+            if (emission && !light.portal.empty())
+                warn(params.find("L")->loc,
+                     d + ": a portal light reads a spectral \"L\" as its RGB (as pbrt-v4)");
         } else {
             light.texture = image_texture(*fp);
             light.color = Rgb(scale);
