@@ -7,6 +7,7 @@
 
 #include "core/equal_area.h"
 #include "core/error.h"
+#include "core/frame.h"
 #include "core/warp.h"
 
 namespace phos::render {
@@ -149,6 +150,61 @@ CameraModel::Footprint CameraModel::pixel_footprint() const {
     }
     f.offset = length(a.origin - b.origin);
     f.slope = length(normalize(a.dir) - normalize(b.dir));
+    return f;
+}
+
+scene::CameraFootprint CameraModel::texture_footprint(int samples_per_pixel) const {
+    scene::CameraFootprint f;
+    f.eye = eye_;
+    f.right = right_;
+    f.up = up_;
+    f.forward = forward_;
+    f.spp_scale = std::max(0.125f, 1 / std::sqrt(float(std::max(samples_per_pixel, 1))));
+    const auto to_camera = [&](Vec3 v) { return Vec3(dot(v, right_), dot(v, up_), dot(v, forward_)); };
+    const bool projective = cam_.projection == scene::Camera::Projection::Perspective ||
+                            cam_.projection == scene::Camera::Projection::Orthographic;
+    const Vec2 lens_centre(0.5f, 0.5f);
+    // The change of the ray at film (fx, fy) per pixel along (ex, ey): origin and direction.
+    const auto differential = [&](const Ray& r, float fx, float fy, float ex, float ey, Vec3& d_origin,
+                                  Vec3& d_dir) {
+        for (const float eps : {projective ? 1.0f : 0.05f, -0.05f}) {
+            float w = 0;
+            const Ray s = generate_ray(fx + ex * eps, fy + ey * eps, lens_centre, w);
+            if (!(w > 0)) continue;
+            d_origin = (s.origin - r.origin) / eps;
+            d_dir = (s.dir - r.dir) / eps;
+            return true;
+        }
+        return false;
+    };
+    Vec3 min_pos[2] = {Vec3(kInf), Vec3(kInf)}, min_dir[2] = {Vec3(kInf), Vec3(kInf)};
+    const int n = 512;
+    for (int i = 0; i < n; ++i) {
+        // Film positions of the whole image (generate_ray takes the rendered part's).
+        const float fx = float(i) / float(n - 1) * float(width_) - crop_x0_;
+        const float fy = float(i) / float(n - 1) * float(height_) - crop_y0_;
+        float w = 0;
+        const Ray r = generate_ray(fx, fy, lens_centre, w);
+        if (!(w > 0)) continue;
+        Vec3 d_origin[2], d_dir[2];
+        if (!differential(r, fx, fy, 1, 0, d_origin[0], d_dir[0]) ||
+            !differential(r, fx, fy, 0, 1, d_origin[1], d_dir[1]))
+            continue;
+        const Vec3 d = normalize(r.dir);
+        const Frame frame(d);
+        const Vec3 d_local = frame.to_local(d);  // (0, 0, 1) up to rounding
+        for (int k = 0; k < 2; ++k) {
+            const Vec3 dox = to_camera(d_origin[k]);
+            if (length(dox) < length(min_pos[k])) min_pos[k] = dox;
+            const Vec3 neighbour = normalize(frame.to_local(normalize(r.dir + d_dir[k])));
+            if (length(neighbour - d_local) < length(min_dir[k])) min_dir[k] = neighbour - d_local;
+        }
+    }
+    const auto finite_or_zero = [](Vec3 v) { return is_finite(v) ? v : Vec3(0.0f); };
+    f.min_pos_dx = finite_or_zero(min_pos[0]);
+    f.min_pos_dy = finite_or_zero(min_pos[1]);
+    f.min_dir_dx = finite_or_zero(min_dir[0]);
+    f.min_dir_dy = finite_or_zero(min_dir[1]);
     return f;
 }
 

@@ -11,6 +11,7 @@
 #include "render/lens_system.h"
 #include "render/options.h"
 #include "scene/camera.h"
+#include "scene/camera_footprint.h"
 
 namespace phos::render {
 
@@ -48,6 +49,14 @@ public:
     // The pixel footprint measured at the image centre (between the centres of two neighbouring
     // pixels' rays, lens centre): constant offset for orthographic views, slope for perspective.
     Footprint pixel_footprint() const;
+    // What pbrt-v4's Camera::Approximate_dp_dxy needs (scene/camera_footprint.h), for a render of
+    // `samples_per_pixel` samples: its CameraBase::FindMinimumDifferentials over 512 film
+    // positions along the whole image's diagonal, lens centre, rays whose lenses block them
+    // skipped. The pixel's neighbour rays are the rays one pixel over for the perspective and
+    // orthographic cameras (pbrt-v4's own differentials of them) and finite differences over a
+    // twentieth of a pixel (towards +x, +y, else -x, -y) for the spherical and realistic ones
+    // (pbrt-v4's CameraBase::GenerateRayDifferential). No valid ray: zero differentials.
+    scene::CameraFootprint texture_footprint(int samples_per_pixel) const;
 
     // Bidirectional methods (Veach 1997, sec. 10.2; pbrt's camera importance): the camera as the
     // end of a light path. With an image plane of area A at distance 1 (the whole film), a ray that

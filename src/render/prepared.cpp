@@ -2,6 +2,7 @@
 // and the camera (framing the bounds when the scene has none).
 #include "render/prepared.h"
 
+#include "scene/texture_eval.h"
 #include "shading/infinite_light.h"
 #include "shading/light_media.h"
 
@@ -17,6 +18,12 @@ scene::Camera Prepared::camera_for(const scene::Scene& scene, const accel::Embre
     return camera;
 }
 
+std::shared_ptr<const scene::CameraFootprint> Prepared::footprint_for(const scene::Scene& scene,
+                                                                      const CameraModel& camera, int spp) {
+    if (!scene::reads_footprint(scene)) return nullptr;
+    return std::make_shared<const scene::CameraFootprint>(camera.texture_footprint(spp));
+}
+
 Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, const PrepareOptions& prepare,
                    Stats& stats_)
     : scene(scene_),
@@ -24,9 +31,10 @@ Prepared::Prepared(const scene::Scene& scene_, const RenderOptions& options_, co
       lights(scene_, accel.bounds(), prepare.lights),
       media(scene_),
       camera(camera_for(scene_, accel, prepare), options_.width, options_.height, options_.crop),
+      texture_footprint(footprint_for(scene_, camera, options_.spp)),
       filter(effective_filter(scene_.pixel_filter, options_)),
       options(options_),
-      bsdf_options(prepare.bsdf),
+      bsdf_options(with_footprint(prepare.bsdf, texture_footprint.get())),
       bsdfs(scene_, bsdf_options),
       stats(stats_) {
     if (media.active())

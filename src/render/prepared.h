@@ -42,6 +42,9 @@ public:
     shading::LightSet lights;
     shading::MediaSet media;
     CameraModel camera;
+    // pbrt-v4's camera footprint for filtered image textures (CameraModel::texture_footprint at
+    // options.spp); null when no texture of the scene reads it (scene::reads_footprint).
+    std::shared_ptr<const scene::CameraFootprint> texture_footprint;
     PixelFilterSampler filter;  // where camera samples fall and how they weigh (pixel_filter.h)
     RenderOptions options;
     shading::BsdfOptions bsdf_options;
@@ -72,6 +75,13 @@ public:
 private:
     spectrum::RgbSpectrum background_;
     std::vector<Rgb> glow_;  // per material
+    static std::shared_ptr<const scene::CameraFootprint> footprint_for(const scene::Scene& scene,
+                                                                       const CameraModel& camera, int spp);
+    static shading::BsdfOptions with_footprint(shading::BsdfOptions options,
+                                               const scene::CameraFootprint* f) {
+        options.texture_footprint = f;
+        return options;
+    }
     static scene::Camera camera_for(const scene::Scene& scene, const accel::EmbreeScene& accel,
                                     const PrepareOptions& prepare);
 };

@@ -13,6 +13,8 @@
 
 namespace phos::scene {
 
+class MipMap;  // scene/mip_map.h
+
 // Decoded texels in linear RGB, row 0 at the top of the image.
 struct TextureImage {
     int width = 0;
@@ -39,6 +41,10 @@ struct Texture {
         UV,            // pbrt-v3's uv texture: (s - floor(s), t - floor(t), 0)
     };
     enum class Wrap { Repeat, Clamp, Black };
+    // pbrt-v4's image texture filters ("string filter"). Bilinear looks the image itself up at the
+    // point (no footprint); Point, Trilinear and Ewa filter the MIP map over the screen-space
+    // footprint of the lookup (scene/mip_map.h, TextureContext's derivatives).
+    enum class Filter { Point, Bilinear, Trilinear, Ewa };
     // How a 2D texture (Image, Checkerboard with dimension 2, Bilerp, Dots) finds (s, t): from the
     // surface uv, or from the point in texture space (see texture_from_world).
     enum class Mapping { UV, Spherical, Cylindrical, Planar };
@@ -47,6 +53,11 @@ struct Texture {
     Rgb value{1.0f};                            // Constant; also the multiplier for Image
     std::shared_ptr<const TextureImage> image;  // Image
     std::string filename;                       // Image (for messages)
+    Filter filter = Filter::Bilinear;           // Image
+    float max_anisotropy = 8;                   // Image with Filter::Ewa: longest / shortest axis
+    // Image with a filter other than Bilinear: the image's pyramid (with this texture's wrap),
+    // shared by the textures that use the same image and wrap.
+    std::shared_ptr<const MipMap> mip_map;
     Wrap wrap = Wrap::Repeat;
     Mapping mapping = Mapping::UV;
     // UV: (s, t) = (u * u_scale + u_offset, v * v_scale + v_offset). Planar: u_offset and v_offset

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "scene/mip_map.h"
 #include "scene/perlin_noise.h"
 #include "scene/procedural_textures.h"
 
@@ -52,6 +53,13 @@ Rgb eval(const scene::Scene& scene, int index, const TextureContext& ctx, int de
                 return t.value;
             const Vec2 st = map_2d(t, ctx);
             const float v = t.invert_v ? st.y : 1 - st.y;
+            if (t.filter != Texture::Filter::Bilinear && t.mip_map && t.mip_map->levels() > 0) {
+                // The footprint in image coordinates (y down unless invert_v).
+                const St2Derivatives d = map_2d_derivatives(t, ctx);
+                const float flip = t.invert_v ? 1.0f : -1.0f;
+                return t.value * t.mip_map->filter(t.filter, Vec2(st.x, v), Vec2(d.dsdx, flip * d.dtdx),
+                                                   Vec2(d.dsdy, flip * d.dtdy), t.max_anisotropy);
+            }
             return t.value * lookup_bilinear(*t.image, st.x * float(t.image->width),
                                              v * float(t.image->height), t.wrap);
         }
@@ -111,6 +119,12 @@ Rgb lookup_bilinear(const scene::TextureImage& image, float x, float y, Texture:
 
 Rgb eval_texture(const scene::Scene& scene, int texture, const TextureContext& ctx) {
     return eval(scene, texture, ctx, 0);
+}
+
+bool reads_footprint(const scene::Scene& scene) {
+    for (const Texture& t : scene.textures)
+        if (t.kind == Texture::Kind::Image && t.filter != Texture::Filter::Bilinear && t.mip_map) return true;
+    return false;
 }
 
 Rgb eval_texture(const scene::Scene& scene, int texture, Vec2 uv) {

@@ -1,5 +1,6 @@
 // Evaluation of scene::Texture at a surface point (shading at hits, the pbrt loader at mesh
-// vertices for displacement), as pbrt-v4 evaluates each kind at a point, without filtering.
+// vertices for displacement), as pbrt-v4 evaluates each kind at a point; image textures with a
+// Point, Trilinear or Ewa filter are filtered over the context's screen-space footprint.
 #pragma once
 
 #include "core/vec.h"
@@ -13,7 +14,9 @@ namespace phos::scene {
 // out of range also gives white (loaders validate indices, this only keeps a bad scene from
 // crashing). A float texture's value is grey. With (s, t) from the texture's 2D mapping
 // (texture_mapping.h) and p its texture-space point:
-//   Constant: value. Image: value x the bilinear lookup below at (s, t). Scale: tex1 x (tex2 or
+//   Constant: value. Image: value x the bilinear lookup below at (s, t) (Filter::Bilinear, the
+//   default), or with another filter value x MipMap::filter at (s, t) in image coordinates over
+//   the derivatives of (s, t) (map_2d_derivatives). Scale: tex1 x (tex2 or
 //   value). Mix: (1 - a) tex1 + a tex2, a the mean of the amount texture (or amount_value).
 //   DirectionMix: c tex1 + (1 - c) tex2 with c = |n . direction|. Bilerp: the bilinear blend of
 //   the corners at (s, t) (extrapolating outside the unit square, as pbrt does). Checkerboard:
@@ -24,9 +27,14 @@ namespace phos::scene {
 // A texture that refers to itself (a malformed cycle) gives white beyond 32 levels.
 Rgb eval_texture(const Scene& scene, int texture, const TextureContext& ctx);
 
-// The same at a uv alone (p = 0, n = +z): for loaders at mesh vertices. A 3D or spherical,
+// The same at a uv alone (p = 0, n = +z, no footprint): for loaders at mesh vertices, alpha masks
+// and area lights (pbrt-v4 evaluates alpha without differentials too). A 3D or spherical,
 // cylindrical or planar texture sees the texture-space image of the origin.
 Rgb eval_texture(const Scene& scene, int texture, Vec2 uv);
+
+// True when a texture of `scene` reads the screen-space footprint (an image texture with a Point,
+// Trilinear or Ewa filter): renderers compute TextureContext's derivatives only then.
+bool reads_footprint(const Scene& scene);
 
 // Image convention: (s, t) = (0, 0) is the bottom-left corner of an image and (1, 1) its
 // top-right (t grows upwards, as in OBJ and pbrt); `invert_v` puts t = 0 at the top row instead.

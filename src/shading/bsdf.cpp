@@ -9,6 +9,7 @@
 #include "shading/bump.h"
 #include "shading/dielectric.h"
 #include "shading/fresnel.h"
+#include "shading/texture_context.h"
 #include "shading/texture_eval.h"
 
 namespace phos::shading {
@@ -62,14 +63,17 @@ void frame_at(const accel::SurfaceHit& hit, Frame& frame, Vec3& ng) {
 }
 
 // Where a material's textures are looked up at `hit` (pbrt-v4's TextureEvalContext: the point, its
-// uv and the geometric normal).
-scene::TextureContext texture_context(const accel::SurfaceHit& hit) { return {hit.uv, hit.p, hit.ng, {}}; }
+// uv and the geometric normal, and the screen-space footprint when the scene's textures read it).
+scene::TextureContext texture_context(const accel::SurfaceHit& hit, const scene::Scene& scene,
+                                      const scene::CameraFootprint* footprint) {
+    return shading::texture_context(scene, hit, footprint);
+}
 
 // The diffuse reflectance kd of material m at `hit`, its texture applied (Bsdf::apply_textures).
 void texture_diffuse(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene,
-                     Rgb& kd, spectrum::RgbSpectrum& kd_spectrum) {
+                     const scene::CameraFootprint* footprint, Rgb& kd, spectrum::RgbSpectrum& kd_spectrum) {
     if (m.diffuse_texture < 0) return;
-    kd *= eval_texture(scene, m.diffuse_texture, texture_context(hit));
+    kd *= eval_texture(scene, m.diffuse_texture, texture_context(hit, scene, footprint));
     kd_spectrum =
         spectrum::RgbSpectrum(kd, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
 }
@@ -120,12 +124,14 @@ Bsdf::Bsdf(const scene::Material& m, const accel::SurfaceHit& hit, const scene::
            const BsdfOptions& options) {
     place(has_shading_detail(m) ? with_shading_detail(scene, m, hit) : hit);
     if (m.interface_only) return;  // flags_ == 0: integrators continue straight through
+    footprint_ = options.texture_footprint;
     set_material(m, options);
     apply_textures(m, hit, scene);
 }
 
 Bsdf Bsdf::of_material(const scene::Material& m, const BsdfOptions& options) {
     Bsdf b;
+    b.footprint_ = options.texture_footprint;
     if (!m.interface_only) b.set_material(m, options);
     return b;
 }
@@ -142,7 +148,7 @@ void Bsdf::place_lambert(const scene::Material& m, const accel::SurfaceHit& hit,
     frame_at(has_shading_detail(m) ? with_shading_detail(scene, m, hit) : hit, lobe.frame, lobe.ng);
     lobe.kd = kd_;
     lobe.kd_spectrum = kd_s_;
-    texture_diffuse(m, hit, scene, lobe.kd, lobe.kd_spectrum);
+    texture_diffuse(m, hit, scene, footprint_, lobe.kd, lobe.kd_spectrum);
 }
 
 void Bsdf::place(const accel::SurfaceHit& hit) { frame_at(hit, frame_, ng_); }
@@ -204,7 +210,8 @@ uint32_t Bsdf::kind_of(int lobe) const {
 void Bsdf::set_layered(const scene::Material& m, const scene::Scene* scene, const accel::SurfaceHit* hit) {
     const bool at_hit = scene && hit;
     const auto texture = [&](int tex) {
-        return at_hit && tex >= 0 ? eval_texture(*scene, tex, texture_context(*hit)) : Rgb(1.0f);
+        return at_hit && tex >= 0 ? eval_texture(*scene, tex, texture_context(*hit, *scene, footprint_))
+                                  : Rgb(1.0f);
     };
     const auto alpha = [&](float value, int tex) {
         return roughness_alpha(tex >= 0 ? (at_hit ? texture(tex).average() : 0.0f) : value,
@@ -337,9 +344,9 @@ Bsdf Bsdf::only(uint32_t lobe_mask) const {
 }
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
-    texture_diffuse(m, hit, scene, kd_, kd_s_);
+    texture_diffuse(m, hit, scene, footprint_, kd_, kd_s_);
     if (m.specular_texture >= 0) {
-        ks_ *= eval_texture(scene, m.specular_texture, texture_context(hit));
+        ks_ *= eval_texture(scene, m.specular_texture, texture_context(hit, scene, footprint_));
         ks_s_ =
             spectrum::RgbSpectrum(ks_, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
     }
@@ -354,7 +361,8 @@ void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit
     }
     if (pbrt_microfacet_ && (m.roughness_u_texture >= 0 || m.roughness_v_texture >= 0)) {
         const auto rough = [&](int tex, float value) {
-            return tex >= 0 ? eval_texture(scene, tex, texture_context(hit)).average() : value;
+            return tex >= 0 ? eval_texture(scene, tex, texture_context(hit, scene, footprint_)).average()
+                            : value;
         };
         set_microfacet_lobes(roughness_alpha(rough(m.roughness_u_texture, m.roughness_u), m.remap_roughness),
                              roughness_alpha(rough(m.roughness_v_texture, m.roughness_v), m.remap_roughness));

@@ -28,6 +28,7 @@
 #include "accel/ray.h"
 #include "core/frame.h"
 #include "core/vec.h"
+#include "scene/camera_footprint.h"
 #include "scene/scene.h"
 #include "shading/layered_bxdf.h"
 #include "shading/microfacet.h"
@@ -80,6 +81,9 @@ struct BsdfOptions {
     // Microfacet distribution of the frosted dielectric; alpha = sqrt(2 / (n + 2)) from its
     // Phong exponent n (Material::transmission_shininess).
     MicrofacetModel microfacet = MicrofacetModel::GGX;
+    // The camera footprint filtered image textures read (scene/camera_footprint.h), or null:
+    // textures looked up without derivatives. Must outlive the BSDFs built with these options.
+    const scene::CameraFootprint* texture_footprint = nullptr;
 };
 
 // A lone Lambert reflection lobe placed at a hit (f = kd / pi on the side of ng that wo is on): all
@@ -241,6 +245,7 @@ private:
     float ior_ = 1;  // the index (at the d line when dispersive)
     bool schlick_ = false;
     MicrofacetModel microfacet_ = MicrofacetModel::GGX;  // BsdfOptions::microfacet
+    const scene::CameraFootprint* footprint_ = nullptr;  // BsdfOptions::texture_footprint
     uint32_t lobes_ = 0;                // bit i set when lobe i (bsdf.cpp's Lobe enum) is present
     MicrofacetDistribution dist_;       // the rough dielectric's
     MicrofacetDistribution spec_dist_;  // the microfacet reflection lobe's

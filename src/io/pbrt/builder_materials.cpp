@@ -10,6 +10,7 @@
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
 #include "io/text/image_texture.h"
+#include "scene/mip_map.h"
 #include "spectrum/color.h"
 #include "spectrum/dispersion.h"
 
@@ -320,8 +321,22 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
         }
         const bool invert = params.get_bool("invert", false);
         t.value = Rgb(params.get_float("scale", 1.0f));
-        params.get_string("filter", "bilinear");  // phos filters bilinearly whatever is asked
-        params.get_float("maxanisotropy", 8.0f);
+        // pbrt-v4's filters (MIPMap::Filter; ParseFilter's names).
+        const std::string filter = params.get_string("filter", "bilinear");
+        if (filter == "bilinear")
+            t.filter = scene::Texture::Filter::Bilinear;
+        else if (filter == "point")
+            t.filter = scene::Texture::Filter::Point;
+        else if (filter == "trilinear")
+            t.filter = scene::Texture::Filter::Trilinear;
+        else if (filter == "ewa" || filter == "EWA")
+            t.filter = scene::Texture::Filter::Ewa;
+        else
+            params.find("filter")->loc.fail(d + ": unknown filter \"" + filter +
+                                            "\" (point, bilinear, trilinear or ewa)");
+        t.max_anisotropy = finite_float("maxanisotropy", 8.0f);
+        if (!(t.max_anisotropy > 0))
+            params.find("maxanisotropy")->loc.fail(d + ": \"maxanisotropy\" must be positive");
         const std::string path = resolve(filename, fp->loc);
         Image img;
         try {
@@ -337,6 +352,20 @@ void SceneBuilder::texture(const std::string& name, const std::string& type, con
         }
         t.image = std::move(ti);
         t.filename = path;
+        // One image (and one MIP map per wrap mode) for the textures that read the same texels.
+        for (const scene::Texture& o : scene_.textures) {
+            if (o.kind != scene::Texture::Kind::Image || o.filename != path || !o.image ||
+                o.image->width != t.image->width || o.image->height != t.image->height ||
+                !std::equal(o.image->texels.begin(), o.image->texels.end(), t.image->texels.begin(),
+                            t.image->texels.end(), [](const Rgb& a, const Rgb& b) {
+                                return a.r == b.r && a.g == b.g && a.b == b.b;
+                            }))
+                continue;
+            t.image = o.image;
+            if (o.mip_map && o.wrap == t.wrap) t.mip_map = o.mip_map;
+        }
+        if (t.filter != scene::Texture::Filter::Bilinear && !t.mip_map)
+            t.mip_map = std::make_shared<const scene::MipMap>(*t.image, t.wrap);
         t.invert_v = false;  // pbrt looks images up at (s, 1 - t), i.e. v = 0 is the bottom row: our default
     } else if (cls == "uv") {  // pbrt-v3's (pbrt-v4 has none): the 2D mapping's (s, t) as colour
         t.kind = scene::Texture::Kind::UV;
