@@ -13,6 +13,8 @@
 
 namespace phos::scene {
 
+class MeasuredBsdf;  // scene/measured_bsdf.h
+
 struct Material {
     std::string name;
 
@@ -61,8 +63,9 @@ struct Material {
     float transmission_shininess = 1e6f;
     bool thin = false;  // thin dielectric sheet (pbrt thindielectric): no bending
 
-    // Lambertian transmission (pbrt diffusetransmission).
+    // Lambertian transmission (pbrt diffusetransmission), optionally multiplied by a texture.
     Rgb diffuse_transmission{0.0f};
+    int diffuse_transmission_texture = -1;
 
     // Glow seen by camera/specular rays, not a light (.scn `e`, with --no-emission-lights; see scn_loader.h).
     Rgb emission{0.0f};
@@ -85,6 +88,7 @@ struct Material {
     int base_roughness_u_texture = -1, base_roughness_v_texture = -1;
     float layer_thickness = 0.01f;
     Rgb layer_albedo{0.0f};
+    int layer_albedo_texture = -1;  // multiplies layer_albedo when >= 0
     float layer_g = 0;
     int layer_max_depth = 10, layer_samples = 1;
 
@@ -105,6 +109,23 @@ struct Material {
     float mix_amount = 0.5f;
     int mix_amount_texture = -1;
     bool is_mix() const { return mix_a >= 0; }
+
+    // pbrt "measured" (shading/measured_bxdf.h): when set, the material is the tabulated BRDF of an
+    // RGL .bsdf file (Dupuy & Jakob 2018) alone; its other lobes are unused.
+    std::shared_ptr<const MeasuredBsdf> measured;
+
+    // pbrt "hair" (Chiang et al. 2016, shading/hair_bxdf.h): when `hair`, the material is that fibre
+    // BSDF alone, at the offset h = -1 + 2 v across the fibre (the hit's v: a curve's across
+    // coordinate), with index hair_eta, roughnesses hair_beta_m / hair_beta_n and scale tilt
+    // hair_alpha (degrees). Its absorption, as pbrt-v4's HairMaterial reads it: hair_sigma_a
+    // (SigmaA); the colour hair_reflectance, times the texture hair_reflectance_texture when >= 0,
+    // inverted per wavelength (Reflectance); or the melanin concentrations (Melanin).
+    bool hair = false;
+    enum class HairColour { SigmaA, Reflectance, Melanin } hair_colour = HairColour::Melanin;
+    Rgb hair_sigma_a{0.0f}, hair_reflectance{0.0f};
+    int hair_reflectance_texture = -1;
+    float hair_eumelanin = 1.3f, hair_pheomelanin = 0;
+    float hair_eta = 1.55f, hair_beta_m = 0.3f, hair_beta_n = 0.3f, hair_alpha = 2;
 
     int displacement_texture = -1;  // pbrt "displacement": float texture bump-mapping the shading normal
     std::shared_ptr<const TextureImage> normal_map;  // pbrt "normalmap": tangent-space normals (linear RGB)

@@ -19,10 +19,24 @@ namespace {
 // Fresnel-weighted microfacet reflection); a material has at most one of kPhong, kMirror and it.
 // kCoat and kWalk are the two parts of pbrt's layered materials (the coat's own reflection and the
 // light that enters the slab, LayeredPart): a layered material has these two and no other.
-enum Lobe : int { kLambert, kPhong, kMirror, kDielectric, kDiffTrans, kMicrofacet, kCoat, kWalk, kNumLobes };
+// kMeasured (pbrt's measured BRDF) and kHair (its hair fibre BSDF) are each the material's only lobe.
+enum Lobe : int {
+    kLambert,
+    kPhong,
+    kMirror,
+    kDielectric,
+    kDiffTrans,
+    kMicrofacet,
+    kCoat,
+    kWalk,
+    kMeasured,
+    kHair,
+    kNumLobes
+};
 // The LobeAlbedos kind (sample_lobes mask bit) each lobe belongs to; the layered parts' kinds
 // depend on the material (Bsdf::kind_of).
-constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse, kGlossy, 0, 0};
+constexpr uint32_t kKind[kNumLobes] = {kDiffuse, kGlossy, kSpecular, kTransmission, kDiffuse,
+                                       kGlossy,  0,       0,         kGlossy,       kGlossy};
 // The lobes whose sharpness is shininess_ (a Phong exponent or a microfacet lobe's equivalent).
 constexpr uint32_t kGlossyReflection = (1u << kPhong) | (1u << kMicrofacet);
 
@@ -80,6 +94,26 @@ void texture_diffuse(const scene::Material& m, const accel::SurfaceHit& hit, con
 
 spectrum::RgbSpectrum albedo_spectrum(Rgb c) { return {c, spectrum::RgbSpectrum::Use::Albedo}; }
 spectrum::RgbSpectrum unbounded_spectrum(Rgb c) { return {c, spectrum::RgbSpectrum::Use::Unbounded}; }
+
+// A direction of the side-flipped local frame (eval_local's) back in the shading frame itself, for
+// the hair BSDF, which is not symmetric under the flip.
+Vec3 unflipped(Vec3 v, float side) { return {v.x, v.y, v.z * side}; }
+
+// The absorption of a hair material, with `colour` its reflectance (textured at a hit) when the
+// material gives one; scene constants fitted exactly, per-hit colours by the table.
+HairAbsorption hair_absorption(const scene::Material& m, Rgb colour,
+                               spectrum::RgbSpectrum::Fit fit = spectrum::RgbSpectrum::Fit::Exact) {
+    using C = scene::Material::HairColour;
+    switch (m.hair_colour) {
+        case C::SigmaA:
+            return HairAbsorption::of_sigma_a(m.hair_sigma_a, fit);
+        case C::Reflectance:
+            return HairAbsorption::of_reflectance(colour, m.hair_beta_n, fit);
+        case C::Melanin:
+            break;
+    }
+    return HairAbsorption::of_concentration(m.hair_eumelanin, m.hair_pheomelanin, fit);
+}
 
 // sample_lobes for a BSDF made of one Lambert lobe (the commonest material; every photon bounce
 // on a diffuse wall), wo on side s of ng (s != 0), without the lobe selection and with wi taken to
@@ -190,7 +224,21 @@ void Bsdf::set_material(const scene::Material& m, const BsdfOptions& options) {
     if (!kt_.is_black()) lobes_ |= 1u << kDielectric;
     if (!kdt_.is_black()) lobes_ |= 1u << kDiffTrans;
     if (lobes_ == 0) lobes_ = 1u << kLambert;  // black body: opaque, absorbs everything
-    if (m.layered) {
+    if (m.measured) {
+        lobes_ = 1u << kMeasured;
+        measured_ = MeasuredBxdf(*m.measured);
+        measured_shininess_ = phong_of_alpha(m.measured->equivalent_alpha());
+    } else if (m.hair) {
+        lobes_ = 1u << kHair;
+        HairParams p;
+        p.eta = m.hair_eta;
+        p.beta_m = m.hair_beta_m;
+        p.beta_n = m.hair_beta_n;
+        p.alpha_degrees = m.hair_alpha;
+        p.sigma_a = hair_absorption(m, m.hair_reflectance);
+        hair_ = HairBxdf(p);
+        hair_shininess_ = 1 / std::max(hair_.longitudinal_variance(1), 1e-6f);
+    } else if (m.layered) {
         lobes_ = (1u << kCoat) | (1u << kWalk);
         layered_fi_ = LayeredBxdf::internal_reflectance(m.coat_eta);
         set_layered(m, nullptr, nullptr);
@@ -250,7 +298,7 @@ void Bsdf::set_layered(const scene::Material& m, const scene::Scene* scene, cons
         layered_base_albedo_ = r.average();
     }
     p.thickness = m.layer_thickness;
-    p.albedo = albedo_spectrum(m.layer_albedo);
+    p.albedo = albedo(m.layer_albedo * texture(m.layer_albedo_texture), m.layer_albedo_texture);
     p.g = m.layer_g;
     p.max_depth = m.layer_max_depth;
     p.n_samples = m.layer_samples;
@@ -293,6 +341,8 @@ void Bsdf::set_flags() {
     if (lobes_ & (1u << kDiffTrans)) flags_ |= kDiffuse | kTransmission;
     if (lobes_ & (1u << kCoat)) flags_ |= kind_of(kCoat) | kReflection;
     if (lobes_ & (1u << kWalk)) flags_ |= kind_of(kWalk) | kReflection;
+    if (lobes_ & (1u << kMeasured)) flags_ |= measured_.flags();
+    if (lobes_ & (1u << kHair)) flags_ |= HairBxdf::flags();
 }
 
 Bsdf Bsdf::regularized(float max_exponent) const {
@@ -344,16 +394,33 @@ Bsdf Bsdf::only(uint32_t lobe_mask) const {
 }
 
 void Bsdf::apply_textures(const scene::Material& m, const accel::SurfaceHit& hit, const scene::Scene& scene) {
+    if (lobes_ & (1u << kHair)) {
+        hair_.set_h(-1 + 2 * hit.uv.y);  // pbrt-v4's HairMaterial: v runs across the fibre
+        if (m.hair_colour == scene::Material::HairColour::Reflectance && m.hair_reflectance_texture >= 0) {
+            const Rgb c = m.hair_reflectance * eval_texture(scene, m.hair_reflectance_texture,
+                                                            texture_context(hit, scene, footprint_));
+            hair_.set_sigma_a(hair_absorption(m, c, spectrum::RgbSpectrum::Fit::Table));
+        }
+        return;
+    }
     texture_diffuse(m, hit, scene, footprint_, kd_, kd_s_);
     if (m.specular_texture >= 0) {
         ks_ *= eval_texture(scene, m.specular_texture, texture_context(hit, scene, footprint_));
         ks_s_ =
             spectrum::RgbSpectrum(ks_, spectrum::RgbSpectrum::Use::Albedo, spectrum::RgbSpectrum::Fit::Table);
     }
+    if (m.diffuse_transmission_texture >= 0) {
+        // pbrt-v4's diffusetransmission clamps scale x texture to [0, 1].
+        const Rgb t = kdt_ * eval_texture(scene, m.diffuse_transmission_texture,
+                                          texture_context(hit, scene, footprint_));
+        kdt_ = Rgb(std::clamp(t.r, 0.0f, 1.0f), std::clamp(t.g, 0.0f, 1.0f), std::clamp(t.b, 0.0f, 1.0f));
+        kdt_s_ = spectrum::RgbSpectrum(kdt_, spectrum::RgbSpectrum::Use::Albedo,
+                                       spectrum::RgbSpectrum::Fit::Table);
+    }
     if (m.layered) {
         if (m.diffuse_texture >= 0 || m.specular_texture >= 0 || m.roughness_u_texture >= 0 ||
             m.roughness_v_texture >= 0 || m.base_roughness_u_texture >= 0 ||
-            m.base_roughness_v_texture >= 0) {
+            m.base_roughness_v_texture >= 0 || m.layer_albedo_texture >= 0) {
             set_layered(m, &scene, &hit);
             set_flags();  // a textured roughness can make the coat smooth or rough here
         }
@@ -374,6 +441,7 @@ void Bsdf::rebind(const scene::Material& m) {
     cond_eta_spectrum_ = conductor_ && m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr;
     cond_k_spectrum_ = conductor_ && m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr;
     ior_spectrum_ = m.ior_spectrum && !m.ior_spectrum->is_constant() ? &*m.ior_spectrum : nullptr;
+    if (m.measured) measured_.rebind(*m.measured);
     if (m.layered && m.layered_conductor_base && !m.conductor_from_reflectance)
         layered_.rebind(m.conductor_eta_spectrum ? &*m.conductor_eta_spectrum : nullptr,
                         m.conductor_k_spectrum ? &*m.conductor_k_spectrum : nullptr);
@@ -431,6 +499,10 @@ void Bsdf::selection_weights(Vec3 wo_local, uint32_t mask, float w[kNumLobes]) c
                 w[i] = std::max(layered_.walk_albedo(cos_o, layered_base_albedo_, layered_fi_),
                                 0.05f * (1 - layered_.coat_albedo(cos_o)));
                 break;
+            case kMeasured:
+            case kHair:
+                w[i] = 1;  // the only lobe
+                break;
         }
         w[i] = std::max(w[i], 0.0f);
     }
@@ -450,6 +522,13 @@ Bsdf::LobeAlbedos Bsdf::lobe_albedos(Vec3 wo) const {
     if (lobes_ & (1u << kCoat)) add(layered_.coat_kind(), layered_.coat_albedo(cos_o));
     if (lobes_ & (1u << kWalk))
         add(layered_.walk_kind(), layered_.walk_albedo(cos_o, layered_base_albedo_, layered_fi_));
+    if (lobes_ & (1u << kMeasured)) {
+        const float s = side_of(wo, ng_);
+        Vec3 wo_l = frame_.to_local(wo);
+        wo_l.z *= s != 0 ? s : 1.0f;
+        a.glossy += Rgb(measured_.albedo(wo_l));
+    }
+    if (lobes_ & (1u << kHair)) a.glossy += hair_.albedo(frame_.to_local(wo));
     return a;
 }
 
@@ -461,6 +540,8 @@ uint32_t Bsdf::sharp_lobes(float sharp_exponent) const {
     if ((lobes_ & (1u << kWalk)) && layered_.walk_kind() == kGlossy && walk_shininess_ >= sharp_exponent)
         m |= kGlossy;
     if ((lobes_ & (1u << kDielectric)) && !sharp_glass_ && t_shininess_ >= sharp_exponent) m |= kTransmission;
+    if ((lobes_ & (1u << kMeasured)) && measured_shininess_ >= sharp_exponent) m |= kGlossy;
+    if ((lobes_ & (1u << kHair)) && hair_shininess_ >= sharp_exponent) m |= kGlossy;
     return m;
 }
 
@@ -471,7 +552,7 @@ void Bsdf::part_masks(float sharp_exponent, uint32_t& followed, uint32_t& estima
     if (lobes_ & (1u << kMirror)) followed |= kSpecular;
     if (lobes_ & (1u << kDielectric)) put(kTransmission, sharp_glass_ || (sharp & kTransmission));
     if (lobes_ & ((1u << kLambert) | (1u << kDiffTrans))) estimated |= kDiffuse;
-    if (lobes_ & kGlossyReflection) put(kGlossy, sharp & kGlossy);
+    if (lobes_ & (kGlossyReflection | (1u << kMeasured) | (1u << kHair))) put(kGlossy, sharp & kGlossy);
     // The layered parts by their kinds: delta parts followed, diffuse ones estimated, glossy ones
     // by their sharpness.
     for (const int lobe : {kCoat, kWalk}) {
@@ -563,6 +644,16 @@ Spectrum Bsdf::eval_local(Vec3 wo_l, Vec3 wi, float s, uint32_t mask, const Wave
     }
     if (refl && has(kCoat)) f += layered_.f(wo_l, wi_l, lambda, mode, LayeredPart::Coat);
     if (refl && has(kWalk)) f += layered_.f(wo_l, wi_l, lambda, mode, LayeredPart::Walk);
+    // Measured tables and the hair model are not reciprocal: light paths (Importance) evaluate
+    // the adjoint, f*(wo, wi) = f(wi, wo), so that a path's value does not depend on the direction
+    // it was traced in.
+    const bool adjoint = mode == TransportMode::Importance;
+    if (refl && has(kMeasured))
+        f += adjoint ? measured_.f(wi_l, wo_l, lambda) : measured_.f(wo_l, wi_l, lambda);
+    if (has(kHair)) {
+        const Vec3 a = unflipped(wo_l, s), b = unflipped(wi_l, s);
+        f += adjoint ? hair_.f(b, a, lambda) : hair_.f(a, b, lambda);
+    }
     if (trans && has(kDiffTrans)) f += kdt_s_.sample(lambda) * kInvPi;
     if (has(kDielectric) && !sharp_glass_) {
         const Spectrum kt = kt_s_.sample(lambda);
@@ -617,6 +708,8 @@ float Bsdf::pdf_local(Vec3 wo_l, Vec3 wi, float s, const float w[]) const {
     if (trans && w[kDiffTrans] > 0) pdf += w[kDiffTrans] * warp::cosine_hemisphere_pdf(-wi_l.z);
     if (refl && w[kCoat] > 0) pdf += w[kCoat] * layered_.pdf(wo_l, wi_l, LayeredPart::Coat);
     if (refl && w[kWalk] > 0) pdf += w[kWalk] * layered_.pdf(wo_l, wi_l, LayeredPart::Walk);
+    if (refl && w[kMeasured] > 0) pdf += w[kMeasured] * measured_.pdf(wo_l, wi_l);
+    if (w[kHair] > 0) pdf += w[kHair] * hair_.pdf(unflipped(wo_l, s), unflipped(wi_l, s));
     if (w[kDielectric] > 0 && !sharp_glass_) {
         const float eta = s > 0 ? ior_ : 1 / ior_;
         pdf += w[kDielectric] * dielectric::rough_pdf(dist_, wo_l, wi_l, eta, schlick_);
@@ -722,6 +815,21 @@ std::optional<BsdfSample> Bsdf::sample_lobes(uint32_t lobe_mask, Vec3 wo, float 
             } else {
                 layered_weight = ls->weight;
             }
+            break;
+        }
+        case kMeasured: {
+            const auto ms = measured_.sample(wo_l, u, lambda);
+            if (!ms || !(ms->wi.z > 0)) return std::nullopt;
+            wi_l = ms->wi;
+            bs.flags = kGlossy | kReflection;
+            break;
+        }
+        case kHair: {
+            const auto hs = hair_.sample(unflipped(wo_l, s), u_re, u, lambda);
+            if (!hs) return std::nullopt;
+            wi_l = unflipped(hs->wi, s);
+            transmitted = wi_l.z < 0;
+            bs.flags = kGlossy | (transmitted ? kTransmission : kReflection);
             break;
         }
         case kMicrofacet: {

@@ -1,7 +1,10 @@
 // The surface scattering model: one BSDF per hit, built from a scene::Material, made of up to five
 // lobes (Lambert; modified-Phong glossy, Trowbridge-Reitz microfacet reflection or ideal mirror;
-// smooth or rough dielectric; Lambertian transmission). eval/pdf cover the non-delta lobes; sample covers all
-// of them. Directions are world-space unit vectors pointing away from the surface.
+// smooth or rough dielectric; Lambertian transmission), or of pbrt's layered material's two parts
+// (layered_bxdf.h), or of one measured BRDF (measured_bxdf.h) or one hair fibre BSDF
+// (hair_bxdf.h, which scatters to both sides: reflection or transmission by the geometric normal
+// as below). eval/pdf cover the non-delta lobes; sample covers all of them. Directions are
+// world-space unit vectors pointing away from the surface.
 //
 // Conventions (precise):
 // - Sides. Reflection lobes (Lambert, Phong, mirror) are two-sided: they reflect on whichever side
@@ -30,7 +33,9 @@
 #include "core/vec.h"
 #include "scene/camera_footprint.h"
 #include "scene/scene.h"
+#include "shading/hair_bxdf.h"
 #include "shading/layered_bxdf.h"
+#include "shading/measured_bxdf.h"
 #include "shading/microfacet.h"
 #include "spectrum/distribution.h"
 #include "spectrum/rgb_spectrum.h"
@@ -257,6 +262,11 @@ private:
     float layered_fi_ = 0;           // the coat's internal diffuse reflectance (walk selection)
     float layered_base_albedo_ = 0;  // the base's average albedo (walk selection)
     float coat_shininess_ = 0, walk_shininess_ = 0;  // Phong-equivalent sharpness of each part
+    // pbrt's measured and hair materials: lobes kMeasured and kHair (bsdf.cpp), each the material's
+    // only lobe, with the Phong-equivalent sharpness of each (what sharp_lobes compares).
+    MeasuredBxdf measured_;
+    HairBxdf hair_;
+    float measured_shininess_ = 0, hair_shininess_ = 0;
 
     Bsdf() = default;
     // The constructor's three steps: the frame at the hit, the material's lobes, its textures.

@@ -14,6 +14,7 @@
 #include "core/warp.h"
 #include "shading/fresnel.h"
 #include "shading/material_bsdfs.h"
+#include "shading/measured_tabulation.h"
 #include "spectral_test_util.h"
 #include "support/chi_square.h"
 
@@ -324,6 +325,23 @@ struct Case {
     Material m;
     BsdfOptions o;
 };
+// A rough conductor (alpha 0.25, eta 0.2, k 3) tabulated as an RGB measured BRDF on a coarse grid,
+// built once.
+std::shared_ptr<const scene::MeasuredBsdf> tabulated_conductor() {
+    static const auto table = [] {
+        TabulatedModel model;
+        model.alpha_x = model.alpha_y = 0.25f;
+        model.eta = [](float) { return 0.2f; };
+        model.k = [](float) { return 3.0f; };
+        TabulationGrid grid;
+        grid.n_theta_i = 6;
+        grid.ndf_n = 32;
+        grid.vndf_n = grid.n = 16;
+        return std::make_shared<const scene::MeasuredBsdf>(tabulate_brdf(model, grid));
+    }();
+    return table;
+}
+
 std::vector<Case> consistency_cases() {
     std::vector<Case> c;
     c.push_back({"lambert", lambert(0.8f), {}});
@@ -392,6 +410,16 @@ std::vector<Case> consistency_cases() {
     tr_coat.microfacet = true;
     tr_coat.roughness_u = tr_coat.roughness_v = 0.2f;
     c.push_back({"lambert+tr-reflection", tr_coat, {}});
+    // pbrt's hair (Chiang et al. 2016): reflection and transmission all around the fibre.
+    Material hair;
+    hair.hair = true;
+    hair.hair_colour = Material::HairColour::SigmaA;
+    hair.hair_sigma_a = Rgb(0.2f, 0.6f, 1.4f);
+    c.push_back({"hair", hair, {}});
+    // pbrt's measured: a rough conductor tabulated on a coarse grid (Dupuy & Jakob's tables).
+    Material measured;
+    measured.measured = tabulated_conductor();
+    c.push_back({"measured", measured, {}});
     return c;
 }
 
@@ -729,6 +757,10 @@ std::vector<Case> placement_cases() {
     Material textured = lambert(0.8f);
     textured.diffuse_texture = 0;
     cases.push_back({"textured", textured, {}});
+    Material transmitting = lambert(0.3f);
+    transmitting.diffuse_transmission = Rgb(0.6f);
+    transmitting.diffuse_transmission_texture = 0;
+    cases.push_back({"textured-transmittance", transmitting, {}});
     return cases;
 }
 scene::Scene placement_scene(const Material& m) {

@@ -1,5 +1,6 @@
 // Tests of texture evaluation (shading/texture_eval.h): bilinear image lookup, wrap modes, uv
-// mapping, checkerboard and scale textures, and their use by the Bsdf's diffuse albedo.
+// mapping, checkerboard and scale textures, and their use by the Bsdf (diffuse albedo, diffuse
+// transmittance, a coated material's slab albedo).
 #include "shading/texture_eval.h"
 
 #include <gtest/gtest.h>
@@ -167,6 +168,66 @@ TEST(TextureEval, BsdfDiffuseAlbedoIsTextured) {
     const Bsdf w(m, h, s);
     expect_rgb(w.diffuse_colour(), Rgb(0.5f));
     EXPECT_TRUE(spectral::flat_near(w.eval(up, up, spectral::fixed_lambda()), 0.5f * kInvPi, 1e-7));
+}
+
+// pbrt-v4's diffusetransmission with a textured transmittance: the Lambertian transmission lobe
+// is scale x texel at each hit (f = T / pi for wi on the far side), clamped to [0, 1] as pbrt-v4
+// clamps it; the reflection lobe keeps its own value.
+TEST(TextureEval, BsdfDiffuseTransmittanceIsTextured) {
+    auto s = scene_with(image_texture(Texture::Wrap::Repeat));
+    scene::Material m;
+    m.diffuse = Rgb(0.25f);
+    m.diffuse_transmission = Rgb(1.5f);  // the material's scale; texels above 1/1.5 clamp to 1
+    m.diffuse_transmission_texture = 0;
+    accel::SurfaceHit h;
+    h.ng = h.ns = Vec3(0, 0, 1);
+    const Vec3 up(0, 0, 1), down(0, 0, -1);
+    const Wavelengths lambda = spectral::fixed_lambda();
+    h.uv = Vec2(0.25f, 0.25f);  // blue texel: T = (0, 0, 1)
+    const Bsdf blue(m, h, s);
+    const spectrum::RgbSpectrum t_blue(Rgb(0, 0, 1), spectrum::RgbSpectrum::Use::Albedo,
+                                       spectrum::RgbSpectrum::Fit::Table);
+    EXPECT_TRUE(spectral::spectra_near(blue.eval(up, down, lambda), t_blue.sample(lambda) * kInvPi, 1e-6));
+    EXPECT_TRUE(spectral::flat_near(blue.eval(up, up, lambda), 0.25f * kInvPi, 1e-6));
+    h.uv = Vec2(0.75f, 0.25f);  // white texel: T = 1 (1.5 clamped)
+    const Bsdf white(m, h, s);
+    EXPECT_TRUE(spectral::flat_near(white.eval(up, down, lambda), kInvPi, 1e-6));
+}
+
+// A coated diffuse material whose slab albedo is a texture: the slab scatters where the texel is
+// white and not where it is black, so the layered BSDF's value differs between the two texels
+// (the slab's medium is thick here: 1 mean free path), and an untextured material with the
+// texel's albedo gives the same value to the bit (the walk is deterministic per (wo, wi)).
+TEST(TextureEval, CoatedSlabAlbedoIsTextured) {
+    auto img = std::make_shared<scene::TextureImage>();
+    img->width = 2;
+    img->height = 1;
+    img->texels = {Rgb(0.0f), Rgb(1.0f)};
+    Texture t;
+    t.kind = Texture::Kind::Image;
+    t.image = img;
+    auto s = scene_with(t);
+    scene::Material m;
+    m.layered = true;
+    m.diffuse = Rgb(0.3f);
+    m.layer_thickness = 1.0f;
+    m.layer_albedo = Rgb(0.9f);
+    m.layer_albedo_texture = 0;
+    accel::SurfaceHit h;
+    h.ng = h.ns = Vec3(0, 0, 1);
+    h.dpdu = Vec3(1, 0, 0);
+    const Vec3 wo = normalize(Vec3(0.3f, 0.1f, 1)), wi = normalize(Vec3(-0.4f, 0.2f, 1));
+    const Wavelengths lambda = spectral::fixed_lambda();
+    h.uv = Vec2(0.25f, 0.5f);  // black texel: no medium
+    const Spectrum f_black = Bsdf(m, h, s).eval(wo, wi, lambda);
+    h.uv = Vec2(0.75f, 0.5f);  // white texel: albedo 0.9
+    const Spectrum f_white = Bsdf(m, h, s).eval(wo, wi, lambda);
+    scene::Material plain = m;
+    plain.layer_albedo_texture = -1;
+    EXPECT_EQ(f_white, Bsdf(plain, h, s).eval(wo, wi, lambda));
+    plain.layer_albedo = Rgb(0.0f);
+    EXPECT_EQ(f_black, Bsdf(plain, h, s).eval(wo, wi, lambda));
+    EXPECT_GT(std::fabs(f_white[0] - f_black[0]), 0.01f * f_black[0]);
 }
 
 }  // namespace

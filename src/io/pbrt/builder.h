@@ -5,6 +5,7 @@
 #pragma once
 
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -159,6 +160,8 @@ private:
     std::vector<StackEntry> stack_;
     std::map<std::string, Transform> coord_systems_;
     std::map<std::string, int> named_materials_, float_textures_, spectrum_textures_, media_, objects_;
+    // `measured` materials' files, read once per path.
+    std::map<std::string, std::shared_ptr<const scene::MeasuredBsdf>> measured_files_;
     std::optional<CameraSpec> camera_;
     // pbrt-v3 SPPM's "numiterations" (0: not given): the iterations, whatever the Sampler says.
     int sppm_iterations_ = 0;

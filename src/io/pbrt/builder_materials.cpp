@@ -7,6 +7,7 @@
 
 #include "core/error.h"
 #include "core/log.h"
+#include "io/bsdf/rgl_bsdf_file.h"
 #include "io/image/image_io.h"
 #include "io/pbrt/builder.h"
 #include "io/text/image_texture.h"
@@ -491,12 +492,7 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
         m.layer_thickness = float_param(params, "thickness", 0.01f, d);
         if (!(m.layer_thickness >= 0) || !std::isfinite(m.layer_thickness))
             params.find("thickness")->loc.fail(d + ": \"thickness\" must be finite and >= 0");
-        int tex = -1;
-        m.layer_albedo = color_or_texture(params, "albedo", Rgb(0.0f), &tex, albedo, d);
-        if (tex >= 0) {
-            warn(params.find("albedo")->loc, d + ": a textured \"albedo\" is not supported; 0 is used");
-            m.layer_albedo = Rgb(0.0f);
-        }
+        m.layer_albedo = color_or_texture(params, "albedo", Rgb(0.0f), &m.layer_albedo_texture, albedo, d);
         m.layer_g = float_param(params, "g", 0.0f, d);
         if (!(m.layer_g >= -1 && m.layer_g <= 1))
             params.find("g")->loc.fail(d + ": \"g\" must be in [-1, 1]");
@@ -544,12 +540,75 @@ scene::Material SceneBuilder::make_material(const std::string& type, const Param
     } else if (type == "diffusetransmission") {
         const float s = params.get_float("scale", 1.0f);
         m.diffuse = color_or_texture(params, "reflectance", Rgb(0.25f), &m.diffuse_texture, albedo, d) * s;
-        int tex = -1;
-        m.diffuse_transmission = color_or_texture(params, "transmittance", Rgb(0.25f), &tex, albedo, d) * s;
-        if (tex >= 0) {
-            warn(loc, d + ": a textured transmittance is not supported; 0.25 is used");
-            m.diffuse_transmission = Rgb(0.25f * s);
+        m.diffuse_transmission = color_or_texture(params, "transmittance", Rgb(0.25f),
+                                                  &m.diffuse_transmission_texture, albedo, d) *
+                                 s;
+        // pbrt-v4 clamps scale x value to [0, 1] (a textured one at each hit: Bsdf).
+        const auto unit = [](Rgb c) {
+            return Rgb(std::clamp(c.r, 0.0f, 1.0f), std::clamp(c.g, 0.0f, 1.0f), std::clamp(c.b, 0.0f, 1.0f));
+        };
+        if (m.diffuse_texture < 0) m.diffuse = unit(m.diffuse);
+        if (m.diffuse_transmission_texture < 0) m.diffuse_transmission = unit(m.diffuse_transmission);
+    } else if (type == "measured") {
+        // pbrt-v4's MeasuredMaterial: an RGL .bsdf file (Dupuy & Jakob 2018), read and checked here.
+        const Param* fp = params.find("filename");
+        if (!fp) loc.fail(d + ": missing \"string filename\"");
+        const std::string path = resolve(params.get_string("filename", ""), fp->loc);
+        auto& cached = measured_files_[path];
+        try {
+            if (!cached) cached = io::read_rgl_bsdf(path);
+        } catch (ParseError& e) {  // the file's own message, located where it is named
+            fp->loc.add_to(e);
+            throw;
         }
+        m.measured = cached;
+    } else if (type == "hair") {
+        // pbrt-v4's HairMaterial: the absorption from `sigma_a`, else `reflectance` (pbrt-v3:
+        // `color`), else the melanin concentrations, else eumelanin 1.3; what is given besides the
+        // one used is ignored with a warning, as pbrt-v4 does.
+        m.hair = true;
+        const Param* sigma = params.find("sigma_a");
+        const Param* refl = params.find("reflectance") ? params.find("reflectance") : params.find("color");
+        const Param* eu = params.find("eumelanin");
+        const Param* pheo = params.find("pheomelanin");
+        const auto ignored = [&](const Param* p, const char* because) {
+            if (p) warn(p->loc, d + ": \"" + p->name + "\" is ignored since \"" + because + "\" is given");
+        };
+        using C = scene::Material::HairColour;
+        if (sigma) {
+            m.hair_colour = C::SigmaA;
+            int tex = -1;
+            m.hair_sigma_a = color_or_texture(params, "sigma_a", Rgb(0.0f), &tex, SpectrumUse::Unbounded, d);
+            if (tex >= 0) {  // a constant texture's value (pbrt-v4 also takes varying ones)
+                const scene::Texture& t = scene_.textures[size_t(tex)];
+                if (t.kind != scene::Texture::Kind::Constant)
+                    sigma->loc.fail(d + ": a textured \"sigma_a\" must be a constant texture");
+                m.hair_sigma_a = t.value;
+            }
+            ignored(refl, "sigma_a");
+            ignored(eu, "sigma_a");
+            ignored(pheo, "sigma_a");
+        } else if (refl) {
+            m.hair_colour = C::Reflectance;
+            m.hair_reflectance =
+                color_or_texture(params, refl->name, Rgb(0.0f), &m.hair_reflectance_texture, albedo, d);
+            ignored(eu, "reflectance");
+            ignored(pheo, "reflectance");
+        } else {
+            m.hair_colour = C::Melanin;
+            m.hair_eumelanin = eu || pheo ? float_param(params, "eumelanin", 0.0f, d) : 1.3f;
+            m.hair_pheomelanin = float_param(params, "pheomelanin", 0.0f, d);
+        }
+        m.hair_eta = float_param(params, "eta", 1.55f, d);
+        m.hair_beta_m = float_param(params, "beta_m", 0.3f, d);
+        m.hair_beta_n = float_param(params, "beta_n", 0.3f, d);
+        m.hair_alpha = float_param(params, "alpha", 2.0f, d);
+        for (const char* name : {"eta", "beta_m", "beta_n", "alpha", "eumelanin", "pheomelanin"}) {
+            const Param* p = params.find(name);
+            if (p && p->type != "texture" && !std::isfinite(params.get_float(name, 0.0f)))
+                p->loc.fail(d + ": \"" + name + "\" must be finite");
+        }
+        if (!(m.hair_eta > 0)) params.find("eta")->loc.fail(d + ": \"eta\" must be positive");
     } else if (type == "interface" || type == "" || type == "none") {
         m.interface_only = true;
     } else if (type == "mix") {

@@ -420,7 +420,6 @@ TEST(PbrtMaterials, NamedMaterialsAndApproximations) {
         "\"sphere\"\n"
         "Material \"diffusetransmission\" \"rgb transmittance\" [0.1 0.2 0.3]\nShape \"sphere\"\n"
         "Material \"interface\"\nShape \"sphere\"\n"
-        "Material \"measured\" \"string filename\" \"x.bsdf\"\nShape \"sphere\"\n"
         "NamedMaterial \"red\"\nShape \"sphere\"\n");
     const scene::Material& mix = material_of(l, 0);  // a mix of "red" with itself
     ASSERT_TRUE(mix.is_mix());
@@ -440,9 +439,8 @@ TEST(PbrtMaterials, NamedMaterialsAndApproximations) {
     EXPECT_EQ(material_of(l, 2).diffuse_transmission, Rgb(0.1f, 0.2f, 0.3f));
     EXPECT_EQ(material_of(l, 2).diffuse, Rgb(0.25f));
     EXPECT_TRUE(material_of(l, 3).interface_only);
-    EXPECT_EQ(material_of(l, 4).diffuse, Rgb(0.5f));  // unsupported -> grey diffuse
-    EXPECT_EQ(material_of(l, 5).name, "red");
-    EXPECT_EQ(l.warnings, 1);  // measured (mix and coateddiffuse are as pbrt)
+    EXPECT_EQ(material_of(l, 4).name, "red");
+    EXPECT_EQ(l.warnings, 0);  // mix and coateddiffuse are as pbrt
 }
 
 // ---- textures ----
