@@ -496,12 +496,17 @@ std::optional<LayeredSample> LayeredBxdf::sample(Vec3 wo, float uc, Vec2 u, cons
     const PhaseFunction phase{p_.g};
     float z = thick;
     for (int depth = 0; depth < p_.max_depth; ++depth) {
-        // Russian roulette on the hero wavelength's throughput (see layered_bxdf.h).
-        const float rr = f[0] / pdf;
-        if (depth > 3 && rr < 0.25f) {
-            const float q = std::min(0.95f, std::max(0.0f, 1 - rr));
-            if (rng.next() < q) return std::nullopt;
-            pdf *= 1 - q;
+        // Russian roulette on the largest throughput over the path's wavelengths, as pbrt-v4
+        // (see layered_bxdf.h); its number is drawn whatever the throughput, so the directions
+        // the walk draws do not depend on the wavelengths.
+        if (depth > 3) {
+            const float u_rr = rng.next();
+            const float rr = f.max() / pdf;
+            if (rr < 0.25f) {
+                const float q = std::max(0.0f, 1 - rr);
+                if (u_rr < q) return std::nullopt;
+                pdf *= 1 - q;
+            }
         }
         if (w.z == 0) return std::nullopt;
         if (medium_) {

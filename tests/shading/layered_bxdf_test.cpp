@@ -599,20 +599,48 @@ TEST(LayeredBxdf, DeterministicAndWavelengthIndependentDecisions) {
     const Vec3 wo = sph(30, 10), wi = sph(50, 200);
     EXPECT_EQ(b.f(wo, wi, lambda()), b.f(wo, wi, lambda()));
     EXPECT_EQ(b.pdf(wo, wi), b.pdf(wo, wi));
-    // The same hero wavelength with other secondaries: the same sampled direction and pdf.
+    // Other wavelengths: the same sampled direction where both walks survive their Russian
+    // roulette (which reads the largest throughput over the wavelengths, so survival may differ).
     const Wavelengths l1 = Wavelengths::at_values({500, 400, 600, 700});
     const Wavelengths l2 = Wavelengths::at_values({500, 650, 450, 380});
     Sampler s(3, 4);
+    int both = 0;
     for (int i = 0; i < 200; ++i) {
         const float uc = s.next();
         const Vec2 u = s.next2();
         const auto a = b.sample(wo, uc, u, l1), c = b.sample(wo, uc, u, l2);
-        ASSERT_EQ(bool(a), bool(c));
-        if (!a) continue;
+        if (!a || !c) continue;
+        ++both;
         EXPECT_EQ(a->wi, c->wi);
-        EXPECT_EQ(a->pdf, c->pdf);
-        EXPECT_EQ(a->f[0], c->f[0]);
     }
+    EXPECT_GT(both, 100);  // most samples (the rest: the coat reflected, a walk lost or cut)
+}
+
+// A saturated red base seen at a wavelength set whose hero is blue: each wavelength's sampled
+// albedo (the walk's weights) matches the integral of its f, red included. With Russian roulette
+// on the hero's throughput alone, the red wavelength rode on rare survivors boosted 20-fold, and
+// its sampled albedo read several percent off at these sample counts.
+TEST(LayeredBxdf, ColouredBaseSampledAlbedoMatchesItsIntegralAtEveryWavelength) {
+    LayeredParams p = coated_diffuse(1.5f, 0.0f, 0.0f, 0.01f);
+    p.reflectance = RgbSpectrum(Rgb(0.7f, 0.08f, 0.06f), RgbSpectrum::Use::Albedo);
+    const LayeredBxdf b(p);
+    const Wavelengths l = Wavelengths::at_values({480, 650, 550, 420});  // hero in the blue
+    const Vec3 wo = sph(20, 30);
+    const int n = 200000;
+    Sampler s(5, 6);
+    double sampled[4] = {}, integral[4] = {};
+    for (int i = 0; i < n; ++i) {
+        if (const auto smp = b.sample(wo, s.next(), s.next2(), l); smp && !smp->is_specular())
+            for (int k = 0; k < 4; ++k) sampled[k] += smp->weight[k] / n;
+        const Vec2 u = s.next2();
+        const float z = u.x, r = std::sqrt(std::max(0.0f, 1 - z * z)), phi = 2 * kPi * u.y;
+        const Vec3 wi(r * std::cos(phi), r * std::sin(phi), z);
+        const Spectrum f = b.f(wo, wi, l);
+        for (int k = 0; k < 4; ++k) integral[k] += f[k] * wi.z * 2 * M_PI / n;
+    }
+    for (int k = 0; k < 4; ++k)
+        EXPECT_NEAR(sampled[k], integral[k], 0.015 * integral[k] + 2e-3) << l[k] << " nm";
+    EXPECT_GT(integral[1], 0.3);  // the red wavelength reflects strongly
 }
 
 }  // namespace
