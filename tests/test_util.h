@@ -12,8 +12,10 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/error.h"
+#include "core/vec.h"
 
 namespace phos::testing {
 
@@ -89,6 +91,19 @@ void expect_parse_error_from(Load&& load, const std::string& file, int line, int
     } catch (const std::exception& e) {
         ADD_FAILURE() << "expected a ParseError, got: " << e.what();
     }
+}
+
+// A PFM image (linear RGB floats) of w x h pixels listed top row first (PFM stores the bottom row
+// first): the small images the image-light and texture tests write.
+inline std::string pfm_bytes(int w, int h, const std::vector<Rgb>& top_first) {
+    std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1\n";
+    for (int y = h - 1; y >= 0; --y)
+        for (int x = 0; x < w; ++x) {
+            const Rgb c = top_first[size_t(y * w + x)];
+            const float v[3] = {c.r, c.g, c.b};
+            s.append(reinterpret_cast<const char*>(v), sizeof v);
+        }
+    return s;
 }
 
 inline std::string read_bytes(const std::string& path) {

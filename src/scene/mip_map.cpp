@@ -17,22 +17,6 @@ int round_up_power_of_2(int n) {
     return p;
 }
 
-// An integer texel index inside [0, n) per wrap mode; -1 for "black".
-int wrap_index(int i, int n, Texture::Wrap wrap) {
-    if (i >= 0 && i < n) return i;
-    switch (wrap) {
-        case Texture::Wrap::Repeat: {
-            const int m = i % n;
-            return m < 0 ? m + n : m;
-        }
-        case Texture::Wrap::Clamp:
-            return i < 0 ? 0 : n - 1;
-        case Texture::Wrap::Black:
-            return -1;
-    }
-    return -1;
-}
-
 // sin(pi x) / (pi x), 1 at 0.
 float sinc(float x) {
     const float px = kPi * x;

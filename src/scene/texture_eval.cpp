@@ -8,9 +8,7 @@
 #include "scene/procedural_textures.h"
 
 namespace phos::scene {
-namespace {
 
-// Maps an integer texel index to one inside [0, n) per wrap mode; -1 means "black".
 int wrap_index(int i, int n, Texture::Wrap wrap) {
     if (i >= 0 && i < n) return i;
     switch (wrap) {
@@ -25,6 +23,8 @@ int wrap_index(int i, int n, Texture::Wrap wrap) {
     }
     return -1;
 }
+
+namespace {
 
 Rgb texel(const scene::TextureImage& image, int x, int y, Texture::Wrap wrap) {
     const int xi = wrap_index(x, image.width, wrap), yi = wrap_index(y, image.height, wrap);

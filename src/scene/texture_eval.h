@@ -42,6 +42,8 @@ bool reads_footprint(const Scene& scene);
 // nearest texels, wrapping per Texture::wrap (Repeat tiles, Clamp extends the edge texels, Black
 // treats texels outside the image as black).
 
+// An integer texel index mapped inside [0, n) per wrap mode; -1 for a texel that Black makes black.
+int wrap_index(int i, int n, Texture::Wrap wrap);
 // Bilinear lookup of an image at continuous texel coordinates (x, y) in [0, width] x [0, height]
 // (row 0 at the top), with the given wrap mode. Exposed for tests.
 Rgb lookup_bilinear(const TextureImage& image, float x, float y, Texture::Wrap wrap);

@@ -18,18 +18,6 @@
 namespace phos::testing {
 namespace {
 
-// A PFM image from rows listed top first (PFM stores the bottom row first).
-std::string pfm(int w, int h, const std::vector<Rgb>& top_first) {
-    std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1\n";
-    for (int y = h - 1; y >= 0; --y)
-        for (int x = 0; x < w; ++x) {
-            const Rgb c = top_first[size_t(y * w + x)];
-            const float v[3] = {c.r, c.g, c.b};
-            s.append(reinterpret_cast<const char*>(v), sizeof v);
-        }
-    return s;
-}
-
 // Looking straight down at the origin from y = 3, world +x to the image's right, +z up.
 const std::string kView = "LookAt 0 3 0  0 0 0  0 0 1\nCamera \"perspective\" \"float fov\" 40\nWorldBegin\n";
 // A diffuse floor of albedo 0.5 filling the view.
@@ -76,8 +64,8 @@ TEST_F(PbrtImageLightsRender, EqualAreaMapLightsTheFloorFromOverhead) {
     for (int y = 7; y <= 8; ++y)
         for (int x = 7; x <= 8; ++x) up[size_t(y * n + x)] = Rgb(4.0f);
     for (int k : {0, n - 1, n * (n - 1), n * n - 1}) down[size_t(k)] = Rgb(4.0f);
-    dir.write("up.pfm", pfm(n, n, up));
-    dir.write("down.pfm", pfm(n, n, down));
+    dir.write("up.pfm", pfm_bytes(n, n, up));
+    dir.write("down.pfm", pfm_bytes(n, n, down));
     auto scene = [&](const std::string& map) {
         return dir.write(map + ".pbrt", kView + kFloor +
                                             "AttributeBegin\nRotate -90 1 0 0\nLightSource \"infinite\" "
@@ -154,8 +142,8 @@ TEST_F(PbrtImageLightsRender, GoniometricLightsTheFloorOnlyFromItsLitHalf) {
             lower[size_t(y * n + x)] = Rgb(inside ? 0.0f : 1.0f);
             upper[size_t(y * n + x)] = Rgb(inside ? 1.0f : 0.0f);
         }
-    dir.write("lower.pfm", pfm(n, n, lower));
-    dir.write("upper.pfm", pfm(n, n, upper));
+    dir.write("lower.pfm", pfm_bytes(n, n, lower));
+    dir.write("upper.pfm", pfm_bytes(n, n, upper));
     auto scene = [&](const std::string& map) {
         return dir.write(map + ".pbrt", kView + kFloor +
                                             "Translate 0 1 0\nLightSource \"goniometric\" "
@@ -179,7 +167,7 @@ TEST_F(PbrtImageLightsRender, GoniometricLightsTheFloorOnlyFromItsLitHalf) {
 // nothing outside the slide's square (half-width tan 30 = 0.58 of the view's 1.09); pointing up it
 // leaves the floor black.
 TEST_F(PbrtImageLightsRender, ProjectionLandsOnTheFloorBelow) {
-    dir.write("white.pfm", pfm(2, 2, std::vector<Rgb>(4, Rgb(1.0f))));
+    dir.write("white.pfm", pfm_bytes(2, 2, std::vector<Rgb>(4, Rgb(1.0f))));
     auto scene = [&](float angle) {
         return dir.write("p" + std::to_string(int(angle)) + ".pbrt",
                          kView + kFloor + "Translate 0 1 0\nRotate " + std::to_string(angle) +
@@ -207,7 +195,7 @@ TEST_F(PbrtImageLightsRender, AreaLightImageIsSeenTheRightWayRound) {
     std::vector<Rgb> px(64, Rgb(0.0f));
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 4; ++x) px[size_t(y * 8 + x)] = Rgb(3.0f);
-    dir.write("emit.pfm", pfm(8, 8, px));
+    dir.write("emit.pfm", pfm_bytes(8, 8, px));
     const std::string scene =
         dir.write("area.pbrt", kView +
                                    "AreaLightSource \"diffuse\" \"string filename\" \"emit.pfm\"\n"
@@ -233,7 +221,7 @@ TEST_F(PbrtImageLightsRender, AreaLightImageIsSeenTheRightWayRound) {
 TEST_F(PbrtImageLightsRender, AreaLightImageOnDiskAndSphereFollowsTheirUv) {
     std::vector<Rgb> rg(16, Rgb(3, 0, 0));
     for (int x = 8; x < 16; ++x) rg[size_t(x)] = Rgb(0, 3, 0);
-    dir.write("rg.pfm", pfm(16, 1, rg));
+    dir.write("rg.pfm", pfm_bytes(16, 1, rg));
     const std::string emitter = "AreaLightSource \"diffuse\" \"string filename\" \"rg.pfm\"\n";
     const std::string disk = dir.write("disk.pbrt", kView + "AttributeBegin\nRotate -90 1 0 0\n" + emitter +
                                                         "Shape \"disk\" \"float radius\" 2\nAttributeEnd\n");

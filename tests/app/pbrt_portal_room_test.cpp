@@ -16,18 +16,6 @@
 namespace phos::testing {
 namespace {
 
-// A PFM image from rows listed top first (PFM stores the bottom row first).
-std::string pfm(int w, int h, const std::vector<Rgb>& top_first) {
-    std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1\n";
-    for (int y = h - 1; y >= 0; --y)
-        for (int x = 0; x < w; ++x) {
-            const Rgb c = top_first[size_t(y * w + x)];
-            const float v[3] = {c.r, c.g, c.b};
-            s.append(reinterpret_cast<const char*>(v), sizeof v);
-        }
-    return s;
-}
-
 std::string quad(float x0, float x1, float z0, float z1, float y) {
     auto f = [](float v) { return std::to_string(v); };
     return "Shape \"trianglemesh\" \"point3 P\" [" + f(x0) + " " + f(y) + " " + f(z0) + "  " + f(x1) + " " +
@@ -62,7 +50,7 @@ protected:
                 const float t = (float(x) + 0.5f) / n, s = (float(y) + 0.5f) / n;
                 sky.push_back(Rgb(2 + t, 2 + 0.5f * s, 2 + 2 * t * s));
             }
-        dir.write("sky.pfm", pfm(n, n, sky));
+        dir.write("sky.pfm", pfm_bytes(n, n, sky));
         with = dir.write("with.pbrt", room(true));
         without = dir.write("without.pbrt", room(false));
     }

@@ -15,18 +15,6 @@ namespace {
 
 using scene::Light;
 
-// A PFM image from rows listed top first (PFM stores the bottom row first).
-std::string pfm(int w, int h, const std::vector<Rgb>& top_first) {
-    std::string s = "PF\n" + std::to_string(w) + " " + std::to_string(h) + "\n-1\n";
-    for (int y = h - 1; y >= 0; --y)
-        for (int x = 0; x < w; ++x) {
-            const Rgb c = top_first[size_t(y * w + x)];
-            const float v[3] = {c.r, c.g, c.b};
-            s.append(reinterpret_cast<const char*>(v), sizeof v);
-        }
-    return s;
-}
-
 scene::Scene load_in(PbrtTempDir& dir, const std::string& body) {
     QuietLog quiet;
     return load_pbrt(dir.write("scene.pbrt", "WorldBegin\n" + body));
@@ -37,8 +25,8 @@ TEST(PbrtImageLights, SquareInfiniteMapIsEqualAreaWithIlluminance) {
     constexpr int n = 8;
     std::vector<Rgb> px(n * n, Rgb(0.5f));
     px[3] = Rgb(4, 2, 1);
-    dir.write("sky.pfm", pfm(n, n, px));
-    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    dir.write("sky.pfm", phos::testing::pfm_bytes(n, n, px));
+    dir.write("wide.pfm", phos::testing::pfm_bytes(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
     const scene::Scene s =
         load_in(dir,
                 "LightSource \"infinite\" \"string filename\" \"sky.pfm\" \"float scale\" 2\n"
@@ -73,7 +61,7 @@ TEST(PbrtImageLights, GoniometricConventions) {
     std::vector<Rgb> px(n * n, Rgb(0.0f));
     for (int y = 1; y <= 2; ++y)
         for (int x = 1; x <= 2; ++x) px[size_t(y * n + x)] = Rgb(3, 6, 0);  // grey 3
-    dir.write("g.pfm", pfm(n, n, px));
+    dir.write("g.pfm", phos::testing::pfm_bytes(n, n, px));
     const scene::Scene s = load_in(
         dir,
         "Translate 1 2 3\nLightSource \"goniometric\" \"string filename\" \"g.pfm\" \"rgb I\" [1 2 3] "
@@ -94,7 +82,7 @@ TEST(PbrtImageLights, GoniometricConventions) {
 // the top row of the slide lands on +y in the light's space.
 TEST(PbrtImageLights, ProjectionConventions) {
     PbrtTempDir dir;
-    dir.write("slide.pfm", pfm(2, 2, {Rgb(1.0f), Rgb(1.0f), Rgb(1.0f), Rgb(1.0f)}));
+    dir.write("slide.pfm", phos::testing::pfm_bytes(2, 2, {Rgb(1.0f), Rgb(1.0f), Rgb(1.0f), Rgb(1.0f)}));
     const scene::Scene s =
         load_in(dir,
                 "LightSource \"projection\" \"string filename\" \"slide.pfm\" \"float fov\" "
@@ -118,7 +106,7 @@ TEST(PbrtImageLights, ProjectionConventions) {
 // (u, v)); "L" and "filename" together are an error.
 TEST(PbrtImageLights, AreaLightImage) {
     PbrtTempDir dir;
-    dir.write("e.pfm", pfm(2, 1, {Rgb(1, 2, 3), Rgb(3, 2, 1)}));
+    dir.write("e.pfm", phos::testing::pfm_bytes(2, 1, {Rgb(1, 2, 3), Rgb(3, 2, 1)}));
     const std::string quad =
         "Shape \"trianglemesh\" \"point3 P\" [0 0 0 2 0 0 2 2 0 0 2 0] \"integer indices\" [0 1 2 0 2 3]\n";
     const scene::Scene s = load_in(
@@ -150,8 +138,8 @@ TEST(PbrtImageLights, AreaLightImage) {
 // whatever the current transform. A non-rectangle is a located error.
 TEST(PbrtImageLights, Portal) {
     PbrtTempDir dir;
-    dir.write("sky.pfm", pfm(4, 4, std::vector<Rgb>(16, Rgb(1.0f))));
-    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    dir.write("sky.pfm", phos::testing::pfm_bytes(4, 4, std::vector<Rgb>(16, Rgb(1.0f))));
+    dir.write("wide.pfm", phos::testing::pfm_bytes(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
     const scene::Scene s =
         load_in(dir,
                 "Rotate 30 0 1 0\nLightSource \"infinite\" \"string filename\" \"sky.pfm\" "
@@ -183,7 +171,7 @@ TEST(PbrtImageLights, GoniometricV3LatLongMapKeepsItsOrientation) {
     std::vector<Rgb> px(32 * 16, Rgb(0.25f));
     for (int y = 0; y < 8; ++y)
         for (int x = 0; x < 8; ++x) px[size_t(y * 32 + x)] = Rgb(4.0f);
-    dir.write("gonio.pfm", pfm(32, 16, px));
+    dir.write("gonio.pfm", phos::testing::pfm_bytes(32, 16, px));
     const scene::Scene s = load_in(dir, "LightSource \"goniometric\" \"string mapname\" \"gonio.pfm\"\n");
     ASSERT_EQ(s.lights.size(), 1u);
     const scene::Light& l = s.lights[0];
@@ -204,7 +192,7 @@ TEST(PbrtImageLights, GoniometricV3LatLongMapKeepsItsOrientation) {
 TEST(PbrtImageLights, BadInputIsLocated) {
     PbrtTempDir dir;
     QuietLog quiet;
-    dir.write("wide.pfm", pfm(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
+    dir.write("wide.pfm", phos::testing::pfm_bytes(4, 2, std::vector<Rgb>(8, Rgb(1.0f))));
     expect_pbrt_error(dir.write("a.pbrt", "WorldBegin\nLightSource \"goniometric\"\n"), 2, 1,
                       "missing \"string filename\"");
     expect_pbrt_error(
