@@ -365,7 +365,7 @@ void emission_at(const Context& C, const CameraWalk& w, const Vertex& v, const a
 
 // The strategies at a camera vertex `v` with a non-delta lobe (or in a medium): light samples,
 // connections (`full` camera samples only) and merging. False when the camera subpath ends here
-// (ppm after its merge; an extra camera sample after its x_f).
+// (ppm after its merge).
 bool strategies_at(const Context& C, const CameraWalk& w, const Vertex& v, int depth, float go_on, bool full,
                    Sampler& sampler) {
     const Spectrum& beta = w.path.beta;
@@ -383,20 +383,24 @@ bool strategies_at(const Context& C, const CameraWalk& w, const Vertex& v, int d
             C.parts[w.merged_part(depth, k)] += spectrum::colour_through(beta, lambda, merged[k]);
         if (C.it.strategies.ppm) return false;  // ppm: the first non-delta camera vertex gathers everything
     }
-    return full || !w.specular_chain;  // an extra camera sample: its x_f is done
+    return true;  // an extra camera sample goes past its x_f only through a delta lobe (go_on_past)
 }
 
 // Continues the camera subpath from `v` (radiance transport): past x_f with probability go_on,
 // then a sampled direction, Russian roulette, and the ray to the next vertex. False when it ends.
+// An extra camera sample (not `full`) goes past its x_f only through a delta lobe, always: what a
+// delta lobe of x_f shows (a smooth coat's reflection over a diffuse walk) is found by every
+// camera sample, as the vertices before x_f are, while the rest past x_f is the full sample's.
 bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, bool smooth, float go_on,
-                Sampler& sampler, shading::SurfaceWalk& walk, Ray& ray) {
-    if (go_on < 1) {
+                bool full, Sampler& sampler, shading::SurfaceWalk& walk, Ray& ray) {
+    const bool extra_at_x_f = !full && w.specular_chain && smooth;
+    if (go_on < 1 && !extra_at_x_f) {
         if (!(sampler.next() < go_on)) return false;
         w.path.beta *= 1 / go_on;
     }
     const std::optional<Direction> d = continue_from(
         C.P, v, shading::TransportMode::Radiance, {C.merge_at.factors, v.mergeable, go_on}, sampler, w.path);
-    if (!d) return false;
+    if (!d || (extra_at_x_f && !d->delta)) return false;
     w.after_first = w.specular_chain && smooth;  // (a delta lobe sampled here zeroes dVCM anyway)
     w.specular_chain = w.specular_chain && d->delta;
     if (depth == 1)
@@ -412,8 +416,9 @@ bool go_on_past(const Context& C, CameraWalk& w, const Vertex& v, int depth, boo
 
 // One camera subpath through film position (fx, fy) with every strategy of the iteration: adds its
 // estimate for the pixel to C.parts (light tracing adds to other pixels itself). Without `full`
-// (the pixel's extra camera samples, Iteration::camera_samples) it ends after its first non-delta
-// vertex's light samples and merging, without connections. What the camera subpath finds up to
+// (the pixel's extra camera samples, Iteration::camera_samples) it makes no connections and ends
+// after its first non-delta vertex's light samples and merging, unless that vertex also has a
+// delta lobe and samples it. What the camera subpath finds up to
 // that vertex counts 1 / camera_samples (every camera sample finds it).
 void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampler, const Wavelengths& lambda,
                  bool full) {
@@ -460,7 +465,7 @@ void camera_path(const Context& C, float fx, float fy, Vec2 lens, Sampler& sampl
         // The probability of going on past this vertex: below 1 only at x_f (go_on_from).
         const float go_on = w.specular_chain && smooth ? go_on_from(C.it, v) : 1.0f;
         if (smooth && !strategies_at(C, w, v, depth, go_on, full, sampler)) return;
-        if (!go_on_past(C, w, v, depth, smooth, go_on, sampler, walk, ray)) return;
+        if (!go_on_past(C, w, v, depth, smooth, go_on, full, sampler, walk, ray)) return;
     }
 }
 

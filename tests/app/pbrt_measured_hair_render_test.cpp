@@ -4,7 +4,8 @@
 // Lambertian (R = 0.8) tabulated as an RGL .bsdf file reads 0.8 with every integrator (the table's
 // own interpolation error is below 1 %: tests/shading/measured_bxdf_test.cpp); a cylindrical
 // curve of lossless hair (sigma_a = 0) reads 1 (Chiang et al.'s fibre conserves energy: R, TT,
-// TRT and the residual lobe together carry all of it) and a dark one (eumelanin 8) far less.
+// TRT and the residual lobe together carry all of it) and a dark one (eumelanin 8) far less. vcm
+// renders a smooth-coated sphere as path does.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -83,6 +84,25 @@ TEST_F(PbrtMeasuredHairRender, LosslessHairConservesEnergyAndMelaninDarkensIt) {
         EXPECT_LT(d.average(), 0.5f * w.average()) << integrator;
         EXPECT_GT(d.average(), 0.0f) << integrator;  // its surface reflection (R) remains
     }
+}
+
+// vcm's extra camera samples (which stop at their first non-delta vertex) go on through a delta
+// lobe of that vertex: a smooth coat over a red diffuse base reflects the white sky in its coat
+// (a delta part) and shows its walk (a diffuse part) at one vertex. The sky's reflection is most
+// of the sphere's green and blue, and vcm lost half of it when only the full camera sample went on
+// through the coat (green 0.046 against path's 0.069).
+TEST_F(PbrtMeasuredHairRender, VcmFollowsTheDeltaPartOfAMixedVertexWithEveryCameraSample) {
+    const std::string scene =
+        dir.write("coat.pbrt", kView +
+                                   "Material \"coateddiffuse\" \"rgb reflectance\" [0.7 0.08 0.06] \"float "
+                                   "roughness\" 0\nShape \"sphere\" \"float radius\" 0.6\n");
+    const Rgb path = centre_mean(render(scene, "path", "--spp 256"));
+    const Rgb vcm = centre_mean(render(scene, "vcm", "--spp 64"));
+    std::printf("[ measured ] coated red: path %.4f %.4f %.4f, vcm %.4f %.4f %.4f\n", path.r, path.g, path.b,
+                vcm.r, vcm.g, vcm.b);
+    EXPECT_NEAR(vcm.r, path.r, 0.03f * path.r);
+    EXPECT_NEAR(vcm.g, path.g, 0.05f * path.g);
+    EXPECT_NEAR(vcm.b, path.b, 0.05f * path.b);
 }
 
 }  // namespace
