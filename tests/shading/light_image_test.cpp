@@ -25,8 +25,10 @@ namespace {
 
 using test::expect_mean;
 using test::expect_means;
+using test::image_texture;
 using test::RunningStat;
 using test::SpectralStat;
+using test::varied_map;
 
 const SceneSphere kSphere{{0, 0, 0}, 2.0f};
 const Wavelengths& kLambda = spectral::fixed_lambda();
@@ -34,30 +36,6 @@ const Wavelengths& kLambda = spectral::fixed_lambda();
 Spectrum texel_spectrum(Rgb c, const Wavelengths& lambda) {
     return spectrum::RgbSpectrum(c, spectrum::RgbSpectrum::Use::Illuminant, spectrum::RgbSpectrum::Fit::Table)
         .sample(lambda);
-}
-
-scene::Texture image_texture(int w, int h, std::vector<Rgb> texels) {
-    auto img = std::make_shared<scene::TextureImage>();
-    img->width = w;
-    img->height = h;
-    img->texels = std::move(texels);
-    scene::Texture t;
-    t.kind = scene::Texture::Kind::Image;
-    t.image = img;
-    return t;
-}
-
-// A 16 x 16 map with a smooth gradient, dark pixels and a bright spot.
-std::vector<Rgb> varied_map(int n) {
-    std::vector<Rgb> texels;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            float v = 0.1f + 0.05f * float((x * 5 + y * 3) % 7);
-            if ((x + 2 * y) % 9 == 0) v = 0;
-            texels.push_back(Rgb(v, 2 * v, 0.5f * v));
-        }
-    texels[size_t(4 * n + 11)] = Rgb(30, 20, 10);
-    return texels;
 }
 
 TEST(EqualAreaMap, SamplingMatchesThePixelsByChiSquare) {

@@ -17,37 +17,15 @@ namespace phos::shading {
 namespace {
 
 using test::expect_mean;
+using test::image_texture;
 using test::RunningStat;
+using test::varied_map;
 
 const SceneSphere kSphere{{0, 0, 0}, 4.0f};
 const Wavelengths& kLambda = spectral::fixed_lambda();
 
 // A 2 x 1.5 window in the plane y = 1, the sky above it (+y): (p3 - p0) x (p1 - p0) = +y.
 const std::vector<Vec3> kWindow = {{-1, 1, -0.5f}, {1, 1, -0.5f}, {1, 1, 1.0f}, {-1, 1, 1.0f}};
-
-scene::Texture image_texture(int w, int h, std::vector<Rgb> texels) {
-    auto img = std::make_shared<scene::TextureImage>();
-    img->width = w;
-    img->height = h;
-    img->texels = std::move(texels);
-    scene::Texture t;
-    t.kind = scene::Texture::Kind::Image;
-    t.image = std::move(img);
-    return t;
-}
-
-// An equal-area map with a smooth gradient, a bright spot and black pixels.
-std::vector<Rgb> varied_map(int n) {
-    std::vector<Rgb> texels;
-    for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) {
-            float v = 0.1f + 0.05f * float((x * 5 + y * 3) % 7);
-            if ((x + 2 * y) % 9 == 0) v = 0;
-            texels.push_back(Rgb(v, 2 * v, 0.5f * v));
-        }
-    texels[size_t(4 * n + 11)] = Rgb(30, 20, 10);
-    return texels;
-}
 
 scene::Light portal_light(int texture) {
     scene::Light rec;

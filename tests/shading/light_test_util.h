@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "core/rng.h"
 #include "core/vec.h"
@@ -103,6 +105,31 @@ inline double lambert_irradiance(const std::vector<Vec3>& poly, Vec3 x, Vec3 n, 
         sum += theta * dot_d(n, g);
     }
     return 0.5 * L * std::fabs(sum);
+}
+
+// An image texture of w x h texels (row 0 at the top).
+inline scene::Texture image_texture(int w, int h, std::vector<Rgb> texels) {
+    auto img = std::make_shared<scene::TextureImage>();
+    img->width = w;
+    img->height = h;
+    img->texels = std::move(texels);
+    scene::Texture t;
+    t.kind = scene::Texture::Kind::Image;
+    t.image = std::move(img);
+    return t;
+}
+
+// An n x n map with a smooth gradient, black pixels and one bright spot (n >= 12).
+inline std::vector<Rgb> varied_map(int n) {
+    std::vector<Rgb> texels;
+    for (int y = 0; y < n; ++y)
+        for (int x = 0; x < n; ++x) {
+            float v = 0.1f + 0.05f * float((x * 5 + y * 3) % 7);
+            if ((x + 2 * y) % 9 == 0) v = 0;
+            texels.push_back(Rgb(v, 2 * v, 0.5f * v));
+        }
+    texels[size_t(4 * n + 11)] = Rgb(30, 20, 10);
+    return texels;
 }
 
 }  // namespace phos::shading::test
