@@ -4,25 +4,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/transform.h"
+
 namespace phos::scene {
 namespace {
 
 // The rotation taking unit `from` to unit `to` as the product of two reflections (Hughes and
-// Moeller 1999; pbrt-v4's RotateFromTo), as a 3x3 matrix applied to column vectors.
-struct Mat3 {
-    float m[3][3];
-    Vec3 apply(Vec3 v) const {
-        return {m[0][0] * v.x + m[0][1] * v.y + m[0][2] * v.z, m[1][0] * v.x + m[1][1] * v.y + m[1][2] * v.z,
-                m[2][0] * v.x + m[2][1] * v.y + m[2][2] * v.z};
-    }
-    // The inverse of a rotation: its transpose.
-    Vec3 apply_inverse(Vec3 v) const {
-        return {m[0][0] * v.x + m[1][0] * v.y + m[2][0] * v.z, m[0][1] * v.x + m[1][1] * v.y + m[2][1] * v.z,
-                m[0][2] * v.x + m[1][2] * v.y + m[2][2] * v.z};
-    }
-};
-
-Mat3 rotate_from_to(Vec3 from, Vec3 to) {
+// Moeller 1999; pbrt-v4's RotateFromTo), its inverse its transpose.
+Transform rotate_from_to(Vec3 from, Vec3 to) {
     Vec3 refl;
     if (std::fabs(from.x) < 0.72f && std::fabs(to.x) < 0.72f)
         refl = Vec3(1, 0, 0);
@@ -32,12 +21,12 @@ Mat3 rotate_from_to(Vec3 from, Vec3 to) {
         refl = Vec3(0, 0, 1);
     const Vec3 u = refl - from, v = refl - to;
     const float uu = dot(u, u), vv = dot(v, v), uv = dot(u, v);
-    Mat3 r;
+    Mat4 r;
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
-            r.m[i][j] = (i == j ? 1.0f : 0.0f) - 2 / uu * u[i] * u[j] - 2 / vv * v[i] * v[j] +
-                        4 * uv / (uu * vv) * v[i] * u[j];
-    return r;
+            r(i, j) = (i == j ? 1.0f : 0.0f) - 2 / uu * u[i] * u[j] - 2 / vv * v[i] * v[j] +
+                      4 * uv / (uu * vv) * v[i] * u[j];
+    return Transform(r, r.transposed());
 }
 
 // a b - c d.
@@ -54,15 +43,15 @@ void approximate_dp_dxy(const CameraFootprint& c, Vec3 p, Vec3 n, Vec3& dpdx, Ve
     const float distance = length(p_camera);
     if (!(distance > 0) || !std::isfinite(distance)) return;
     // Camera space turned so that p lies on +z; the tangent plane n . x = d there.
-    const Mat3 down_z = rotate_from_to(p_camera / distance, Vec3(0, 0, 1));
-    const Vec3 p_down = down_z.apply(p_camera);
-    const Vec3 n_down = down_z.apply(to_camera(n));
+    const Transform down_z = rotate_from_to(p_camera / distance, Vec3(0, 0, 1));
+    const Vec3 p_down = down_z.vector(p_camera);
+    const Vec3 n_down = down_z.vector(to_camera(n));
     const float d = n_down.z * p_down.z;
     // The two offset rays and where they meet the plane.
     const auto offset = [&](Vec3 origin, Vec3 dir) {
         const float t = -(dot(n_down, origin) - d) / dot(n_down, dir);
         const Vec3 hit = origin + dir * t;
-        const Vec3 delta = down_z.apply_inverse(hit - p_down) * c.spp_scale;
+        const Vec3 delta = down_z.inverse().vector(hit - p_down) * c.spp_scale;
         const Vec3 world = c.right * delta.x + c.up * delta.y + c.forward * delta.z;
         return is_finite(world) ? world : Vec3(0.0f);
     };
